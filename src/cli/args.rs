@@ -1,0 +1,283 @@
+//! Value parsers and the shared options of the commands that render.
+
+use crate::physics::Normalization;
+use crate::settings::{DebugView, Filter, Settings};
+use anyhow::Context;
+use glam::Vec3;
+use std::path::PathBuf;
+
+/// A comma-separated list given as one argument (a `Vec` field would make
+/// clap expect the flag repeated).
+#[derive(Clone, Debug, PartialEq)]
+pub struct List<T>(pub Vec<T>);
+
+/// Parses a comma-separated list of numbers, each checked by `check`.
+pub fn number_list(
+    text: &str,
+    what: &str,
+    check: impl Fn(f64) -> bool,
+    allowed: &str,
+) -> Result<Vec<f64>, String> {
+    let values: Vec<f64> = text
+        .split(',')
+        .map(|item| {
+            let item = item.trim();
+            match item.parse::<f64>() {
+                Ok(v) if v.is_finite() && check(v) => Ok(v),
+                _ => Err(format!("{what} '{item}' is not allowed ({allowed})")),
+            }
+        })
+        .collect::<Result<_, _>>()?;
+    if values.is_empty() {
+        return Err(format!("empty list ({allowed})"));
+    }
+    Ok(values)
+}
+
+/// A number in [min, max].
+pub fn number_in(text: &str, min: f64, max: f64) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && (min..=max).contains(&v) => Ok(v),
+        _ => Err(format!("'{text}' is not a number in {min} … {max}")),
+    }
+}
+
+/// Three comma-separated numbers.
+pub fn vec3(text: &str) -> Result<Vec3, String> {
+    let v = number_list(text, "coordinate", |_| true, "three numbers x,y,z")?;
+    match v.as_slice() {
+        [x, y, z] => Ok(Vec3::new(*x as f32, *y as f32, *z as f32)),
+        _ => Err(format!("'{text}' needs exactly three numbers x,y,z")),
+    }
+}
+
+/// `WxH`, each side in 1 … 16384 pixels.
+pub fn size(text: &str) -> Result<(u32, u32), String> {
+    let parse = |s: &str| s.trim().parse::<u32>().ok().filter(|v| (1..=16384).contains(v));
+    match text.split_once(['x', 'X']) {
+        Some((w, h)) => match (parse(w), parse(h)) {
+            (Some(w), Some(h)) => Ok((w, h)),
+            _ => Err(format!(
+                "'{text}': width and height must be whole numbers in 1 … 16384"
+            )),
+        },
+        None => Err(format!("'{text}' is not a size WxH (e.g. 1280x720)")),
+    }
+}
+
+/// Where the camera comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CameraChoice {
+    /// `EYE:TARGET:FOVY_DEG`.
+    Explicit { eye: Vec3, target: Vec3, fovy_deg: f32 },
+    /// `gltf:N`: camera N of the scene file.
+    Gltf(usize),
+}
+
+/// `EYE:TARGET:FOVY_DEG` (e.g. `0,2,5:0,0,0:45`) or `gltf:N`.
+pub fn camera(text: &str) -> Result<CameraChoice, String> {
+    if let Some(n) = text.strip_prefix("gltf:") {
+        return n
+            .trim()
+            .parse::<usize>()
+            .map(CameraChoice::Gltf)
+            .map_err(|_| format!("'{text}': gltf:N needs a camera index N ≥ 0"));
+    }
+    let parts: Vec<&str> = text.split(':').collect();
+    let [eye, target, fovy] = parts.as_slice() else {
+        return Err(format!(
+            "'{text}' is not EYE:TARGET:FOVY_DEG (e.g. 0,2,5:0,0,0:45) or gltf:N"
+        ));
+    };
+    Ok(CameraChoice::Explicit {
+        eye: vec3(eye)?,
+        target: vec3(target)?,
+        fovy_deg: number_in(fovy, 1.0, 179.0).map_err(|e| format!("field of view {e}"))? as f32,
+    })
+}
+
+fn normalization(text: &str) -> Result<Normalization, String> {
+    text.parse()
+}
+
+fn filter(text: &str) -> Result<Filter, String> {
+    text.parse()
+}
+
+fn view(text: &str) -> Result<DebugView, String> {
+    text.parse()
+}
+
+fn unit_interval(text: &str) -> Result<f32, String> {
+    number_in(text, 0.0, 1.0).map(|v| v as f32)
+}
+
+fn exponent(text: &str) -> Result<f32, String> {
+    number_in(text, 0.0, 1e6).map(|v| v as f32)
+}
+
+fn non_negative(text: &str) -> Result<f32, String> {
+    number_in(text, 0.0, 1e12).map(|v| v as f32)
+}
+
+fn exposure(text: &str) -> Result<f32, String> {
+    number_in(text, -30.0, 30.0).map(|v| v as f32)
+}
+
+/// The options every rendering command shares (DESIGN.md's contract).
+#[derive(Clone, Debug, Default, clap::Args)]
+pub struct SceneOptions {
+    /// Settings file (TOML, as the app saves it); the flags below override it.
+    #[arg(long, value_name = "FILE")]
+    pub settings: Option<PathBuf>,
+    /// glTF or GLB scene (default: the built-in scene).
+    #[arg(long, value_name = "FILE.gltf|FILE.glb")]
+    pub scene: Option<PathBuf>,
+    /// Camera as EYE:TARGET:FOVY_DEG (e.g. 0,2,5:0,0,0:45) or gltf:N.
+    #[arg(long, value_name = "EYE:TARGET:FOVY|gltf:N", value_parser = camera, allow_hyphen_values = true)]
+    pub camera: Option<CameraChoice>,
+    /// Image size in pixels.
+    #[arg(long, value_name = "WxH", value_parser = size)]
+    pub size: Option<(u32, u32)>,
+    /// Light position (m).
+    #[arg(long, value_name = "X,Y,Z", value_parser = vec3, allow_hyphen_values = true)]
+    pub light: Option<Vec3>,
+    /// Light power Φ (W).
+    #[arg(long, value_name = "W", value_parser = non_negative)]
+    pub power: Option<f32>,
+    /// Sphere light radius R (m); 0 = point light.
+    #[arg(long, value_name = "R", value_parser = non_negative)]
+    pub light_radius: Option<f32>,
+    /// Light colour (linear RGB).
+    #[arg(long, value_name = "R,G,B", value_parser = vec3)]
+    pub color: Option<Vec3>,
+    /// Diffuse/specular mix k ∈ [0, 1] (applies to every object).
+    #[arg(long, value_name = "K", value_parser = unit_interval)]
+    pub k: Option<f32>,
+    /// Blinn-Phong exponent m ∈ [0, 1e6] (applies to every object).
+    #[arg(long, value_name = "M", value_parser = exponent)]
+    pub m: Option<f32>,
+    /// Lobe normalization: none|ndf|approx|exact.
+    #[arg(long, value_name = "NAME", value_parser = normalization)]
+    pub norm: Option<Normalization>,
+    /// Shadow-map resolution (texels), clamped to the device limit.
+    #[arg(long, value_name = "N")]
+    pub shadow_res: Option<u32>,
+    /// Shadow filter: none|hw2x2|pcf|poisson|pcss|vsm|evsm.
+    #[arg(long, value_name = "NAME", value_parser = filter)]
+    pub filter: Option<Filter>,
+    /// PCF kernel size: 3|5|7|9.
+    #[arg(long, value_name = "N")]
+    pub pcf_size: Option<u32>,
+    /// Depth bias: auto | constant:D | slope:D,S | normal:N (D in m, N in texels).
+    #[arg(long, value_name = "MODE")]
+    pub bias: Option<String>,
+    /// What to show: shaded|depth|visibility|ndotl|irradiance|brdf|diffuse|specular|texel-density|frustum|ref-visibility|error.
+    #[arg(long, value_name = "NAME", value_parser = view)]
+    pub view: Option<DebugView>,
+    /// Exposure (EV): displayed = L · 2^EV.
+    #[arg(long, value_name = "EV", value_parser = exposure, allow_hyphen_values = true)]
+    pub exposure: Option<f32>,
+    /// Turn shadows off (V = 1).
+    #[arg(long)]
+    pub no_shadows: bool,
+}
+
+impl SceneOptions {
+    /// The settings file (if any) with every given flag applied, validated.
+    /// A `gltf:N` camera is returned apart: it needs the loaded scene.
+    pub fn settings(&self) -> anyhow::Result<(Settings, Option<usize>)> {
+        let mut s = match &self.settings {
+            Some(path) => Settings::load(path)?,
+            None => Settings::default(),
+        };
+        if let Some(scene) = &self.scene {
+            s.scene = Some(scene.clone());
+        }
+        let mut gltf_camera = None;
+        match self.camera {
+            Some(CameraChoice::Explicit {
+                eye,
+                target,
+                fovy_deg,
+            }) => {
+                s.camera.eye = eye;
+                s.camera.target = target;
+                s.camera.fovy_deg = fovy_deg;
+            }
+            Some(CameraChoice::Gltf(n)) => gltf_camera = Some(n),
+            None => {}
+        }
+        if let Some((w, h)) = self.size {
+            s.image.width = w;
+            s.image.height = h;
+        }
+        let light = &mut s.light;
+        light.position = self.light.unwrap_or(light.position);
+        light.power_w = self.power.unwrap_or(light.power_w);
+        light.radius_m = self.light_radius.unwrap_or(light.radius_m);
+        light.color = self.color.unwrap_or(light.color);
+        let material = &mut s.material;
+        if self.k.is_some() || self.m.is_some() {
+            // k and m from the command line apply to every object.
+            material.use_scene_materials = false;
+        }
+        material.k = self.k.unwrap_or(material.k);
+        material.m = self.m.unwrap_or(material.m);
+        material.norm = self.norm.unwrap_or(material.norm);
+        let shadow = &mut s.shadow;
+        shadow.resolution = self.shadow_res.unwrap_or(shadow.resolution);
+        shadow.filter = self.filter.unwrap_or(shadow.filter);
+        shadow.pcf_size = self.pcf_size.unwrap_or(shadow.pcf_size);
+        if let Some(bias) = &self.bias {
+            shadow.bias = shadow
+                .bias
+                .parse_onto(bias)
+                .map_err(|e| anyhow::anyhow!("--bias {e}"))?;
+        }
+        if self.no_shadows {
+            shadow.enabled = false;
+        }
+        s.view.mode = self.view.unwrap_or(s.view.mode);
+        s.view.exposure_ev = self.exposure.unwrap_or(s.view.exposure_ev);
+        s.validate().context("invalid settings")?;
+        Ok((s, gltf_camera))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn camera_parses_both_forms() {
+        assert_eq!(
+            camera("0,2,5:0,0,0:45").unwrap(),
+            CameraChoice::Explicit {
+                eye: Vec3::new(0.0, 2.0, 5.0),
+                target: Vec3::ZERO,
+                fovy_deg: 45.0
+            }
+        );
+        assert_eq!(camera("gltf:1").unwrap(), CameraChoice::Gltf(1));
+        for bad in ["0,2,5:0,0,0", "0,2:0,0,0:45", "0,2,5:0,0,0:200", "gltf:x"] {
+            assert!(camera(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn size_parses() {
+        assert_eq!(size("1280x720").unwrap(), (1280, 720));
+        assert!(size("0x10").is_err() && size("12").is_err() && size("20000x10").is_err());
+    }
+
+    #[test]
+    fn lists_reject_bad_items() {
+        assert!(number_list("1,abc", "m", |_| true, "").is_err());
+        assert!(number_list("1,-3", "m", |v| v >= 0.0, "").is_err());
+        assert_eq!(
+            number_list("1, 2,4", "m", |_| true, "").unwrap(),
+            vec![1.0, 2.0, 4.0]
+        );
+    }
+}

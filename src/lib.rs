@@ -1,0 +1,16 @@
+//! lumlab: a desktop lighting lab for direct lighting.
+//!
+//! `physics` holds the formulas (no GPU, no UI, no files); `settings` every
+//! user-settable value; `scene` what is drawn; `cli` the command line.
+
+#[macro_use]
+mod named;
+
+pub mod cli;
+pub mod gpu;
+pub mod image_io;
+pub mod output;
+pub mod physics;
+pub mod plot;
+pub mod scene;
+pub mod settings;

@@ -1,0 +1,252 @@
+//! The lab's BRDF: a Lambert term mixed with a Blinn-Phong lobe,
+//!
+//!     f_r(l, o) = c · ( k / π + (1 − k) · N(m) · cos^m θ_h ),
+//!
+//! with h = normalize(l + o) and cos θ_h = max(0, n·h). The normalization N(m)
+//! is a user choice so that its effect on energy can be seen.
+//!
+//! Hard cases have defined values, never NaN or Inf: the lobe is 1 for m = 0
+//! (0^0 = 1); the specular term is 0 when l + o = 0; nothing is reflected when
+//! n·l ≤ 0 or n·o ≤ 0. The lobe is computed as exp(m · ln cos θ_h) with
+//! 1 − cos θ_h taken from |n − h|² / 2, so that m = 10^6 keeps its precision.
+
+use super::real::{Float, FloatConst, One, Real, Vector3, Zero};
+
+crate::named_enum! {
+    /// The normalization N(m) of the Blinn-Phong lobe.
+    pub enum Normalization {
+        /// N = 1: the raw lobe; reflects less and less energy as m grows.
+        None = "none",
+        /// N = (m + 1) / 2π: normalizes the lobe over half-vectors, not energy.
+        Ndf = "ndf",
+        /// N = (m + 8) / 8π: the usual approximation; exceeds 1 at small m.
+        Approx = "approx",
+        /// N = (m + 2)(m + 4) / (8π (2^(−m/2) + m)): exact at normal incidence.
+        Exact = "exact",
+    }
+}
+
+impl Normalization {
+    /// The formula, for tooltips and tables.
+    pub fn formula(self) -> &'static str {
+        match self {
+            Self::None => "N(m) = 1",
+            Self::Ndf => "N(m) = (m + 1) / 2π",
+            Self::Approx => "N(m) = (m + 8) / 8π",
+            Self::Exact => "N(m) = (m + 2)(m + 4) / (8π (2^(−m/2) + m))",
+        }
+    }
+
+    /// N(m) for the exponent m ≥ 0.
+    pub fn factor<S: Real>(self, m: S) -> S {
+        let pi = S::PI();
+        let lit = S::lit;
+        match self {
+            Self::None => S::one(),
+            Self::Ndf => (m + S::one()) / (lit(2.0) * pi),
+            Self::Approx => (m + lit(8.0)) / (lit(8.0) * pi),
+            Self::Exact => {
+                (m + lit(2.0)) * (m + lit(4.0)) / (lit(8.0) * pi * (lit(2.0).powf(-m / lit(2.0)) + m))
+            }
+        }
+    }
+}
+
+/// The material parameters of the BRDF (the colour c is applied by the caller).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BrdfParams<S> {
+    /// Diffuse/specular mix k ∈ [0, 1]: 1 is pure Lambert.
+    pub k: S,
+    /// Blinn-Phong exponent m ≥ 0.
+    pub m: S,
+    pub norm: Normalization,
+}
+
+/// The two parts of f_r / c (1/sr): f_r = c · (diffuse + specular).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct BrdfTerms<S> {
+    /// k / π
+    pub diffuse: S,
+    /// (1 − k) · N(m) · cos^m θ_h
+    pub specular: S,
+}
+
+impl<S: Real> BrdfTerms<S> {
+    pub fn total(self) -> S {
+        self.diffuse + self.specular
+    }
+}
+
+/// ln(cos θ) from the gap d = 1 − cos θ ∈ [0, 1), accurate for tiny d where
+/// ln(cos θ) itself would round to 0. A short series stands in for log1p,
+/// which WGSL lacks; the shader uses the same code.
+pub fn ln_cos_from_gap<S: Real>(gap: S) -> S {
+    if gap < S::lit(1e-3) {
+        // ln(1 − d) = −(d + d²/2 + d³/3 + d⁴/4 + d⁵/5), error below d⁶/6.
+        let d = gap;
+        -(d * (S::one() + d * (S::lit(0.5) + d * (S::lit(1.0 / 3.0) + d * (S::lit(0.25) + d * S::lit(0.2))))))
+    } else {
+        (S::one() - gap).ln()
+    }
+}
+
+/// cos^m θ with the lab's conventions: 1 when m = 0 (0^0 = 1), 0 when
+/// cos θ ≤ 0 and m > 0; `gap` is 1 − cos θ computed accurately by the caller.
+pub fn lobe<S: Real>(cos_theta: S, gap: S, m: S) -> S {
+    if m <= S::zero() {
+        S::one()
+    } else if cos_theta <= S::zero() {
+        S::zero()
+    } else {
+        (m * ln_cos_from_gap(gap)).exp()
+    }
+}
+
+/// f_r / c for the unit normal `n`, unit light direction `l` and unit view
+/// direction `o` (all pointing away from the surface).
+pub fn blinn_phong<V: Vector3>(n: V, l: V, o: V, params: &BrdfParams<V::S>) -> BrdfTerms<V::S> {
+    let zero = V::S::zero();
+    let one = V::S::one();
+    if !(n.dot(l) > zero && n.dot(o) > zero) {
+        return BrdfTerms::default();
+    }
+    let diffuse = params.k / V::S::PI();
+    let sum = l + o;
+    let len2 = sum.length_squared();
+    if len2.is_nan() || len2 <= zero {
+        // l + o = 0: no half vector, no specular term.
+        return BrdfTerms {
+            diffuse,
+            specular: zero,
+        };
+    }
+    let h = sum * (one / len2.sqrt());
+    let cos_h = n.dot(h);
+    let gap = ((n - h).length_squared() * V::S::lit(0.5)).min(one);
+    let specular = (one - params.k) * params.norm.factor(params.m) * lobe(cos_h, gap, params.m);
+    BrdfTerms { diffuse, specular }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::{DVec3, Vec3};
+    use std::f64::consts::PI;
+
+    fn dir(theta_deg: f64, phi_deg: f64) -> DVec3 {
+        let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
+        DVec3::new(t.sin() * p.cos(), t.cos(), t.sin() * p.sin())
+    }
+
+    fn params(k: f64, m: f64, norm: Normalization) -> BrdfParams<f64> {
+        BrdfParams { k, m, norm }
+    }
+
+    #[test]
+    fn lambert_is_k_over_pi() {
+        let f = blinn_phong(
+            DVec3::Y,
+            dir(30.0, 0.0),
+            dir(50.0, 120.0),
+            &params(0.8, 10.0, Normalization::Exact),
+        );
+        assert!((f.diffuse - 0.8 / PI).abs() < 1e-15);
+    }
+
+    #[test]
+    fn mirror_direction_gives_the_lobe_peak() {
+        for &norm in Normalization::ALL {
+            let p = params(0.0, 64.0, norm);
+            let f = blinn_phong(DVec3::Y, dir(40.0, 0.0), dir(40.0, 180.0), &p);
+            assert!((f.specular - norm.factor(64.0)).abs() < 1e-12 * norm.factor(64.0));
+        }
+    }
+
+    #[test]
+    fn normalization_factors_match_their_formulas() {
+        let m: f64 = 8.0;
+        assert_eq!(Normalization::None.factor(m), 1.0);
+        assert!((Normalization::Ndf.factor(m) - 9.0 / (2.0 * PI)).abs() < 1e-15);
+        assert!((Normalization::Approx.factor(m) - 16.0 / (8.0 * PI)).abs() < 1e-15);
+        let exact = 10.0 * 12.0 / (8.0 * PI * (2f64.powf(-4.0) + 8.0));
+        assert!((Normalization::Exact.factor(m) - exact).abs() < 1e-15);
+        assert!((Normalization::Exact.factor(0.0) - 1.0 / PI).abs() < 1e-15);
+    }
+
+    #[test]
+    fn zero_exponent_lobe_is_one_even_at_cos_zero() {
+        assert_eq!(lobe(0.0_f64, 1.0, 0.0), 1.0);
+        assert_eq!(lobe(-0.5_f64, 1.5, 0.0), 1.0);
+        assert_eq!(lobe(0.0_f64, 1.0, 2.0), 0.0);
+    }
+
+    #[test]
+    fn back_facing_reflects_nothing() {
+        let p = params(0.5, 8.0, Normalization::Approx);
+        assert_eq!(
+            blinn_phong(DVec3::Y, dir(100.0, 0.0), dir(20.0, 0.0), &p).total(),
+            0.0
+        );
+        assert_eq!(
+            blinn_phong(DVec3::Y, dir(20.0, 0.0), dir(90.5, 0.0), &p).total(),
+            0.0
+        );
+    }
+
+    #[test]
+    fn opposite_directions_have_no_specular_term() {
+        // Only reachable with n·l > 0 and n·o > 0 if the vectors cancel exactly;
+        // the tangent-plane case is the limit and must stay finite.
+        let l = dir(89.99, 0.0);
+        let o = dir(89.99, 180.0);
+        let f = blinn_phong(DVec3::Y, l, o, &params(0.0, 1e6, Normalization::Exact));
+        assert!(f.specular.is_finite());
+        let exactly_opposite = blinn_phong(
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::X,
+            -DVec3::X,
+            &params(0.0, 4.0, Normalization::None),
+        );
+        assert_eq!(exactly_opposite.total(), 0.0);
+    }
+
+    #[test]
+    fn huge_exponent_stays_precise_in_f32() {
+        // θ_h = 1 mrad, m = 10^6: cos^m = exp(m ln cos θ_h) ≈ exp(−0.5).
+        let theta_h: f64 = 1e-3;
+        let m = 1e6;
+        let l64 = dir(20.0 + theta_h.to_degrees(), 0.0);
+        let o64 = dir(20.0 - theta_h.to_degrees(), 180.0);
+        let p64 = params(0.0, m, Normalization::None);
+        let f64v = blinn_phong(DVec3::Y, l64, o64, &p64).specular;
+        let expected = (m * theta_h.cos().ln()).exp();
+        assert!((f64v / expected - 1.0).abs() < 1e-9, "{f64v} vs {expected}");
+        let p32 = BrdfParams {
+            k: 0.0_f32,
+            m: m as f32,
+            norm: Normalization::None,
+        };
+        let f32v = blinn_phong(Vec3::Y, l64.as_vec3(), o64.as_vec3(), &p32).specular;
+        assert!(
+            (f32v as f64 / expected - 1.0).abs() < 1e-3,
+            "{f32v} vs {expected}"
+        );
+    }
+
+    #[test]
+    fn reciprocity() {
+        let p = params(0.3, 20.0, Normalization::Exact);
+        let (l, o) = (dir(25.0, 10.0), dir(60.0, 200.0));
+        let a = blinn_phong(DVec3::Y, l, o, &p).total();
+        let b = blinn_phong(DVec3::Y, o, l, &p).total();
+        assert_eq!(a, b);
+    }
+
+    #[test]
+    fn ln_cos_series_matches_ln() {
+        for &d in &[1e-12_f64, 1e-6, 5e-4, 9.99e-4, 1e-3, 0.2] {
+            let exact = (-d).ln_1p();
+            assert!((ln_cos_from_gap(d) / exact - 1.0).abs() < 1e-15, "{d}");
+        }
+    }
+}

@@ -1,0 +1,174 @@
+//! The lab's camera model, shared by the GPU renderer and the CPU reference so
+//! that their images compare pixel by pixel.
+//!
+//! Perspective, given by eye, target and the vertical field of view; up is +Y.
+//! Pixel (i, j) of a W×H image has its centre at (i + 0.5, j + 0.5) and row 0
+//! is the top of the image. The GPU's depth is reversed-Z (near → 1, far → 0)
+//! for precision from millimetres to kilometres.
+
+use glam::{DMat4, DVec3, DVec4, Vec3};
+
+/// A perspective camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    pub eye: Vec3,
+    pub target: Vec3,
+    /// Vertical field of view (degrees).
+    pub fovy_deg: f32,
+}
+
+/// An orthonormal camera frame in f64.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    pub right: DVec3,
+    pub up: DVec3,
+    /// Unit direction from the eye towards the target.
+    pub forward: DVec3,
+}
+
+impl Camera {
+    /// Right, up and forward. Up is +Y; when looking straight up or down, +Z
+    /// stands in for it so the frame stays defined.
+    pub fn frame(&self) -> Frame {
+        look_frame(self.eye.as_dvec3(), self.target.as_dvec3())
+    }
+
+    /// tan(fovy / 2).
+    pub fn tan_half_fovy(&self) -> f64 {
+        (0.5 * (self.fovy_deg as f64).to_radians()).tan()
+    }
+
+    /// Unit direction of the ray through the image point (x, y) in pixels of a
+    /// `width`×`height` image; pixel centres are at (i + 0.5, j + 0.5).
+    pub fn ray_direction(&self, x: f64, y: f64, width: u32, height: u32) -> DVec3 {
+        let f = self.frame();
+        let t = self.tan_half_fovy();
+        let aspect = width as f64 / height as f64;
+        let sx = (2.0 * x / width as f64 - 1.0) * t * aspect;
+        let sy = (1.0 - 2.0 * y / height as f64) * t;
+        (f.forward + f.right * sx + f.up * sy).normalize()
+    }
+
+    /// World → view: a rotation (no translation: the GPU works relative to the
+    /// eye for precision). View space looks down −Z with +Y up.
+    pub fn view_rotation(&self) -> DMat4 {
+        let f = self.frame();
+        rotation_to_view(&f)
+    }
+
+    /// Reversed-Z perspective projection for `aspect` = width / height.
+    pub fn projection(&self, aspect: f64, near: f64, far: f64) -> DMat4 {
+        let t = self.tan_half_fovy();
+        reversed_z_projection(-t * aspect, t * aspect, -t, t, near, far)
+    }
+}
+
+/// The frame looking from `eye` at `target` with +Y up (+Z when vertical).
+pub fn look_frame(eye: DVec3, target: DVec3) -> Frame {
+    let forward = (target - eye).normalize_or(DVec3::NEG_Z);
+    let up_hint = if forward.cross(DVec3::Y).length_squared() < 1e-12 {
+        DVec3::Z
+    } else {
+        DVec3::Y
+    };
+    let right = forward.cross(up_hint).normalize();
+    let up = right.cross(forward);
+    Frame { right, up, forward }
+}
+
+/// The rotation taking world directions to a view space that looks down −Z.
+pub fn rotation_to_view(f: &Frame) -> DMat4 {
+    DMat4::from_cols(
+        DVec4::new(f.right.x, f.up.x, -f.forward.x, 0.0),
+        DVec4::new(f.right.y, f.up.y, -f.forward.y, 0.0),
+        DVec4::new(f.right.z, f.up.z, -f.forward.z, 0.0),
+        DVec4::W,
+    )
+}
+
+/// An off-centre perspective projection with reversed Z: view-space points at
+/// depth z = −z_view ∈ [near, far] whose x/z lies in [left, right] and y/z in
+/// [bottom, top] (tangents) map to NDC x, y ∈ [−1, 1] and depth
+/// d = a / z + b ∈ [0, 1], with d(near) = 1 and d(far) = 0.
+pub fn reversed_z_projection(left: f64, right: f64, bottom: f64, top: f64, near: f64, far: f64) -> DMat4 {
+    let (a, b) = reversed_z_coefficients(near, far);
+    let sx = 2.0 / (right - left);
+    let sy = 2.0 / (top - bottom);
+    let cx = (right + left) / (right - left);
+    let cy = (top + bottom) / (top - bottom);
+    // clip = (sx x + cx z, sy y + cy z, a + b z, z) with z = −z_view.
+    DMat4::from_cols(
+        DVec4::new(sx, 0.0, 0.0, 0.0),
+        DVec4::new(0.0, sy, 0.0, 0.0),
+        DVec4::new(-cx, -cy, -b, -1.0),
+        DVec4::new(0.0, 0.0, a, 0.0),
+    )
+}
+
+/// The (a, b) of reversed-Z depth d = a / z + b: a = near·far / (far − near),
+/// b = −near / (far − near). The inverse is z = a / (d − b).
+pub fn reversed_z_coefficients(near: f64, far: f64) -> (f64, f64) {
+    let span = far - near;
+    (near * far / span, -near / span)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn camera() -> Camera {
+        Camera {
+            eye: Vec3::new(1.0, 2.0, 5.0),
+            target: Vec3::new(0.0, 0.5, 0.0),
+            fovy_deg: 50.0,
+        }
+    }
+
+    #[test]
+    fn centre_ray_looks_at_the_target() {
+        let c = camera();
+        let d = c.ray_direction(50.0, 40.0, 100, 80);
+        let expected = (c.target - c.eye).as_dvec3().normalize();
+        assert!((d - expected).length() < 1e-12);
+    }
+
+    #[test]
+    fn projection_maps_pixel_rays_to_pixel_centres() {
+        let c = camera();
+        let (w, h) = (64, 48);
+        let proj = c.projection(w as f64 / h as f64, 0.1, 100.0);
+        let view = c.view_rotation();
+        for &(i, j) in &[(0u32, 0u32), (63, 0), (10, 47), (32, 24)] {
+            let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+            let p = c.ray_direction(x, y, w, h) * 7.0;
+            let clip = proj * view * p.extend(1.0);
+            let ndc = clip.truncate() / clip.w;
+            let px = (ndc.x + 1.0) * 0.5 * w as f64;
+            let py = (1.0 - ndc.y) * 0.5 * h as f64;
+            assert!(
+                (px - x).abs() < 1e-9 && (py - y).abs() < 1e-9,
+                "{px},{py} vs {x},{y}"
+            );
+        }
+    }
+
+    #[test]
+    fn reversed_z_maps_near_to_one_and_far_to_zero() {
+        let proj = reversed_z_projection(-1.0, 1.0, -1.0, 1.0, 0.5, 200.0);
+        let depth = |z: f64| {
+            let clip = proj * DVec4::new(0.0, 0.0, -z, 1.0);
+            clip.z / clip.w
+        };
+        assert!((depth(0.5) - 1.0).abs() < 1e-12);
+        assert!(depth(200.0).abs() < 1e-12);
+        let (a, b) = reversed_z_coefficients(0.5, 200.0);
+        assert!((a / (depth(13.0) - b) - 13.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn looking_straight_down_keeps_a_frame() {
+        let f = look_frame(DVec3::new(0.0, 5.0, 0.0), DVec3::ZERO);
+        assert!(f.right.is_finite() && f.up.is_finite());
+        assert!((f.right.cross(f.up) - (-f.forward)).length() < 1e-12);
+    }
+}
