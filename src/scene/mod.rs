@@ -6,6 +6,7 @@
 
 pub mod bounds;
 pub mod camera;
+pub mod shapes;
 
 pub use bounds::Aabb;
 pub use camera::Camera;
