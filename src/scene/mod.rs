@@ -11,7 +11,68 @@ pub mod shapes;
 pub use bounds::Aabb;
 pub use camera::Camera;
 
+use crate::settings::Settings;
 use glam::{Vec2, Vec3, Vec4};
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+
+/// A scene file could not be used. Each message is one line naming the
+/// file and the problem.
+#[derive(Debug, Error)]
+pub enum SceneError {
+    #[error("cannot load scene '{path}': {message}")]
+    Invalid { path: PathBuf, message: String },
+}
+
+/// The scene the settings name: their glTF/GLB file, or the built-in scene.
+pub fn for_settings(settings: &Settings) -> Result<Scene, SceneError> {
+    match &settings.scene {
+        Some(path) => load(path),
+        None => Ok(default_scene()),
+    }
+}
+
+/// Loads a glTF or GLB file.
+pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    Err(SceneError::Invalid {
+        path: path.to_owned(),
+        message: "glTF loading is not implemented yet".into(),
+    })
+}
+
+/// The built-in scene (a stand-in until the generated asset lands).
+pub fn default_scene() -> Scene {
+    use shapes::{cuboid, ground, sphere};
+    let materials = vec![
+        Material {
+            name: "ground".into(),
+            base_color: Vec4::new(0.75, 0.75, 0.75, 1.0),
+            ..Material::default()
+        },
+        Material {
+            name: "red".into(),
+            base_color: Vec4::new(0.8, 0.15, 0.1, 1.0),
+            ..Material::default()
+        },
+    ];
+    let objects = vec![
+        Object::new("ground", ground(Vec3::ZERO, 12.0), 0),
+        Object::new(
+            "box",
+            cuboid(Aabb {
+                min: Vec3::new(-0.5, 0.0, -0.5),
+                max: Vec3::new(0.5, 1.0, 0.5),
+            }),
+            1,
+        ),
+        Object::new("sphere", sphere(Vec3::new(1.8, 0.5, 0.6), 0.5, 48, 24), 1),
+    ];
+    Scene {
+        objects,
+        materials,
+        ..Scene::default()
+    }
+}
 
 /// A flattened scene.
 #[derive(Clone, Debug, Default)]
