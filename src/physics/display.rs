@@ -2,7 +2,7 @@
 //! Shared by every image the lab writes so that the GPU's PNG and the
 //! reference's PNG of the same radiance are the same bytes.
 
-use super::real::{Float, Real};
+use super::real::Real;
 
 /// L · 2^EV: the exposed value of radiance L at exposure `ev` (EV).
 pub fn expose<S: Real>(radiance: S, exposure_ev: S) -> S {
