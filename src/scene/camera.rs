@@ -100,7 +100,7 @@ pub fn reversed_z_projection(left: f64, right: f64, bottom: f64, top: f64, near:
     DMat4::from_cols(
         DVec4::new(sx, 0.0, 0.0, 0.0),
         DVec4::new(0.0, sy, 0.0, 0.0),
-        DVec4::new(-cx, -cy, -b, -1.0),
+        DVec4::new(cx, cy, -b, -1.0),
         DVec4::new(0.0, 0.0, a, 0.0),
     )
 }
@@ -150,6 +150,19 @@ mod tests {
                 "{px},{py} vs {x},{y}"
             );
         }
+    }
+
+    #[test]
+    fn off_centre_projection_maps_its_extents_to_the_ndc_edges() {
+        let proj = reversed_z_projection(-0.2, 0.6, 0.1, 0.5, 1.0, 10.0);
+        let ndc = |tx: f64, ty: f64| {
+            let clip = proj * DVec4::new(tx * 3.0, ty * 3.0, -3.0, 1.0);
+            (clip.x / clip.w, clip.y / clip.w)
+        };
+        let (x0, y0) = ndc(-0.2, 0.1);
+        let (x1, y1) = ndc(0.6, 0.5);
+        assert!((x0 + 1.0).abs() < 1e-12 && (y0 + 1.0).abs() < 1e-12, "{x0} {y0}");
+        assert!((x1 - 1.0).abs() < 1e-12 && (y1 - 1.0).abs() < 1e-12, "{x1} {y1}");
     }
 
     #[test]

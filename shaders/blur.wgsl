@@ -1,0 +1,36 @@
+// A separable Gaussian blur of one layer of the moment map (VSM/EVSM): run
+// once along x into a scratch layer, once along y back.
+
+struct BlurParams {
+    // x, y: the step (1, 0) or (0, 1); z: radius (texels); w: source layer.
+    step_radius_layer: vec4<i32>,
+}
+
+@group(0) @binding(0) var source: texture_2d_array<f32>;
+@group(0) @binding(1) var<uniform> params: BlurParams;
+
+@vertex
+fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+@fragment
+fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let step = params.step_radius_layer.xy;
+    let radius = params.step_radius_layer.z;
+    let layer = params.step_radius_layer.w;
+    let size = vec2<i32>(textureDimensions(source));
+    let centre = vec2<i32>(position.xy);
+    // σ = radius / 2: the kernel ends at two standard deviations.
+    let sigma = max(f32(radius) * 0.5, 0.5);
+    var sum = vec4<f32>(0.0);
+    var weights = 0.0;
+    for (var i = -radius; i <= radius; i++) {
+        let texel = clamp(centre + step * i, vec2<i32>(0), size - 1);
+        let w = exp(-0.5 * f32(i * i) / (sigma * sigma));
+        sum += w * textureLoad(source, texel, layer, 0);
+        weights += w;
+    }
+    return sum / weights;
+}

@@ -1,0 +1,133 @@
+// The image people see: radiance exposed (2^EV) and sRGB encoded by the
+// target's format, or a debug quantity in grey or false colour.
+
+@group(0) @binding(0) var quantity: texture_2d<f32>;
+@group(0) @binding(1) var aux: texture_2d<f32>;
+@group(0) @binding(2) var comparison: texture_2d<f32>;
+@group(0) @binding(3) var shadow_depth: texture_depth_2d_array;
+@group(0) @binding(4) var<uniform> shadow: Shadow;
+@group(0) @binding(5) var<uniform> params: DisplayParams;
+@group(0) @binding(6) var<storage, read> scale: array<u32, 4>;
+
+@vertex
+fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+// A grey level that displays as `value` (the target re-encodes to sRGB).
+fn grey(value: f32) -> vec3<f32> {
+    return vec3<f32>(srgb_decode(clamp(value, 0.0, 1.0)));
+}
+
+// Piecewise-linear colour ramps through sRGB stops (gpu::colormap).
+fn ramp(t_in: f32, diverging: bool) -> vec3<f32> {
+    let t = clamp(t_in, 0.0, 1.0) * f32(RAMP_STOPS - 1u);
+    let i = min(u32(floor(t)), RAMP_STOPS - 2u);
+    let f = t - f32(i);
+    var c: vec3<f32>;
+    if diverging {
+        c = mix(DIVERGING[i], DIVERGING[i + 1u], f);
+    } else {
+        c = mix(SEQUENTIAL[i], SEQUENTIAL[i + 1u], f);
+    }
+    return vec3<f32>(srgb_decode(c.x), srgb_decode(c.y), srgb_decode(c.z));
+}
+
+fn scale_max() -> f32 {
+    return max(bitcast<f32>(scale[0]), 1e-30);
+}
+
+// A checker that says "nothing to show here".
+fn missing(position: vec2<f32>) -> vec3<f32> {
+    let cell = vec2<u32>(position / 12.0);
+    return grey(select(0.25, 0.35, ((cell.x + cell.y) & 1u) == 0u));
+}
+
+// The light's depth map: one layer, or the six cube faces in a 3 × 2 grid.
+fn depth_view(position: vec2<f32>) -> vec3<f32> {
+    let size = params.values.zw;
+    var cols = 1.0;
+    var rows = 1.0;
+    if shadow.mode.y != 0u {
+        cols = 3.0;
+        rows = 2.0;
+    }
+    let cell_size = min(size.x / cols, size.y / rows);
+    let origin = 0.5 * (size - vec2<f32>(cols, rows) * cell_size);
+    let local = (position - origin) / cell_size;
+    if any(local < vec2<f32>(0.0)) || local.x >= cols || local.y >= rows {
+        return grey(0.08);
+    }
+    let cell = vec2<u32>(floor(local));
+    let layer = cell.y * 3u + cell.x;
+    if (shadow.mode.z & (1u << layer)) == 0u {
+        return missing(position);
+    }
+    let res = shadow.misc.x;
+    let texel = vec2<i32>(fract(local) * res);
+    let d = textureLoad(shadow_depth, texel, i32(layer), 0);
+    if d <= 0.0 {
+        return grey(0.0);
+    }
+    let depth = shadow.layers[layer].depth;
+    let z = linear_depth(d, depth.z, depth.w);
+    // Near is white, far is dark.
+    return grey(1.0 - 0.9 * clamp((z - depth.x) / (depth.y - depth.x), 0.0, 1.0));
+}
+
+fn luminance(c: vec3<f32>) -> f32 {
+    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
+}
+
+@fragment
+fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let view = params.modes.x;
+    if view == VIEW_DEPTH {
+        return vec4<f32>(depth_view(position.xy), 1.0);
+    }
+    let texel = vec2<i32>(position.xy);
+    let a = textureLoad(aux, texel, 0);
+    if a.w == 0.0 {
+        // Background: a quiet grey, darker at the bottom.
+        return vec4<f32>(grey(0.16 + 0.06 * (1.0 - position.y / params.values.w)), 1.0);
+    }
+    let q = textureLoad(quantity, texel, 0).rgb;
+    let has_reference = params.modes.w != 0u;
+    var color: vec3<f32>;
+    switch view {
+        case VIEW_VISIBILITY, VIEW_NDOTL: {
+            color = grey(q.x);
+        }
+        case VIEW_IRRADIANCE: {
+            color = ramp(q.x / scale_max(), false);
+        }
+        case VIEW_BRDF: {
+            // Four decades below the largest value, log scale.
+            color = ramp(1.0 + log2(max(q.x, 1e-30) / scale_max()) / (4.0 * log2(10.0)), false);
+        }
+        case VIEW_TEXEL_DENSITY: {
+            // log2 of texels per pixel in [−4, 4]: under 1 (red) is magnified and aliased.
+            color = ramp(0.5 + log2(max(q.x, 1e-6)) / 8.0, true);
+        }
+        case VIEW_REF_VISIBILITY: {
+            if has_reference {
+                color = grey(textureLoad(comparison, texel, 0).a);
+            } else {
+                color = missing(position.xy);
+            }
+        }
+        case VIEW_ERROR: {
+            if has_reference {
+                let error = luminance(q) - luminance(textureLoad(comparison, texel, 0).rgb);
+                color = ramp(0.5 + 0.5 * error / scale_max(), true);
+            } else {
+                color = missing(position.xy);
+            }
+        }
+        default: {
+            color = q * exp2(params.values.x);
+        }
+    }
+    return vec4<f32>(color, 1.0);
+}

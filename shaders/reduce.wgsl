@@ -1,0 +1,42 @@
+// The largest value the view shows, for false-colour scales: one atomic max
+// per workgroup into result[0]. Positive floats order like their bits.
+
+@group(0) @binding(0) var quantity: texture_2d<f32>;
+@group(0) @binding(1) var aux: texture_2d<f32>;
+@group(0) @binding(2) var comparison: texture_2d<f32>;
+@group(0) @binding(3) var<storage, read_write> result: array<atomic<u32>, 4>;
+@group(0) @binding(4) var<uniform> params: DisplayParams;
+
+// The value a false-colour view scales by (its largest over the image).
+fn scaled_value(q: vec3<f32>, reference: vec3<f32>) -> f32 {
+    let view = params.modes.x;
+    if view == VIEW_ERROR {
+        let w = vec3<f32>(0.2126, 0.7152, 0.0722);
+        return abs(dot(q, w) - dot(reference, w));
+    }
+    return q.x;
+}
+
+var<workgroup> group_max: atomic<u32>;
+
+@compute @workgroup_size(8, 8)
+fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_index) local: u32) {
+    if local == 0u {
+        atomicStore(&group_max, 0u);
+    }
+    workgroupBarrier();
+    let size = textureDimensions(quantity);
+    if id.x < size.x && id.y < size.y {
+        let texel = vec2<i32>(id.xy);
+        if textureLoad(aux, texel, 0).w > 0.0 {
+            let value = scaled_value(textureLoad(quantity, texel, 0).rgb, textureLoad(comparison, texel, 0).rgb);
+            if value > 0.0 && value < 3.0e38 {
+                atomicMax(&group_max, bitcast<u32>(value));
+            }
+        }
+    }
+    workgroupBarrier();
+    if local == 0u {
+        atomicMax(&result[0], atomicLoad(&group_max));
+    }
+}

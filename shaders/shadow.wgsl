@@ -1,0 +1,38 @@
+// Pass 1: the scene seen from the light, one layer (frustum) at a time.
+// Depth only for the depth-test filters; VSM/EVSM also write depth moments.
+
+@group(0) @binding(0) var<uniform> shadow: Shadow;
+// x: the layer drawn (a dynamic offset selects it).
+@group(0) @binding(1) var<uniform> layer_index: vec4<u32>;
+
+struct VsOut {
+    @builtin(position) clip: vec4<f32>,
+    // Depth from the light along its view axis (m).
+    @location(0) depth: f32,
+}
+
+@vertex
+fn vs(@location(0) position: vec3<f32>) -> VsOut {
+    let layer = shadow.layers[layer_index.x];
+    let v = (layer.rotation * vec4<f32>(position - shadow.light_position.xyz, 0.0)).xyz;
+    var out: VsOut;
+    out.clip = layer.proj * vec4<f32>(v, 1.0);
+    out.depth = -v.z;
+    return out;
+}
+
+// Moments of the depth normalized to the layer's [near, far]: (u, u²) for
+// VSM; for EVSM the moments of exp(c w) and −exp(−c w), w = 2u − 1.
+@fragment
+fn fs_moments(in: VsOut) -> @location(0) vec4<f32> {
+    let depth = shadow.layers[layer_index.x].depth;
+    let u = clamp((in.depth - depth.x) / (depth.y - depth.x), 0.0, 1.0);
+    if shadow.mode.w == FILTER_VSM {
+        return vec4<f32>(u, u * u, 0.0, 0.0);
+    }
+    let c = shadow.misc.z;
+    let w = 2.0 * u - 1.0;
+    let pos = exp(c * w);
+    let neg = -exp(-c * w);
+    return vec4<f32>(pos, pos * pos, neg, neg * neg);
+}

@@ -1,0 +1,81 @@
+//! `lumlab render`: the GPU image, headless. PNG holds what the lab displays;
+//! EXR the linear quantity of the view (radiance in W/m²/sr for `shaded`).
+
+use super::args::SceneOptions;
+use crate::gpu::{GpuContext, Renderer};
+use crate::image_io::{ImageFormat, write_exr, write_png_rgba8};
+use crate::scene::Scene;
+use crate::settings::Settings;
+use anyhow::Context;
+use std::path::PathBuf;
+
+#[derive(Debug, clap::Args)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneOptions,
+    /// Output image: .png (displayed) or .exr (linear values).
+    #[arg(long, value_name = "FILE.png|FILE.exr")]
+    pub out: PathBuf,
+    /// Print the GPU adapter used.
+    #[arg(long)]
+    pub adapter_info: bool,
+}
+
+/// The settings with a `gltf:N` camera resolved against the loaded scene.
+pub fn load(options: &SceneOptions) -> anyhow::Result<(Settings, Scene)> {
+    let (mut settings, gltf_camera) = options.settings()?;
+    let scene = crate::scene::for_settings(&settings)?;
+    if let Some(n) = gltf_camera {
+        let camera = scene.cameras.get(n).ok_or_else(|| {
+            anyhow::anyhow!(
+                "--camera gltf:{n}: the scene has {} camera(s)",
+                scene.cameras.len()
+            )
+        })?;
+        settings.camera.eye = camera.camera.eye;
+        settings.camera.target = camera.camera.target;
+        settings.camera.fovy_deg = camera.camera.fovy_deg;
+        settings.validate().context("camera from the scene file")?;
+    }
+    Ok((settings, scene))
+}
+
+pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
+    let format = ImageFormat::of_path(&args.out)?;
+    let (settings, scene) = load(&args.scene)?;
+    let gpu = GpuContext::headless()?;
+    if args.adapter_info {
+        eprintln!("adapter: {}", gpu.describe());
+    }
+    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    let size = (settings.image.width, settings.image.height);
+    let report = renderer.render(&settings, size);
+    if let Some(note) = &report.resolution_note {
+        eprintln!(
+            "lumlab: shadow-map resolution clamped to {}: {note}",
+            report.resolution
+        );
+    }
+    match format {
+        ImageFormat::Png => write_png_rgba8(&args.out, &renderer.read_display())?,
+        ImageFormat::Exr => {
+            let texels = renderer.read_quantity();
+            let flat: Vec<f32> = texels.iter().flatten().copied().collect();
+            let image = image::Rgba32FImage::from_raw(size.0, size.1, flat)
+                .ok_or_else(|| anyhow::anyhow!("readback size mismatch"))?;
+            write_exr(&args.out, &image)?;
+        }
+    }
+    let times = renderer.wait_timings();
+    eprintln!(
+        "rendered {}×{} ({}, {} triangles); shadow map {}² ({}); GPU {}",
+        size.0,
+        size.1,
+        settings.view.mode,
+        scene.triangle_count(),
+        report.resolution,
+        report.layout_summary(),
+        times.map_or("time n/a".into(), |t| format!("{:.2} ms", t.total_ms())),
+    );
+    Ok(())
+}

@@ -1,0 +1,146 @@
+//! Bind-group layout entries, named for what they hold.
+
+use wgpu::{BindGroupLayoutEntry as Entry, BindingType, ShaderStages};
+
+pub fn uniform(binding: u32, visibility: ShaderStages) -> Entry {
+    Entry {
+        binding,
+        visibility,
+        ty: BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// A uniform selected per draw with a dynamic offset.
+pub fn dynamic_uniform(binding: u32, visibility: ShaderStages) -> Entry {
+    Entry {
+        ty: BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: true,
+            min_binding_size: None,
+        },
+        ..uniform(binding, visibility)
+    }
+}
+
+pub fn storage(binding: u32, visibility: ShaderStages, read_only: bool) -> Entry {
+    Entry {
+        ty: BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        ..uniform(binding, visibility)
+    }
+}
+
+pub fn texture(
+    binding: u32,
+    visibility: ShaderStages,
+    sample_type: wgpu::TextureSampleType,
+    view_dimension: wgpu::TextureViewDimension,
+) -> Entry {
+    Entry {
+        ty: BindingType::Texture {
+            sample_type,
+            view_dimension,
+            multisampled: false,
+        },
+        ..uniform(binding, visibility)
+    }
+}
+
+/// A float texture read with `textureLoad` only (any float format).
+pub fn float_texture(binding: u32, visibility: ShaderStages) -> Entry {
+    texture(
+        binding,
+        visibility,
+        wgpu::TextureSampleType::Float { filterable: false },
+        wgpu::TextureViewDimension::D2,
+    )
+}
+
+pub fn sampler(binding: u32, visibility: ShaderStages, kind: wgpu::SamplerBindingType) -> Entry {
+    Entry {
+        ty: BindingType::Sampler(kind),
+        ..uniform(binding, visibility)
+    }
+}
+
+/// A bind group whose entries are the given resources at bindings 0, 1, 2…
+pub fn group(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[wgpu::BindingResource<'_>],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+        .iter()
+        .enumerate()
+        .map(|(i, r)| wgpu::BindGroupEntry {
+            binding: i as u32,
+            resource: r.clone(),
+        })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
+pub fn layout(device: &wgpu::Device, label: &str, entries: &[Entry]) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries,
+    })
+}
+
+pub fn pipeline_layout(
+    device: &wgpu::Device,
+    label: &str,
+    groups: &[&wgpu::BindGroupLayout],
+) -> wgpu::PipelineLayout {
+    let groups: Vec<Option<&wgpu::BindGroupLayout>> = groups.iter().map(|g| Some(*g)).collect();
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &groups,
+        immediate_size: 0,
+    })
+}
+
+/// A full-screen fragment pipeline (vertex entry `vs`, no vertex buffers).
+pub fn fullscreen_pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    fragment_entry: &str,
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(label),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some(fragment_entry),
+            compilation_options: Default::default(),
+            targets: &[Some(format.into())],
+        }),
+        primitive: Default::default(),
+        depth_stencil: None,
+        multisample: Default::default(),
+        multiview_mask: None,
+        cache: None,
+    })
+}

@@ -1,0 +1,188 @@
+//! The image people see: the view's quantity exposed and sRGB encoded, or in
+//! grey or false colour. A compute pass first finds the largest value so that
+//! false-colour views scale to the image.
+
+use super::binding;
+use super::readback::map_and_read;
+use super::shaders::Shader;
+use super::uniforms::{DisplayParamsRaw, uniform_buffer};
+use wgpu::ShaderStages;
+
+/// The display target: 8-bit sRGB, what PNG files and the app show.
+pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+
+/// The textures a display pass reads and writes.
+pub struct DisplayInputs<'a> {
+    pub quantity: &'a wgpu::TextureView,
+    pub aux: &'a wgpu::TextureView,
+    pub comparison: &'a wgpu::TextureView,
+    pub shadow_depth: &'a wgpu::TextureView,
+    pub shadow_uniform: &'a wgpu::Buffer,
+    pub target: &'a wgpu::TextureView,
+    pub size: (u32, u32),
+}
+
+pub struct DisplayPass {
+    pub params: wgpu::Buffer,
+    scale: wgpu::Buffer,
+    scale_readback: wgpu::Buffer,
+    layout: wgpu::BindGroupLayout,
+    reduce_layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::RenderPipeline,
+    reduce: wgpu::ComputePipeline,
+}
+
+impl DisplayPass {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let fragment = ShaderStages::FRAGMENT;
+        let layout = binding::layout(
+            device,
+            "display",
+            &[
+                binding::float_texture(0, fragment),
+                binding::float_texture(1, fragment),
+                binding::float_texture(2, fragment),
+                binding::texture(
+                    3,
+                    fragment,
+                    wgpu::TextureSampleType::Depth,
+                    wgpu::TextureViewDimension::D2Array,
+                ),
+                binding::uniform(4, fragment),
+                binding::uniform(5, fragment),
+                binding::storage(6, fragment, true),
+            ],
+        );
+        let compute = ShaderStages::COMPUTE;
+        let reduce_layout = binding::layout(
+            device,
+            "display scale",
+            &[
+                binding::float_texture(0, compute),
+                binding::float_texture(1, compute),
+                binding::float_texture(2, compute),
+                binding::storage(3, compute, false),
+                binding::uniform(4, compute),
+            ],
+        );
+        let module = Shader::Display.module(device);
+        let pipeline = binding::fullscreen_pipeline(
+            device,
+            "display",
+            &binding::pipeline_layout(device, "display", &[&layout]),
+            &module,
+            "fs",
+            DISPLAY_FORMAT,
+        );
+        let reduce_module = Shader::Reduce.module(device);
+        let reduce = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("display scale"),
+            layout: Some(&binding::pipeline_layout(
+                device,
+                "display scale",
+                &[&reduce_layout],
+            )),
+            module: &reduce_module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let buffer = |label: &str, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: 16,
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        Self {
+            params: uniform_buffer::<DisplayParamsRaw>(device, "display params"),
+            scale: buffer(
+                "display scale",
+                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+            ),
+            scale_readback: buffer(
+                "display scale readback",
+                wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            ),
+            layout,
+            reduce_layout,
+            pipeline,
+            reduce,
+        }
+    }
+
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        inputs: &DisplayInputs<'_>,
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        encoder.clear_buffer(&self.scale, 0, None);
+        let reduce_group = binding::group(
+            device,
+            "display scale",
+            &self.reduce_layout,
+            &[
+                wgpu::BindingResource::TextureView(inputs.quantity),
+                wgpu::BindingResource::TextureView(inputs.aux),
+                wgpu::BindingResource::TextureView(inputs.comparison),
+                self.scale.as_entire_binding(),
+                self.params.as_entire_binding(),
+            ],
+        );
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("display scale"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&self.reduce);
+            pass.set_bind_group(0, &reduce_group, &[]);
+            pass.dispatch_workgroups(inputs.size.0.div_ceil(8), inputs.size.1.div_ceil(8), 1);
+        }
+        let group = binding::group(
+            device,
+            "display",
+            &self.layout,
+            &[
+                wgpu::BindingResource::TextureView(inputs.quantity),
+                wgpu::BindingResource::TextureView(inputs.aux),
+                wgpu::BindingResource::TextureView(inputs.comparison),
+                wgpu::BindingResource::TextureView(inputs.shadow_depth),
+                inputs.shadow_uniform.as_entire_binding(),
+                self.params.as_entire_binding(),
+                self.scale.as_entire_binding(),
+            ],
+        );
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("display"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: inputs.target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+
+    /// The largest value of the last displayed view (its false-colour scale).
+    /// Blocks until the GPU is done.
+    pub fn read_scale(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> f32 {
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&self.scale, 0, &self.scale_readback, 0, 16);
+        queue.submit([encoder.finish()]);
+        let bytes = map_and_read(device, &self.scale_readback, 16, 16);
+        f32::from_bits(u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]))
+    }
+}

@@ -1,0 +1,239 @@
+//! A scene uploaded to the GPU: one vertex and one index buffer for every
+//! object, the materials as a storage buffer and the base-colour textures as
+//! one texture array.
+
+use super::uniforms::MaterialRaw;
+use crate::scene::{Aabb, Scene};
+use bytemuck::{Pod, Zeroable};
+use wgpu::util::DeviceExt;
+
+/// A vertex as the shaders read it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+pub struct Vertex {
+    pub position: [f32; 3],
+    pub normal: [f32; 3],
+    pub uv: [f32; 2],
+    pub material: u32,
+}
+
+impl Vertex {
+    pub const ATTRIBUTES: [wgpu::VertexAttribute; 4] =
+        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Uint32];
+
+    /// The full layout (camera pass).
+    pub fn layout() -> wgpu::VertexBufferLayout<'static> {
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Vertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &Self::ATTRIBUTES,
+        }
+    }
+
+    /// Positions only (shadow pass).
+    pub fn position_layout() -> wgpu::VertexBufferLayout<'static> {
+        wgpu::VertexBufferLayout {
+            array_stride: std::mem::size_of::<Vertex>() as u64,
+            step_mode: wgpu::VertexStepMode::Vertex,
+            attributes: &Self::ATTRIBUTES[..1],
+        }
+    }
+}
+
+/// One object's range in the shared buffers.
+#[derive(Clone, Copy, Debug)]
+pub struct Draw {
+    pub first_index: u32,
+    pub index_count: u32,
+    pub base_vertex: i32,
+}
+
+/// Side of the texture array's layers (texels).
+const MAX_TEXTURE_SIDE: u32 = 2048;
+
+pub struct GpuScene {
+    pub vertices: wgpu::Buffer,
+    pub indices: wgpu::Buffer,
+    pub draws: Vec<Draw>,
+    /// Per object: its bounds when it casts shadows.
+    pub caster_bounds: Vec<Option<Aabb>>,
+    /// Per object: its bounds.
+    pub bounds: Vec<Aabb>,
+    pub materials: wgpu::Buffer,
+    pub textures: wgpu::Texture,
+    pub texture_view: wgpu::TextureView,
+    pub triangle_count: usize,
+}
+
+impl GpuScene {
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> Self {
+        let mut vertices = Vec::new();
+        let mut indices: Vec<u32> = Vec::new();
+        let mut draws = Vec::with_capacity(scene.objects.len());
+        for object in &scene.objects {
+            let mesh = &object.mesh;
+            let material = object.material.min(scene.materials.len().saturating_sub(1)) as u32;
+            draws.push(Draw {
+                first_index: indices.len() as u32,
+                index_count: mesh.indices.len() as u32,
+                base_vertex: vertices.len() as i32,
+            });
+            indices.extend_from_slice(&mesh.indices);
+            vertices.extend(mesh.positions.iter().enumerate().map(|(i, p)| Vertex {
+                position: p.to_array(),
+                normal: mesh.normals.get(i).copied().unwrap_or(glam::Vec3::Y).to_array(),
+                uv: mesh.uvs.get(i).copied().unwrap_or_default().to_array(),
+                material,
+            }));
+        }
+        let buffer = |label: &str, contents: &[u8], usage: wgpu::BufferUsages| {
+            // wgpu refuses empty bindings; an empty scene still gets 4 bytes.
+            let contents = if contents.is_empty() {
+                &[0u8; 4][..]
+            } else {
+                contents
+            };
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        let (textures, layer_of) = upload_textures(device, queue, scene);
+        let mut materials: Vec<MaterialRaw> = scene
+            .materials
+            .iter()
+            .map(|m| MaterialRaw {
+                base_color: m.base_color.to_array(),
+                params: [
+                    m.k.unwrap_or(0.0),
+                    m.m.unwrap_or(0.0),
+                    m.k.is_some() as u32 as f32,
+                    m.m.is_some() as u32 as f32,
+                ],
+                flags: [
+                    m.base_color_texture
+                        .and_then(|t| layer_of.get(t).copied())
+                        .map_or(0, |l| l + 1),
+                    m.double_sided as u32,
+                    0,
+                    0,
+                ],
+            })
+            .collect();
+        if materials.is_empty() {
+            materials.push(MaterialRaw {
+                base_color: [0.8, 0.8, 0.8, 1.0],
+                ..Default::default()
+            });
+        }
+        Self {
+            vertices: buffer(
+                "scene vertices",
+                bytemuck::cast_slice(&vertices),
+                wgpu::BufferUsages::VERTEX,
+            ),
+            indices: buffer(
+                "scene indices",
+                bytemuck::cast_slice(&indices),
+                wgpu::BufferUsages::INDEX,
+            ),
+            draws,
+            caster_bounds: scene
+                .objects
+                .iter()
+                .map(|o| o.casts_shadows.then_some(o.bounds))
+                .collect(),
+            bounds: scene.objects.iter().map(|o| o.bounds).collect(),
+            materials: buffer(
+                "materials",
+                bytemuck::cast_slice(&materials),
+                wgpu::BufferUsages::STORAGE,
+            ),
+            texture_view: textures.create_view(&wgpu::TextureViewDescriptor {
+                label: Some("base colour textures"),
+                dimension: Some(wgpu::TextureViewDimension::D2Array),
+                ..Default::default()
+            }),
+            textures,
+            triangle_count: scene.triangle_count(),
+        }
+    }
+
+    /// Bounds of every object.
+    pub fn scene_bounds(&self) -> Aabb {
+        self.bounds.iter().fold(Aabb::EMPTY, |b, o| b.union(o))
+    }
+
+    /// Draws object `i` (the pass has the buffers bound).
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, i: usize) {
+        let d = self.draws[i];
+        if d.index_count > 0 {
+            pass.draw_indexed(d.first_index..d.first_index + d.index_count, d.base_vertex, 0..1);
+        }
+    }
+
+    pub fn bind_buffers(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_vertex_buffer(0, self.vertices.slice(..));
+        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+    }
+}
+
+/// Every base-colour texture resampled to one square size as a layer of an
+/// sRGB texture array; returns the array and each texture's layer.
+fn upload_textures(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> (wgpu::Texture, Vec<u32>) {
+    let max_layers = device.limits().max_texture_array_layers as usize;
+    let used = &scene.textures[..scene.textures.len().min(max_layers)];
+    let side = used
+        .iter()
+        .map(|t| t.width.max(t.height))
+        .max()
+        .unwrap_or(1)
+        .clamp(1, MAX_TEXTURE_SIDE);
+    let layers = used.len().max(1) as u32;
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("base colour textures"),
+        size: wgpu::Extent3d {
+            width: side,
+            height: side,
+            depth_or_array_layers: layers,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba8UnormSrgb,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    let white = vec![255u8; (side * side * 4) as usize];
+    for layer in 0..layers {
+        let pixels = used.get(layer as usize).and_then(|t| {
+            let image = image::RgbaImage::from_raw(t.width, t.height, t.rgba8.clone())?;
+            Some(if t.width == side && t.height == side {
+                image.into_raw()
+            } else {
+                image::imageops::resize(&image, side, side, image::imageops::FilterType::Triangle).into_raw()
+            })
+        });
+        queue.write_texture(
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: 0,
+                origin: wgpu::Origin3d { x: 0, y: 0, z: layer },
+                aspect: wgpu::TextureAspect::All,
+            },
+            pixels.as_deref().unwrap_or(&white),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(side * 4),
+                rows_per_image: Some(side),
+            },
+            wgpu::Extent3d {
+                width: side,
+                height: side,
+                depth_or_array_layers: 1,
+            },
+        );
+    }
+    (texture, (0..used.len() as u32).collect())
+}

@@ -1,0 +1,465 @@
+//! Pass 1: depth from the light into a 2D texture array, one layer per
+//! frustum (one, or the six cube faces). VSM/EVSM also write depth moments,
+//! then blur them separably.
+
+use super::binding;
+use super::light_frustum::ShadowLayout;
+use super::scene_buffers::{GpuScene, Vertex};
+use super::shaders::Shader;
+use super::timing::{GpuTimer, Pass};
+use super::uniforms::{BlurParamsRaw, DYNAMIC_STRIDE, ShadowRaw, uniform_buffer};
+use wgpu::ShaderStages;
+
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Layers allocated at most (a cube).
+pub const MAX_LAYERS: u32 = 6;
+/// Shadow textures (depth, moments and their blur scratch) stay within this.
+pub const MEMORY_BUDGET_BYTES: u64 = 1536 << 20;
+
+/// Which kind of map the filter reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MapKind {
+    Depth,
+    Vsm,
+    Evsm,
+}
+
+/// The textures of the shadow map at one resolution and layer count.
+pub struct ShadowTextures {
+    pub resolution: u32,
+    pub layers: u32,
+    pub depth: wgpu::Texture,
+    pub depth_array: wgpu::TextureView,
+    depth_layers: Vec<wgpu::TextureView>,
+    pub moments: Option<MomentTextures>,
+}
+
+pub struct MomentTextures {
+    pub array: wgpu::TextureView,
+    layers: Vec<wgpu::TextureView>,
+    scratch_array: wgpu::TextureView,
+    scratch_layers: Vec<wgpu::TextureView>,
+}
+
+fn array_texture(
+    device: &wgpu::Device,
+    label: &str,
+    resolution: u32,
+    layers: u32,
+    format: wgpu::TextureFormat,
+) -> (wgpu::Texture, wgpu::TextureView, Vec<wgpu::TextureView>) {
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: resolution,
+            height: resolution,
+            depth_or_array_layers: layers,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    let array = texture.create_view(&wgpu::TextureViewDescriptor {
+        label: Some(label),
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    });
+    let per_layer = (0..layers)
+        .map(|layer| {
+            texture.create_view(&wgpu::TextureViewDescriptor {
+                label: Some(label),
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: layer,
+                array_layer_count: Some(1),
+                ..Default::default()
+            })
+        })
+        .collect();
+    (texture, array, per_layer)
+}
+
+impl ShadowTextures {
+    pub fn new(
+        device: &wgpu::Device,
+        resolution: u32,
+        layers: u32,
+        moments_format: Option<wgpu::TextureFormat>,
+    ) -> Self {
+        let (depth, depth_array, depth_layers) =
+            array_texture(device, "shadow depth", resolution, layers, DEPTH_FORMAT);
+        let moments = moments_format.map(|format| {
+            let (_, array, layers_views) =
+                array_texture(device, "shadow moments", resolution, layers, format);
+            let (_, scratch_array, scratch_layers) =
+                array_texture(device, "shadow moments scratch", resolution, layers, format);
+            MomentTextures {
+                array,
+                layers: layers_views,
+                scratch_array,
+                scratch_layers,
+            }
+        });
+        Self {
+            resolution,
+            layers,
+            depth,
+            depth_array,
+            depth_layers,
+            moments,
+        }
+    }
+
+    /// Bytes per texel of every layer: depth, plus moments and their scratch.
+    pub fn bytes_per_texel(moments_format: Option<wgpu::TextureFormat>) -> u64 {
+        4 + moments_format.map_or(0, |f| 2 * f.block_copy_size(None).unwrap_or(16) as u64)
+    }
+}
+
+/// The largest resolution ≤ `requested` that the device and the memory
+/// budget allow, and whether it had to be reduced (and by what).
+pub fn allowed_resolution(
+    requested: u32,
+    device_max: u32,
+    layers: u32,
+    moments_format: Option<wgpu::TextureFormat>,
+) -> (u32, Option<String>) {
+    let per_texel = ShadowTextures::bytes_per_texel(moments_format) * layers as u64;
+    let budget_side = ((MEMORY_BUDGET_BYTES / per_texel) as f64).sqrt() as u32;
+    if requested > device_max && device_max <= budget_side {
+        return (
+            device_max,
+            Some(format!("{requested} exceeds the device limit {device_max}")),
+        );
+    }
+    if requested > budget_side {
+        let side = budget_side.max(256);
+        return (
+            side,
+            Some(format!(
+                "{requested} × {requested} × {layers} layer(s) exceeds the {} MiB shadow memory budget",
+                MEMORY_BUDGET_BYTES >> 20
+            )),
+        );
+    }
+    (requested, None)
+}
+
+/// The shadow pass's pipelines and uniforms.
+pub struct ShadowPass {
+    pub uniform: wgpu::Buffer,
+    layer_index: wgpu::Buffer,
+    bind_group: wgpu::BindGroup,
+    depth_pipeline: wgpu::RenderPipeline,
+    moments_pipeline: wgpu::RenderPipeline,
+    blur: BlurPass,
+    pub moments_format: wgpu::TextureFormat,
+}
+
+fn shadow_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+    module: &wgpu::ShaderModule,
+    moments: Option<wgpu::TextureFormat>,
+) -> wgpu::RenderPipeline {
+    let targets = moments.map(|f| [Some(f.into())]);
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(if moments.is_some() {
+            "shadow moments"
+        } else {
+            "shadow depth"
+        }),
+        layout: Some(layout),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs"),
+            compilation_options: Default::default(),
+            buffers: &[Some(Vertex::position_layout())],
+        },
+        fragment: targets.as_ref().map(|targets| wgpu::FragmentState {
+            module,
+            entry_point: Some("fs_moments"),
+            compilation_options: Default::default(),
+            targets,
+        }),
+        // Both faces cast: thin and open meshes still block the light.
+        primitive: wgpu::PrimitiveState {
+            cull_mode: None,
+            ..Default::default()
+        },
+        depth_stencil: Some(wgpu::DepthStencilState {
+            format: DEPTH_FORMAT,
+            depth_write_enabled: Some(true),
+            // Reversed Z: nearer is larger.
+            depth_compare: Some(wgpu::CompareFunction::Greater),
+            stencil: Default::default(),
+            // No raster bias: the camera pass applies the chosen bias mode so
+            // that its trade-off (acne against peter-panning) can be seen.
+            bias: wgpu::DepthBiasState::default(),
+        }),
+        multisample: Default::default(),
+        multiview_mask: None,
+        cache: None,
+    })
+}
+
+impl ShadowPass {
+    pub fn new(device: &wgpu::Device, moments_format: wgpu::TextureFormat) -> Self {
+        let uniform = uniform_buffer::<ShadowRaw>(device, "shadow uniforms");
+        let layer_index = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("shadow layer index"),
+            size: DYNAMIC_STRIDE * MAX_LAYERS as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let layout = binding::layout(
+            device,
+            "shadow pass",
+            &[
+                binding::uniform(0, ShaderStages::VERTEX_FRAGMENT),
+                binding::dynamic_uniform(1, ShaderStages::VERTEX_FRAGMENT),
+            ],
+        );
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("shadow pass"),
+            layout: &layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: uniform.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &layer_index,
+                        offset: 0,
+                        size: wgpu::BufferSize::new(16),
+                    }),
+                },
+            ],
+        });
+        let pipeline_layout = binding::pipeline_layout(device, "shadow pass", &[&layout]);
+        let module = Shader::Shadow.module(device);
+        Self {
+            depth_pipeline: shadow_pipeline(device, &pipeline_layout, &module, None),
+            moments_pipeline: shadow_pipeline(device, &pipeline_layout, &module, Some(moments_format)),
+            blur: BlurPass::new(device, moments_format),
+            uniform,
+            layer_index,
+            bind_group,
+            moments_format,
+        }
+    }
+
+    /// Writes the per-layer indices once (they never change).
+    pub fn init(&self, queue: &wgpu::Queue) {
+        for layer in 0..MAX_LAYERS {
+            queue.write_buffer(
+                &self.layer_index,
+                DYNAMIC_STRIDE * layer as u64,
+                bytemuck::bytes_of(&[layer, 0, 0, 0]),
+            );
+        }
+    }
+
+    /// Draws every active layer with its casters; for moment maps also blurs.
+    #[allow(clippy::too_many_arguments)]
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        layout: &ShadowLayout,
+        casters: &[Vec<usize>],
+        textures: &ShadowTextures,
+        moments_clear: Option<[f64; 4]>,
+        blur_radius: u32,
+        mut timer: Option<&mut GpuTimer>,
+    ) {
+        let active: Vec<usize> = (0..layout.layers.len())
+            .filter(|&i| layout.layers[i].active)
+            .collect();
+        for (n, &layer) in active.iter().enumerate() {
+            let moments = textures.moments.as_ref().zip(moments_clear);
+            let color = moments.map(|(m, clear)| wgpu::RenderPassColorAttachment {
+                view: &m.layers[layer],
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color {
+                        r: clear[0],
+                        g: clear[1],
+                        b: clear[2],
+                        a: clear[3],
+                    }),
+                    store: wgpu::StoreOp::Store,
+                },
+            });
+            let color_attachments = [color];
+            let timestamp_writes = timer
+                .as_deref_mut()
+                .map(|t| t.writes(Pass::Shadow, n == 0, n + 1 == active.len()));
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow layer"),
+                color_attachments: if moments.is_some() {
+                    &color_attachments
+                } else {
+                    &[]
+                },
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &textures.depth_layers[layer],
+                    depth_ops: Some(wgpu::Operations {
+                        // Reversed Z: 0 is the far plane, "nothing here".
+                        load: wgpu::LoadOp::Clear(0.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(if moments.is_some() {
+                &self.moments_pipeline
+            } else {
+                &self.depth_pipeline
+            });
+            pass.set_bind_group(0, &self.bind_group, &[(layer as u64 * DYNAMIC_STRIDE) as u32]);
+            scene.bind_buffers(&mut pass);
+            for &object in &casters[layer] {
+                scene.draw(&mut pass, object);
+            }
+        }
+        if let Some(moments) = &textures.moments
+            && moments_clear.is_some()
+            && blur_radius > 0
+        {
+            self.blur
+                .encode(device, queue, encoder, moments, &active, blur_radius, timer);
+        }
+    }
+}
+
+/// The separable Gaussian blur of the moment layers.
+struct BlurPass {
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::RenderPipeline,
+    params: wgpu::Buffer,
+}
+
+impl BlurPass {
+    fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Self {
+        let layout = binding::layout(
+            device,
+            "moment blur",
+            &[
+                binding::texture(
+                    0,
+                    ShaderStages::FRAGMENT,
+                    wgpu::TextureSampleType::Float { filterable: false },
+                    wgpu::TextureViewDimension::D2Array,
+                ),
+                binding::dynamic_uniform(1, ShaderStages::FRAGMENT),
+            ],
+        );
+        let pipeline_layout = binding::pipeline_layout(device, "moment blur", &[&layout]);
+        let module = Shader::Blur.module(device);
+        Self {
+            pipeline: binding::fullscreen_pipeline(
+                device,
+                "moment blur",
+                &pipeline_layout,
+                &module,
+                "fs",
+                format,
+            ),
+            params: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("moment blur params"),
+                size: DYNAMIC_STRIDE * 2 * MAX_LAYERS as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            layout,
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn encode(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        moments: &MomentTextures,
+        layers: &[usize],
+        radius: u32,
+        mut timer: Option<&mut GpuTimer>,
+    ) {
+        let group = |source: &wgpu::TextureView| {
+            device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("moment blur"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(source),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                            buffer: &self.params,
+                            offset: 0,
+                            size: wgpu::BufferSize::new(16),
+                        }),
+                    },
+                ],
+            })
+        };
+        let from_moments = group(&moments.array);
+        let from_scratch = group(&moments.scratch_array);
+        let steps = 2 * layers.len();
+        for (n, &layer) in layers.iter().enumerate() {
+            for (direction, (source, target)) in [
+                (&from_moments, &moments.scratch_layers[layer]),
+                (&from_scratch, &moments.layers[layer]),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                let slot = (2 * layer + direction) as u64;
+                let step = if direction == 0 { [1, 0] } else { [0, 1] };
+                let params = BlurParamsRaw {
+                    step_radius_layer: [step[0], step[1], radius as i32, layer as i32],
+                };
+                queue.write_buffer(&self.params, slot * DYNAMIC_STRIDE, bytemuck::bytes_of(&params));
+                let index = 2 * n + direction;
+                let timestamp_writes = timer
+                    .as_deref_mut()
+                    .map(|t| t.writes(Pass::Blur, index == 0, index + 1 == steps));
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("moment blur"),
+                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                        view: target,
+                        depth_slice: None,
+                        resolve_target: None,
+                        ops: wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                            store: wgpu::StoreOp::Store,
+                        },
+                    })],
+                    depth_stencil_attachment: None,
+                    timestamp_writes,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(0, source, &[(slot * DYNAMIC_STRIDE) as u32]);
+                pass.draw(0..3, 0..1);
+            }
+        }
+    }
+}
