@@ -306,7 +306,12 @@ fn filter_moments(r: Receiver) -> f32 {
     return min(p_pos, p_neg);
 }
 
+// V ∈ [0, 1]: filter weights sum to one only up to rounding.
 fn visibility(r: Receiver, pixel: vec2<f32>) -> f32 {
+    return clamp(filtered_visibility(r, pixel), 0.0, 1.0);
+}
+
+fn filtered_visibility(r: Receiver, pixel: vec2<f32>) -> f32 {
     switch shadow.mode.w {
         case FILTER_NONE: { return depth_test(r, vec2<i32>(floor(r.tc))); }
         case FILTER_HW2X2: { return filter_hw2x2(r); }

@@ -106,6 +106,9 @@ impl FrameReport {
     }
 }
 
+/// Texels by which cube faces overlap: the widest kernel (PCSS, 48) and two more.
+const CUBE_MARGIN_TEXELS: f64 = 50.0;
+
 /// What the shadow map was drawn for: when it is unchanged, so is the map.
 #[derive(Clone, Debug, PartialEq)]
 struct ShadowKey {
@@ -395,20 +398,21 @@ impl Renderer {
             self.shadow_key = None;
             return raw;
         }
-        let kernel_texels = match s.filter {
-            Filter::Pcf => s.pcf_size as f32 / 2.0 + 1.0,
-            Filter::Poisson => s.poisson_radius_texels + 1.0,
-            Filter::Pcss => 49.0,
-            Filter::Vsm | Filter::Evsm => s.vsm_blur_texels as f32 + 1.0,
-            Filter::None | Filter::Hw2x2 => 1.0,
-        };
         let layers = match ShadowLayout::fit(light, &self.scene.bounds, 0.0).kind {
             LayoutKind::Single => 1,
             LayoutKind::Cube => 6,
         };
         let (resolution, note) =
             allowed_resolution(s.resolution, self.caps.max_texture_side, layers, moments_format);
-        let margin = (kernel_texels as f64 + 2.0) / resolution as f64;
+        // Cube faces overlap by the widest filter kernel so taps near a face's
+        // edge stay on it; taps off a single frustum see no geometry (lit).
+        // The margin does not depend on the filter, so that switching between
+        // depth filters reuses the map.
+        let margin = if layers == 6 {
+            CUBE_MARGIN_TEXELS / resolution as f64
+        } else {
+            0.0
+        };
         let layout = ShadowLayout::fit(light, &self.scene.bounds, margin);
         let casters = select_casters(&layout, &self.scene.caster_bounds, visible_bounds);
         let texture_layers = layout.layers.len() as u32;
@@ -518,7 +522,10 @@ impl Renderer {
         let shadow_group = self
             .shade
             .shadow_group(&self.device, &self.shadow_textures, &self.dummy_moments);
-        let writes = self.timer.as_mut().map(|t| t.writes(Pass::Shade, true, true));
+        let writes = self
+            .timer
+            .as_mut()
+            .and_then(|t| t.writes(Pass::Shade, true, true));
         self.shade.encode(
             &mut encoder,
             &self.scene,
@@ -538,7 +545,10 @@ impl Renderer {
             target: &targets.display_view,
             size: targets.size,
         };
-        let writes = self.timer.as_mut().map(|t| t.writes(Pass::Display, true, true));
+        let writes = self
+            .timer
+            .as_mut()
+            .and_then(|t| t.writes(Pass::Display, true, true));
         self.display.encode(&self.device, &mut encoder, &inputs, writes);
         if settings.view.mode == DebugView::Frustum && report.layout.is_some() {
             self.overlay

@@ -303,7 +303,7 @@ impl ShadowPass {
             let color_attachments = [color];
             let timestamp_writes = timer
                 .as_deref_mut()
-                .map(|t| t.writes(Pass::Shadow, n == 0, n + 1 == active.len()));
+                .and_then(|t| t.writes(Pass::Shadow, n == 0, n + 1 == active.len()));
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow layer"),
                 color_attachments: if moments.is_some() {
@@ -439,7 +439,7 @@ impl BlurPass {
                 let index = 2 * n + direction;
                 let timestamp_writes = timer
                     .as_deref_mut()
-                    .map(|t| t.writes(Pass::Blur, index == 0, index + 1 == steps));
+                    .and_then(|t| t.writes(Pass::Blur, index == 0, index + 1 == steps));
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("moment blur"),
                     color_attachments: &[Some(wgpu::RenderPassColorAttachment {

@@ -65,6 +65,29 @@ pub fn ground(center: Vec3, size: f32) -> Mesh {
     mesh
 }
 
+/// The same square split into `cells` × `cells` quads: small triangles keep
+/// the rasterizer's f32 interpolation of positions precise.
+pub fn ground_grid(center: Vec3, size: f32, cells: u32) -> Mesh {
+    let mut mesh = Mesh::default();
+    let step = size / cells as f32;
+    let origin = center - Vec3::new(0.5 * size, 0.0, 0.5 * size);
+    for i in 0..cells {
+        for j in 0..cells {
+            let a = origin + Vec3::new(i as f32 * step, 0.0, (j + 1) as f32 * step);
+            mesh.push_quad(
+                [
+                    a,
+                    a + Vec3::X * step,
+                    a + Vec3::new(step, 0.0, -step),
+                    a - Vec3::Z * step,
+                ],
+                Vec3::Y,
+            );
+        }
+    }
+    mesh
+}
+
 /// An axis-aligned box with flat faces.
 pub fn cuboid(bounds: Aabb) -> Mesh {
     let c = bounds.corners();
@@ -182,6 +205,7 @@ mod tests {
     #[test]
     fn shapes_wind_counter_clockwise_towards_their_normals() {
         assert_outward(&ground(Vec3::ZERO, 2.0));
+        assert_outward(&ground_grid(Vec3::ZERO, 2.0, 3));
         assert_outward(&cuboid(Aabb {
             min: Vec3::ZERO,
             max: Vec3::ONE,
