@@ -108,7 +108,7 @@ fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
         }
         case VIEW_TEXEL_DENSITY: {
             // log2 of texels per pixel in [−4, 4]: under 1 (red) is magnified and aliased.
-            color = ramp(0.5 + log2(max(q.x, 1e-6)) / 8.0, true);
+            color = ramp(0.5 - log2(max(q.x, 1e-6)) / 8.0, true);
         }
         case VIEW_REF_VISIBILITY: {
             if has_reference {
