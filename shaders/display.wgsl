@@ -103,8 +103,8 @@ fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
             color = ramp(q.x / scale_max(), false);
         }
         case VIEW_BRDF: {
-            // Four decades below the largest value, log scale.
-            color = ramp(1.0 + log2(max(q.x, 1e-30) / scale_max()) / (4.0 * log2(10.0)), false);
+            // Two decades below the largest value, log scale.
+            color = ramp(1.0 + log2(max(q.x, 1e-30) / scale_max()) / (2.0 * log2(10.0)), false);
         }
         case VIEW_TEXEL_DENSITY: {
             // log2 of texels per pixel in [−4, 4]: under 1 (red) is magnified and aliased.
