@@ -176,6 +176,11 @@ impl DisplayPass {
         pass.draw(0..3, 0..1);
     }
 
+    /// The buffer holding the last view's scale (an f32 in its first 4 bytes).
+    pub fn scale_buffer(&self) -> &wgpu::Buffer {
+        &self.scale
+    }
+
     /// The largest value of the last displayed view (its false-colour scale).
     /// Blocks until the GPU is done.
     pub fn read_scale(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> f32 {

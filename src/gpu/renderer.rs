@@ -6,7 +6,7 @@
 use super::display::{DISPLAY_FORMAT, DisplayInputs, DisplayPass};
 use super::light_frustum::{Frustum, LayoutKind, ShadowLayout, select_casters};
 use super::lines::FrustumOverlay;
-use super::readback::read_texture;
+use super::readback::{PendingRead, ReadState, read_texture};
 use super::scene_buffers::GpuScene;
 use super::shade::ShadePass;
 use super::shadow::{DEPTH_FORMAT, MapKind, ShadowPass, ShadowTextures, allowed_resolution};
@@ -587,14 +587,50 @@ impl Renderer {
     fn read_float_target(&self, texture: &wgpu::Texture) -> Vec<[f32; 4]> {
         let bytes_per_texel = texture.format().block_copy_size(None).unwrap_or(16);
         let bytes = read_texture(&self.device, &self.queue, texture, 0, bytes_per_texel);
-        if bytes_per_texel == 16 {
-            bytemuck::cast_slice(&bytes).to_vec()
-        } else {
-            bytemuck::cast_slice::<u8, [u16; 4]>(&bytes)
-                .iter()
-                .map(|h| h.map(|x| half::f16::from_bits(x).to_f32()))
-                .collect()
+        decode_float_texels(&bytes, bytes_per_texel)
+    }
+
+    /// Starts reading a rectangle of the last frame's quantity or aux target
+    /// without blocking (the app's pixel probe and error statistics); None
+    /// before the first frame or when the rectangle leaves the image.
+    pub fn request_texels(
+        &self,
+        target: FloatTarget,
+        origin: (u32, u32),
+        size: (u32, u32),
+    ) -> Option<PendingTexels> {
+        let t = self.targets.as_ref()?;
+        let fits = |o: u32, s: u32, side: u32| s > 0 && o.checked_add(s).is_some_and(|end| end <= side);
+        if !(fits(origin.0, size.0, t.size.0) && fits(origin.1, size.1, t.size.1)) {
+            return None;
         }
+        let texture = match target {
+            FloatTarget::Quantity => &t.quantity,
+            FloatTarget::Aux => &t.aux,
+        };
+        let bytes_per_texel = texture.format().block_copy_size(None).unwrap_or(16);
+        Some(PendingTexels {
+            read: PendingRead::texture_region(
+                &self.device,
+                &self.queue,
+                texture,
+                origin,
+                size,
+                bytes_per_texel,
+            ),
+            bytes_per_texel,
+        })
+    }
+
+    /// Starts reading the last false-colour scale (see [`Self::read_scale`])
+    /// without blocking.
+    pub fn request_scale(&self) -> PendingScale {
+        PendingScale(PendingRead::buffer(
+            &self.device,
+            &self.queue,
+            self.display.scale_buffer(),
+            16,
+        ))
     }
 
     /// The last frame's view quantity, row-major from the top (W/m²/sr for `shaded`).
@@ -623,6 +659,68 @@ impl Renderer {
     /// The largest value of the last false-colour view (its scale).
     pub fn read_scale(&self) -> f32 {
         self.display.read_scale(&self.device, &self.queue)
+    }
+}
+
+/// The frame's float targets that can be read back.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FloatTarget {
+    /// The view's quantity (radiance L in W/m²/sr for `shaded`).
+    Quantity,
+    /// V, shadow-map texels per pixel, max(0, n·l), coverage.
+    Aux,
+}
+
+/// Texels on their way back (see [`Renderer::request_texels`]).
+pub struct PendingTexels {
+    read: PendingRead,
+    bytes_per_texel: u32,
+}
+
+impl PendingTexels {
+    /// The texels, row-major from the top of the rectangle, once they are here.
+    pub fn poll(&self) -> ReadState<Vec<[f32; 4]>> {
+        match self.read.poll() {
+            ReadState::Ready(bytes) => ReadState::Ready(decode_float_texels(&bytes, self.bytes_per_texel)),
+            ReadState::Waiting => ReadState::Waiting,
+            ReadState::Failed => ReadState::Failed,
+        }
+    }
+}
+
+/// A false-colour scale on its way back (see [`Renderer::request_scale`]).
+pub struct PendingScale(PendingRead);
+
+impl PendingScale {
+    pub fn poll(&self) -> ReadState<f32> {
+        match self.0.poll() {
+            ReadState::Ready(bytes) if bytes.len() >= 4 => {
+                ReadState::Ready(f32::from_bits(u32::from_le_bytes([
+                    bytes[0], bytes[1], bytes[2], bytes[3],
+                ])))
+            }
+            ReadState::Waiting => ReadState::Waiting,
+            _ => ReadState::Failed,
+        }
+    }
+}
+
+/// RGBA texels from Rgba32Float (16 bytes) or Rgba16Float (8 bytes) rows.
+fn decode_float_texels(bytes: &[u8], bytes_per_texel: u32) -> Vec<[f32; 4]> {
+    if bytes_per_texel == 16 {
+        bytes
+            .chunks_exact(16)
+            .map(|t| {
+                std::array::from_fn(|c| {
+                    f32::from_le_bytes([t[4 * c], t[4 * c + 1], t[4 * c + 2], t[4 * c + 3]])
+                })
+            })
+            .collect()
+    } else {
+        bytes
+            .chunks_exact(8)
+            .map(|t| std::array::from_fn(|c| half::f16::from_le_bytes([t[2 * c], t[2 * c + 1]]).to_f32()))
+            .collect()
     }
 }
 
