@@ -1,7 +1,9 @@
 //! lumlab: a desktop lighting lab for direct lighting.
 //!
 //! `physics` holds the formulas (no GPU, no UI, no files); `settings` every
-//! user-settable value; `scene` what is drawn; `cli` the command line.
+//! user-settable value; `scene` what is drawn; `cli` the command line;
+//! `app` the window (the only module that knows egui); `presets` the
+//! lecture's experiments.
 
 #[macro_use]
 mod named;
@@ -12,5 +14,6 @@ pub mod image_io;
 pub mod output;
 pub mod physics;
 pub mod plot;
+pub mod presets;
 pub mod scene;
 pub mod settings;
