@@ -8,6 +8,7 @@
 #[macro_use]
 mod named;
 
+pub mod app;
 pub mod cli;
 pub mod gpu;
 pub mod image_io;

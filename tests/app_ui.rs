@@ -1,0 +1,216 @@
+//! The app's panels driven through egui_kittest, rendering through the real
+//! `Renderer` on the test's wgpu device: the power slider scales the
+//! radiance, presets set their documented values, the probe's numbers are
+//! the physics of the clicked pixel.
+
+use egui::accesskit::Role;
+use egui_kittest::kittest::Queryable;
+use egui_kittest::{Harness, wgpu::WgpuTestRenderer};
+use glam::DVec3;
+use lumlab::app::{LabApp, LaunchOptions, Preloaded};
+use lumlab::physics::{BrdfParams, brdf, radiometry};
+use lumlab::presets::Preset;
+use lumlab::scene::Camera;
+use lumlab::settings::{BiasMode, Filter, Settings};
+use std::sync::Arc;
+use std::time::Duration;
+
+const SIZE: egui::Vec2 = egui::vec2(1280.0, 800.0);
+
+/// The lab on our own device (the adapter's limits and features), with a
+/// kittest renderer sharing it so native textures can be drawn.
+fn harness() -> Harness<'static, LabApp> {
+    let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
+    setup.instance_descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+    setup.device_descriptor = Arc::new(lumlab::gpu::context::device_descriptor);
+    let render_state = egui_kittest::wgpu::create_render_state(
+        egui_wgpu::WgpuSetup::CreateNew(setup),
+        egui_wgpu::RendererOptions::PREDICTABLE,
+    );
+    let app = LabApp::new(
+        Some(render_state.clone()),
+        None,
+        &LaunchOptions::default(),
+        Preloaded {
+            settings: None,
+            scene: None,
+        },
+        Arc::default(),
+    )
+    .expect("the app starts on a wgpu device");
+    let mut harness = Harness::builder()
+        .with_size(SIZE)
+        .renderer(WgpuTestRenderer::from_render_state(render_state))
+        .build_ui_state(|ui, app: &mut LabApp| app.show(ui), app);
+    harness.run();
+    harness
+}
+
+/// Steps until `done` holds (async readbacks), failing after a few seconds.
+fn step_until(harness: &mut Harness<'_, LabApp>, what: &str, done: impl Fn(&LabApp) -> bool) {
+    for _ in 0..300 {
+        harness.step();
+        if done(harness.state()) {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    panic!("timed out waiting for {what}");
+}
+
+/// Mean radiance (W/m²/sr, luminance-free: the mean of r, g, b) over the
+/// pixels the scene covers, read back from the renderer.
+fn mean_radiance(app: &LabApp) -> f64 {
+    let renderer = app.renderer().expect("renderer");
+    let quantity = renderer.read_quantity();
+    let aux = renderer.read_aux();
+    let (sum, n) = quantity
+        .iter()
+        .zip(&aux)
+        .filter(|(_, a)| a[3] > 0.0)
+        .fold((0.0, 0usize), |(s, n), (q, _)| {
+            (s + (q[0] + q[1] + q[2]) as f64 / 3.0, n + 1)
+        });
+    assert!(n > 1000, "the scene covers {n} pixels");
+    sum / n as f64
+}
+
+#[test]
+fn power_slider_changes_settings_and_scales_the_radiance() {
+    let mut harness = harness();
+    let p0 = harness.state().settings().light.power_w;
+    let before = mean_radiance(harness.state());
+    harness
+        .get_by_role_and_label(Role::Slider, "Power Φ")
+        .set_value_accesskit(2.0 * p0 as f64);
+    harness.run();
+    let p1 = harness.state().settings().light.power_w;
+    assert!((p1 / p0 - 2.0).abs() < 1e-6, "power {p0} → {p1}");
+    let after = mean_radiance(harness.state());
+    let ratio = after / before;
+    assert!(
+        (ratio - 2.0).abs() < 1e-3,
+        "radiance ratio {ratio} for a power ratio 2"
+    );
+}
+
+#[test]
+fn presets_set_their_documented_values() {
+    let mut harness = harness();
+    let mut expected = harness.state().settings().clone();
+    Preset::ShadowAcne.apply(&mut expected);
+    harness.get_by_label(Preset::ShadowAcne.title()).click();
+    harness.run();
+    let s = harness.state().settings();
+    assert_eq!(*s, expected);
+    // The values its documentation names.
+    assert_eq!(
+        (s.shadow.bias.mode, s.shadow.bias.depth_m),
+        (BiasMode::Constant, 0.0)
+    );
+    assert_eq!((s.shadow.filter, s.shadow.resolution), (Filter::None, 1024));
+
+    harness.get_by_label(Preset::Penumbra.title()).click();
+    harness.run();
+    let s = harness.state().settings();
+    assert_eq!((s.light.radius_m, s.shadow.filter), (0.4, Filter::Pcss));
+    assert_eq!(
+        (s.shadow.pcss_blocker_samples, s.shadow.poisson_samples),
+        (32, 32)
+    );
+
+    // Undo goes back one preset.
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run();
+    assert_eq!(harness.state().settings().shadow.filter, Filter::None);
+}
+
+#[test]
+fn probe_numbers_are_the_physics_of_the_clicked_pixel() {
+    let mut harness = harness();
+    // Low in the middle of the viewport: the ground in front of the objects.
+    click_at(&mut harness, egui::pos2(620.0, 690.0));
+    step_until(&mut harness, "the probe's GPU values", |app| {
+        app.probe_gpu().is_some()
+    });
+    let app = harness.state();
+    let pixel = app.probe_pixel().expect("a pixel was probed");
+    let t = app.probe_terms().expect("the pixel shows the ground");
+    assert_eq!(t.object, "ground");
+
+    // The pixel's ray meets the plane y = 0 here (f64, independently of the probe).
+    let s: &Settings = app.settings();
+    let camera = Camera {
+        eye: s.camera.eye,
+        target: s.camera.target,
+        fovy_deg: s.camera.fovy_deg,
+    };
+    let d = camera.ray_direction(
+        pixel.pixel.0 as f64 + 0.5,
+        pixel.pixel.1 as f64 + 0.5,
+        pixel.size.0,
+        pixel.size.1,
+    );
+    let eye = s.camera.eye.as_dvec3();
+    let p = eye + d * (-eye.y / d.y);
+    assert!((t.hit.position - p).length() < 1e-9, "{} vs {p}", t.hit.position);
+
+    let q = s.light.position.as_dvec3();
+    let inc = radiometry::incidence(p, DVec3::Y, q);
+    let e = radiometry::sphere_irradiance(
+        s.light.power_w as f64,
+        s.light.radius_m as f64,
+        inc.cos_theta,
+        inc.r,
+    );
+    assert!((t.irradiance_w_m2 / e - 1.0).abs() < 1e-12);
+    assert!((t.intensity_w_sr - radiometry::intensity(s.light.power_w as f64)).abs() < 1e-12);
+    let params = BrdfParams {
+        k: s.material.k as f64,
+        m: s.material.m as f64,
+        norm: s.material.norm,
+    };
+    let f = brdf::blinn_phong(DVec3::Y, inc.l, (eye - p).normalize(), &params);
+    assert!((t.brdf.diffuse - f.diffuse).abs() < 1e-15 && (t.brdf.specular - f.specular).abs() < 1e-12);
+
+    // The GPU's radiance at that pixel agrees with f_r · E · V in f64.
+    let gpu = app.probe_gpu().unwrap();
+    let l_gpu = gpu.radiance.expect("the shaded view holds L");
+    let l = t.unshadowed_radiance() * gpu.visibility as f64;
+    for c in 0..3 {
+        assert!(
+            (l_gpu[c] as f64 - l[c]).abs() <= 2e-3 * l[c].abs().max(1e-3),
+            "channel {c}: GPU {} vs physics {}",
+            l_gpu[c],
+            l[c]
+        );
+    }
+    // The panel shows the same E, with its unit.
+    let shown = format!("{} W/m²", lumlab_number(t.irradiance_w_m2));
+    harness.get_by_label(&shown);
+}
+
+/// The app's number format (4 significant digits), as the probe shows it.
+fn lumlab_number(x: f64) -> String {
+    let decimals = (3 - x.abs().log10().floor() as i32).clamp(0, 6) as usize;
+    let text = format!("{x:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
+fn click_at(harness: &mut Harness<'_, LabApp>, pos: egui::Pos2) {
+    use egui::{Event, Modifiers, PointerButton};
+    harness.event(Event::PointerMoved(pos));
+    for pressed in [true, false] {
+        harness.event(Event::PointerButton {
+            pos,
+            button: PointerButton::Primary,
+            pressed,
+            modifiers: Modifiers::NONE,
+        });
+    }
+    harness.step();
+}
