@@ -41,7 +41,16 @@ fn harness() -> Harness<'static, LabApp> {
     let mut harness = Harness::builder()
         .with_size(SIZE)
         .renderer(WgpuTestRenderer::from_render_state(render_state))
-        .build_ui_state(|ui, app: &mut LabApp| app.show(ui), app);
+        .with_render_cursor(false)
+        .build_ui_state(
+            |ui, app: &mut LabApp| {
+                // The whole window, as eframe gives it (kittest adds a margin).
+                let whole = ui.ctx().content_rect();
+                let mut root = ui.new_child(egui::UiBuilder::new().max_rect(whole));
+                app.show(&mut root);
+            },
+            app,
+        );
     harness.run();
     harness
 }
@@ -213,4 +222,90 @@ fn click_at(harness: &mut Harness<'_, LabApp>, pos: egui::Pos2) {
         });
     }
     harness.step();
+}
+
+/// Renders the window as kittest draws it (egui + the renderer's texture).
+fn render(harness: &mut Harness<'_, LabApp>) -> image::RgbaImage {
+    harness.render().expect("the harness renders through wgpu")
+}
+
+/// Where the screenshots go: `LUMLAB_SCREENSHOTS=DIR`, else the target dir.
+fn screenshot_dir() -> std::path::PathBuf {
+    let dir = std::env::var_os("LUMLAB_SCREENSHOTS")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("app-screenshots"));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Distinct colours in a rectangle (x0, y0, x1, y1) of an image.
+fn colours(image: &image::RgbaImage, r: (u32, u32, u32, u32)) -> usize {
+    let mut set = std::collections::HashSet::new();
+    for j in r.1..r.3 {
+        for i in r.0..r.2 {
+            set.insert(image.get_pixel(i, j).0);
+        }
+    }
+    set.len()
+}
+
+#[test]
+fn split_view_and_energy_panel_render() {
+    let mut harness = harness();
+    let dir = screenshot_dir();
+    let default = render(&mut harness);
+    default.save(dir.join("app-default.png")).unwrap();
+    assert!(
+        colours(&default, (500, 400, 800, 700)) > 50,
+        "the viewport is blank"
+    );
+
+    // The lecture's figure: no normalization | approx, at a low m.
+    let app = harness.state_mut();
+    app.state_mut().split.enabled = true;
+    app.settings_mut().material.m = 4.0;
+    app.settings_mut().material.k = 0.2;
+    app.settings_mut().material.use_scene_materials = false;
+    harness.run();
+    step_until(&mut harness, "both halves", |app| app.viewport_size().0 > 0);
+    let split = render(&mut harness);
+    split.save(dir.join("app-split.png")).unwrap();
+    harness.get_by_label("A: norm none");
+    harness.get_by_label("B: norm approx");
+
+    // The energy panel: no normalization at m = 1 against approx, both curves.
+    let app = harness.state_mut();
+    Preset::EnergyGain.apply(app.settings_mut());
+    app.state_mut().panels.settings = false;
+    harness.run();
+    step_until(&mut harness, "the energy panel", |app| {
+        app.viewport_size().0 > 800
+    });
+    harness.get_by_label("A: a(θ_i)");
+    harness.get_by_label("B: a(θ_i)");
+    let energy = render(&mut harness);
+    energy.save(dir.join("app-energy.png")).unwrap();
+}
+
+#[test]
+fn idle_frames_render_nothing() {
+    let mut harness = harness();
+    // Let the first frame's readbacks (scale, timings) come back.
+    for _ in 0..20 {
+        harness.step();
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let before = harness.state().renders();
+    assert!(before >= 1);
+    harness.run_steps(10);
+    assert_eq!(
+        harness.state().renders(),
+        before,
+        "frames without a change re-rendered"
+    );
+    harness.state_mut().settings_mut().view.exposure_ev = 1.0;
+    harness.run_steps(1);
+    assert_eq!(harness.state().renders(), before + 1, "a change renders once");
+    harness.run_steps(5);
+    assert_eq!(harness.state().renders(), before + 1);
 }

@@ -34,15 +34,40 @@ impl EnergyKey {
     }
 }
 
-/// a(θ) computed once per change of the BRDF (about 10 ms).
-#[derive(Default)]
-pub struct EnergyPanel {
-    key: Option<EnergyKey>,
+/// a(θ) of one BRDF, computed once per change (about 10 ms).
+struct Albedos {
+    key: EnergyKey,
     /// (θ_i in degrees, a(θ_i)) along the curve.
     curve: Vec<[f64; 2]>,
     /// a(θ_i) at the lecture's angles.
     table: Vec<[f64; 2]>,
 }
+
+impl Albedos {
+    fn new(key: EnergyKey) -> Self {
+        let step = MAX_THETA_DEG / (CURVE_POINTS - 1) as f64;
+        Self {
+            key,
+            curve: albedo_curve(&key, (0..CURVE_POINTS).map(|i| i as f64 * step)),
+            table: albedo_curve(&key, LECTURE_ANGLES_DEG),
+        }
+    }
+}
+
+/// A BRDF to plot, with its name in the legend ("A: none").
+pub struct Curve {
+    pub name: String,
+    pub key: EnergyKey,
+}
+
+#[derive(Default)]
+pub struct EnergyPanel {
+    /// The last curves computed (at most a few).
+    cache: Vec<Albedos>,
+}
+
+/// Colours of the first and second curve (A and B of the split view).
+const CURVES: [Color32; 2] = [CURVE, Color32::from_rgb(250, 150, 60)];
 
 /// The albedo at the given angles.
 pub fn albedo_curve(key: &EnergyKey, angles_deg: impl IntoIterator<Item = f64>) -> Vec<[f64; 2]> {
@@ -79,30 +104,47 @@ pub fn lobe_polar(key: &EnergyKey, theta_i_deg: f64) -> Vec<[f64; 2]> {
 }
 
 impl EnergyPanel {
-    fn update(&mut self, key: EnergyKey) {
-        if self.key == Some(key) {
-            return;
+    /// The albedos of `key`, computed if not cached.
+    fn albedos(&mut self, key: EnergyKey) -> usize {
+        if let Some(i) = self.cache.iter().position(|a| a.key == key) {
+            return i;
         }
-        let step = MAX_THETA_DEG / (CURVE_POINTS - 1) as f64;
-        self.curve = albedo_curve(&key, (0..CURVE_POINTS).map(|i| i as f64 * step));
-        self.table = albedo_curve(&key, LECTURE_ANGLES_DEG);
-        self.key = Some(key);
+        if self.cache.len() >= 4 {
+            self.cache.remove(0);
+        }
+        self.cache.push(Albedos::new(key));
+        self.cache.len() - 1
     }
 
+    /// One curve, or two (A and B of a split view comparing normalizations);
     /// `theta_i_deg`: the light's incidence at the probed point or the scene centre.
-    pub fn ui(&mut self, ui: &mut egui::Ui, key: EnergyKey, theta_i_deg: Option<(f64, &str)>) {
-        self.update(key);
-        ui.label(
-            RichText::new(format!(
-                "k = {}, m = {}, N: {}",
-                number(key.k),
-                number(key.m),
-                key.norm.formula()
-            ))
-            .monospace(),
-        )
-        .on_hover_text("a(θ_i) = ∫ f_r(l, o) cos θ_o dω_o over the hemisphere, with c = 1");
-        let max_a = self.curve.iter().map(|p| p[1]).fold(1.0_f64, f64::max);
+    pub fn ui(&mut self, ui: &mut egui::Ui, curves: &[Curve], theta_i_deg: Option<(f64, &str)>) {
+        let indices: Vec<usize> = curves.iter().map(|c| self.albedos(c.key)).collect();
+        let data: Vec<(&Curve, &Albedos, Color32)> = curves
+            .iter()
+            .zip(&indices)
+            .zip(CURVES)
+            .map(|((c, &i), colour)| (c, &self.cache[i], colour))
+            .collect();
+        for (c, _, colour) in &data {
+            let k = c.key;
+            ui.label(
+                RichText::new(format!(
+                    "{}k = {}, m = {}, {}",
+                    c.name,
+                    number(k.k),
+                    number(k.m),
+                    k.norm.formula()
+                ))
+                .monospace()
+                .color(*colour),
+            )
+            .on_hover_text("a(θ_i) = ∫ f_r(l, o) cos θ_o dω_o over the hemisphere, with c = 1");
+        }
+        let max_a = data
+            .iter()
+            .flat_map(|(_, a, _)| a.curve.iter().map(|p| p[1]))
+            .fold(1.0_f64, f64::max);
         let top = (max_a * 1.1).max(1.2);
         Plot::new("albedo plot")
             .height(220.0)
@@ -121,7 +163,7 @@ impl EnergyPanel {
             .y_axis_label("a(θ_i)")
             .show(ui, |plot| {
                 plot.add(
-                    Span::new("a > 1: energy created", 1.0..=top)
+                    Span::new("", 1.0..=top)
                         .axis(egui_plot::Axis::Y)
                         .fill(GAIN.gamma_multiply(0.18)),
                 );
@@ -130,35 +172,49 @@ impl EnergyPanel {
                         .color(GAIN)
                         .style(egui_plot::LineStyle::dashed_loose()),
                 );
-                plot.add(
-                    Line::new("a(θ_i)", PlotPoints::from(self.curve.clone()))
-                        .color(CURVE)
-                        .width(2.5),
-                );
-                plot.add(
-                    Points::new("lecture angles", PlotPoints::from(self.table.clone()))
+                for (c, a, colour) in &data {
+                    plot.add(
+                        Line::new(format!("{}a(θ_i)", c.name), PlotPoints::from(a.curve.clone()))
+                            .color(*colour)
+                            .width(2.5),
+                    );
+                    plot.add(
+                        Points::new(
+                            format!("{}lecture angles", c.name),
+                            PlotPoints::from(a.table.clone()),
+                        )
                         .radius(5.0)
-                        .color(CURVE)
+                        .color(*colour)
                         .filled(true),
-                );
+                    );
+                }
             });
+        ui.label(
+            RichText::new("red band: a(θ_i) > 1, the BRDF creates energy")
+                .small()
+                .color(GAIN),
+        );
         egui::Grid::new("albedo table").striped(true).show(ui, |ui| {
             ui.label(RichText::new("θ_i").strong());
-            for [theta, _] in &self.table {
-                ui.label(format!("{}°", number(*theta)));
+            for theta in LECTURE_ANGLES_DEG {
+                ui.label(format!("{}°", number(theta)));
             }
             ui.end_row();
-            ui.label(RichText::new("a(θ_i)").strong())
-                .on_hover_text("Directional albedo; red above 1: the BRDF reflects more than it receives");
-            for [_, a] in &self.table {
-                let text = RichText::new(format!("{a:.3}")).monospace();
-                ui.label(if *a > 1.0 + 1e-9 {
-                    text.color(GAIN).strong()
-                } else {
-                    text
-                });
+            for (c, a, colour) in &data {
+                ui.label(RichText::new(format!("{}a(θ_i)", c.name)).strong().color(*colour))
+                    .on_hover_text(
+                        "Directional albedo; red above 1: the BRDF reflects more than it receives",
+                    );
+                for [_, value] in &a.table {
+                    let text = RichText::new(format!("{value:.3}")).monospace();
+                    ui.label(if *value > 1.0 + 1e-9 {
+                        text.color(GAIN).strong()
+                    } else {
+                        text
+                    });
+                }
+                ui.end_row();
             }
-            ui.end_row();
         });
 
         ui.add_space(6.0);
@@ -169,10 +225,13 @@ impl EnergyPanel {
             number(theta_i)
         ))
         .on_hover_text("Radius: f_r / c (1/sr) towards each outgoing direction θ_o; n points up");
-        let lobe = lobe_polar(&key, theta_i);
-        let reach = lobe
+        let lobes: Vec<(&Curve, Vec<[f64; 2]>, Color32)> = data
             .iter()
-            .map(|p| (p[0] * p[0] + p[1] * p[1]).sqrt())
+            .map(|(c, _, colour)| (*c, lobe_polar(&c.key, theta_i), *colour))
+            .collect();
+        let reach = lobes
+            .iter()
+            .flat_map(|(_, lobe, _)| lobe.iter().map(|p| p[0].hypot(p[1])))
             .fold(1e-9_f64, f64::max);
         let t = theta_i.to_radians();
         Plot::new("lobe plot")
@@ -203,11 +262,13 @@ impl EnergyPanel {
                     Line::new("surface", PlotPoints::from(vec![[-reach, 0.0], [reach, 0.0]]))
                         .color(Color32::GRAY),
                 );
-                plot.add(
-                    Line::new("f_r(θ_o)", PlotPoints::from(lobe))
-                        .color(CURVE)
-                        .width(2.5),
-                );
+                for (c, lobe, colour) in lobes {
+                    plot.add(
+                        Line::new(format!("{}f_r(θ_o)", c.name), PlotPoints::from(lobe))
+                            .color(colour)
+                            .width(2.5),
+                    );
+                }
             });
         ui.label(format!("peak f_r / c = {} 1/sr", number(reach)));
     }
@@ -230,8 +291,9 @@ mod tests {
             assert!((a - 1.0).abs() < 1e-9);
         }
         let mut panel = EnergyPanel::default();
-        panel.update(key);
-        assert_eq!(panel.table.len(), LECTURE_ANGLES_DEG.len());
+        let i = panel.albedos(key);
+        assert_eq!(panel.cache[i].table.len(), LECTURE_ANGLES_DEG.len());
+        assert_eq!(panel.albedos(key), i, "cached");
     }
 
     #[test]

@@ -12,7 +12,7 @@ use crate::presets::Half;
 use crate::scene::Scene;
 use crate::settings::{DebugView, Settings};
 use std::sync::Arc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// What a frame was rendered from: when it is unchanged, so is the image.
 #[derive(Clone, PartialEq)]
@@ -40,6 +40,10 @@ pub struct HalfView {
     pub times: Option<PassTimes>,
     /// CPU time of the last `render` call (encoding and submitting).
     pub render_cpu_ms: f64,
+    /// Frames rendered so far (the lab renders only on change).
+    pub renders: u64,
+    /// Until when to keep polling for the last frame's GPU times.
+    times_due: Option<Instant>,
     /// The false-colour scale of the displayed frame, once read back.
     pub scale: Option<f32>,
     pending_scale: Option<PendingScale>,
@@ -146,6 +150,10 @@ impl GpuViews {
         let start = Instant::now();
         h.report = h.renderer.render(settings, size);
         h.render_cpu_ms = start.elapsed().as_secs_f64() * 1e3;
+        h.renders += 1;
+        if self.caps.timestamps {
+            h.times_due = Some(Instant::now() + Duration::from_secs(1));
+        }
         h.rendered = Some(key);
         h.scale = None;
         h.pending_scale = None;
@@ -167,7 +175,12 @@ impl GpuViews {
         for h in self.halves.iter_mut().flatten() {
             if let Some(t) = h.renderer.poll_timings() {
                 h.times = Some(t);
+                h.times_due = None;
             }
+            if h.times_due.is_some_and(|due| Instant::now() > due) {
+                h.times_due = None;
+            }
+            waiting |= h.times_due.is_some();
             if let Some(pending) = &h.pending_scale {
                 match pending.poll() {
                     ReadState::Waiting => waiting = true,
@@ -207,7 +220,12 @@ impl GpuViews {
         })
     }
 
-    /// Half A's renderer (exports read from it).
+    /// Frames rendered by a half so far.
+    pub fn renders(&self, half: Half) -> u64 {
+        self.half(half).map_or(0, |h| h.renders)
+    }
+
+    /// A half's renderer (exports read from A).
     pub fn renderer(&self, half: Half) -> Option<&Renderer> {
         self.half(half).map(|h| &h.renderer)
     }
@@ -230,6 +248,8 @@ impl HalfView {
             report: FrameReport::default(),
             times: None,
             render_cpu_ms: 0.0,
+            renders: 0,
+            times_due: None,
             scale: None,
             pending_scale: None,
         }

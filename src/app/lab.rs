@@ -1,7 +1,7 @@
 //! The app itself: owns the persisted state, the renderers and the
 //! background work, lays out the panels and routes what they ask for.
 
-use super::energy::{EnergyKey, EnergyPanel};
+use super::energy::{Curve, EnergyKey, EnergyPanel};
 use super::files::{FileAction, FilesPanel};
 use super::gpu_view::{GpuViews, PendingFrame, PendingProbe};
 use super::light::LightPanel;
@@ -16,7 +16,7 @@ use super::view::ViewPanel;
 use super::viewport::{Viewport, ViewportResponse};
 use super::{LaunchOptions, Preloaded, View, help};
 use crate::gpu::readback::ReadState;
-use crate::presets::{Half, Preset};
+use crate::presets::{ComparisonAxis, Half, Preset};
 use crate::scene::Scene;
 use crate::settings::{CameraSettings, DebugView, Settings};
 use egui::{Key, KeyboardShortcut, Modifiers, RichText};
@@ -193,6 +193,11 @@ impl LabApp {
     /// The renderer of half A (B is the split view's right half).
     pub fn renderer(&self) -> Option<&crate::gpu::Renderer> {
         self.gpu.as_ref().and_then(|g| g.renderer(Half::A))
+    }
+
+    /// Frames rendered by half A so far (the lab renders only on change).
+    pub fn renders(&self) -> u64 {
+        self.gpu.as_ref().map_or(0, |g| g.renders(Half::A))
     }
 
     /// The persisted state (settings, split view, panels, paths).
@@ -404,16 +409,11 @@ impl LabApp {
 
     fn analysis_panel(&mut self, ui: &mut egui::Ui, ctx: &egui::Context) {
         section(ui, "Pixel probe", true, |ui| self.probe.ui(ui));
-        let m = &self.state.settings.material;
-        let key = EnergyKey {
-            k: m.k as f64,
-            m: m.m as f64,
-            norm: m.norm,
-        };
+        let curves = self.energy_curves();
         let incidence = self.incidence_for_lobe();
         section(ui, "Energy: albedo a(θ)", true, |ui| {
             self.energy
-                .ui(ui, key, incidence.as_ref().map(|(t, s)| (*t, s.as_str())))
+                .ui(ui, &curves, incidence.as_ref().map(|(t, s)| (*t, s.as_str())))
         });
         let mut action = ReferenceAction::None;
         let settings_a = Viewport::settings_for(&self.state.settings, &self.state.split, Half::A);
@@ -428,6 +428,32 @@ impl LabApp {
         section(ui, "Timings", false, |ui| {
             super::timings::ui(ui, &self.clock, self.gpu.as_ref())
         });
+    }
+
+    /// The BRDF of the material settings; both halves' when the split view
+    /// compares normalizations.
+    fn energy_curves(&self) -> Vec<Curve> {
+        let split = &self.state.split;
+        let halves: &[(Half, &str)] =
+            if split.enabled && split.comparison.axis == ComparisonAxis::Normalization {
+                &[(Half::A, "A: "), (Half::B, "B: ")]
+            } else {
+                &[(Half::A, "")]
+            };
+        halves
+            .iter()
+            .map(|&(half, name)| {
+                let m = Viewport::settings_for(&self.state.settings, split, half).material;
+                Curve {
+                    name: name.into(),
+                    key: EnergyKey {
+                        k: m.k as f64,
+                        m: m.m as f64,
+                        norm: m.norm,
+                    },
+                }
+            })
+            .collect()
     }
 
     /// θ_i for the lobe plot: at the probed point, else from the light to

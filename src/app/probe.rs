@@ -5,7 +5,7 @@
 //! reference.
 
 use super::raycast::{self, Hit};
-use super::widgets::{number, quantity, value_row, vector};
+use super::widgets::{number, quantity, rgb, value_row, vector};
 use crate::gpu::ComparisonImage;
 use crate::physics::{BrdfParams, Normalization, brdf, radiometry};
 use crate::presets::Half;
@@ -181,10 +181,6 @@ pub struct Probe {
     pub terms: Option<ProbeTerms>,
     pub gpu: Option<GpuSample>,
     pub reference: Option<ReferenceSample>,
-}
-
-fn rgb(v: DVec3, unit: &str) -> String {
-    format!("({}, {}, {}) {unit}", number(v.x), number(v.y), number(v.z))
 }
 
 impl Probe {

@@ -101,28 +101,36 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
                 for &axis in ComparisonAxis::ALL {
                     ui.selectable_value(&mut comparison.axis, axis, axis.name());
                 }
-            });
+            })
+            .response
+            .on_hover_text("The setting that differs between A and B");
     });
     for (half, name) in [(Half::A, "A"), (Half::B, "B")] {
         let i = half as usize;
         ui.horizontal(|ui| {
-            ui.label(format!("{name}:"));
+            let label = ui.label(format!("{name}:")).id;
             let id = format!("comparison {name}");
             match comparison.axis {
-                ComparisonAxis::Normalization => {
-                    choose(ui, &id, &mut comparison.norm[i], Normalization::ALL, |n| {
-                        n.name().into()
+                ComparisonAxis::Normalization => choose(
+                    ui,
+                    (&id, label),
+                    &mut comparison.norm[i],
+                    Normalization::ALL,
+                    |n| n.name().into(),
+                ),
+                ComparisonAxis::Filter => {
+                    choose(ui, (&id, label), &mut comparison.filter[i], Filter::ALL, |f| {
+                        f.name().into()
                     })
                 }
-                ComparisonAxis::Filter => choose(ui, &id, &mut comparison.filter[i], Filter::ALL, |f| {
-                    f.name().into()
-                }),
-                ComparisonAxis::Bias => choose(ui, &id, &mut comparison.bias[i], BiasMode::ALL, |b| {
-                    b.name().into()
-                }),
+                ComparisonAxis::Bias => {
+                    choose(ui, (&id, label), &mut comparison.bias[i], BiasMode::ALL, |b| {
+                        b.name().into()
+                    })
+                }
                 ComparisonAxis::Resolution => {
                     let choices = super::shadow::resolution_choices(max_texture_side);
-                    choose(ui, &id, &mut comparison.resolution[i], &choices, |r| {
+                    choose(ui, (&id, label), &mut comparison.resolution[i], &choices, |r| {
                         format!("{r}²")
                     })
                 }
@@ -133,9 +141,10 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
         .on_hover_text("Where A ends and B begins (fraction of the width); or drag the line in the image");
 }
 
+/// A combo box of `all`, named by the label `id.1`.
 fn choose<T: Copy + PartialEq>(
     ui: &mut egui::Ui,
-    id: &str,
+    (id, label): (&str, egui::Id),
     value: &mut T,
     all: &[T],
     name: impl Fn(T) -> String,
@@ -146,5 +155,7 @@ fn choose<T: Copy + PartialEq>(
             for &choice in all {
                 ui.selectable_value(value, choice, name(choice));
             }
-        });
+        })
+        .response
+        .labelled_by(label);
 }

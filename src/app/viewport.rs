@@ -82,7 +82,9 @@ impl Viewport<'_> {
         let light_px = project(&settings.camera, settings.light.position, aspect_size);
         let to_points = |p: DVec2| rect.min + Vec2::new(p.x as f32, p.y as f32) / ppp;
         // Off-image, the gizmo waits at the edge, pointing to the light.
-        let inner = rect.shrink(GIZMO_RADIUS + 14.0);
+        // The top band is left to the half labels.
+        let mut inner = rect.shrink(GIZMO_RADIUS + 14.0);
+        inner.min.y = (rect.min.y + 64.0).min(inner.max.y);
         let gizmo_at = light_px.map(to_points).map(|p| {
             if inner.contains(p) {
                 (p, None)
@@ -249,7 +251,7 @@ impl Viewport<'_> {
             ] {
                 let name = if half == Half::A { "A" } else { "B" };
                 label(
-                    &painter,
+                    ui,
                     Pos2::new(x, rect.min.y + 10.0),
                     align,
                     &format!("{name}: {}", split.comparison.label(half)),
@@ -281,15 +283,10 @@ impl Viewport<'_> {
                     Align2::LEFT_CENTER
                 };
                 let offset = if dir.x > 0.0 { -1.0 } else { 1.0 } * (GIZMO_RADIUS + 14.0);
-                label(
-                    &painter,
-                    p + Vec2::new(offset, 0.0),
-                    side,
-                    "light (off the image)",
-                );
+                label(ui, p + Vec2::new(offset, 0.0), side, "light (off the image)");
             }
             None => label(
-                &painter,
+                ui,
                 rect.right_top() + Vec2::new(-10.0, 44.0),
                 Align2::RIGHT_TOP,
                 "light behind the camera",
@@ -304,7 +301,7 @@ impl Viewport<'_> {
         }
         if let Some(text) = banner {
             label(
-                &painter,
+                ui,
                 Pos2::new(rect.center().x, rect.min.y + 48.0),
                 Align2::CENTER_TOP,
                 &text,
@@ -327,10 +324,23 @@ fn sun(painter: &egui::Painter, p: Pos2) {
     }
 }
 
-/// Large white text on a dark pill, readable over any image.
-fn label(painter: &egui::Painter, pos: Pos2, align: Align2, text: &str) {
-    let galley = painter.layout_no_wrap(text.to_string(), FontId::proportional(19.0), Color32::WHITE);
-    let rect = align.anchor_size(pos, galley.size()).expand2(Vec2::new(8.0, 4.0));
-    painter.rect_filled(rect, 6.0, Color32::from_black_alpha(170));
-    painter.galley(rect.min + Vec2::new(8.0, 4.0), galley, Color32::WHITE);
+/// Large white text on a dark pill, readable over any image; a real label
+/// (not only paint), so screen readers and tests find it.
+fn label(ui: &mut egui::Ui, pos: Pos2, align: Align2, text: &str) {
+    let font = FontId::proportional(19.0);
+    let galley = ui
+        .painter()
+        .layout_no_wrap(text.to_string(), font.clone(), Color32::WHITE);
+    let rect = align.anchor_size(pos, galley.size());
+    ui.painter().rect_filled(
+        rect.expand2(Vec2::new(8.0, 4.0)),
+        6.0,
+        Color32::from_black_alpha(170),
+    );
+    ui.put(
+        rect,
+        egui::Label::new(egui::RichText::new(text).font(font).color(Color32::WHITE))
+            .selectable(false)
+            .extend(),
+    );
 }

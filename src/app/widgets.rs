@@ -35,21 +35,35 @@ pub fn number(x: f64) -> String {
 
 /// `number` followed by its unit.
 pub fn quantity(x: f64, unit: &str) -> String {
-    if unit.is_empty() {
-        number(x)
-    } else {
-        format!("{} {unit}", number(x))
-    }
+    with_unit(number(x), unit)
 }
 
-/// A vector as (x, y, z) with its unit.
-pub fn vector(v: glam::DVec3, unit: &str) -> String {
-    let text = format!("({}, {}, {})", number(v.x), number(v.y), number(v.z));
+/// `text` followed by its unit, if any.
+fn with_unit(text: String, unit: &str) -> String {
     if unit.is_empty() {
         text
     } else {
         format!("{text} {unit}")
     }
+}
+
+/// A vector as (x, y, z) with its unit; components below 10⁻⁹ of the
+/// largest are rounding noise and show as 0.
+pub fn vector(v: glam::DVec3, unit: &str) -> String {
+    let floor = v.abs().max_element() * 1e-9;
+    let c = |x: f64| number(if x.abs() <= floor { 0.0 } else { x });
+    with_unit(format!("({}, {}, {})", c(v.x), c(v.y), c(v.z)), unit)
+}
+
+/// An RGB quantity: one number when the three channels read the same.
+pub fn rgb(v: glam::DVec3, unit: &str) -> String {
+    let (r, g, b) = (number(v.x), number(v.y), number(v.z));
+    let text = if r == g && g == b {
+        format!("{r} (r = g = b)")
+    } else {
+        format!("({r}, {g}, {b})")
+    };
+    with_unit(text, unit)
 }
 
 /// One row of a read-out grid: the symbol, the value (monospace, selectable)
@@ -120,5 +134,8 @@ mod tests {
         assert_eq!(number(1e6), "1e6");
         assert_eq!(number(1.25e-5), "1.25e-5");
         assert_eq!(quantity(1.0, "W"), "1 W");
+        assert_eq!(vector(glam::DVec3::new(0.5, -4e-16, 3.0), "m"), "(0.5, 0, 3) m");
+        assert_eq!(rgb(glam::DVec3::splat(0.25), "W"), "0.25 (r = g = b) W");
+        assert_eq!(rgb(glam::DVec3::new(1.0, 2.0, 3.0), ""), "(1, 2, 3)");
     }
 }
