@@ -309,3 +309,62 @@ fn idle_frames_render_nothing() {
     harness.run_steps(5);
     assert_eq!(harness.state().renders(), before + 1);
 }
+
+#[test]
+fn tiny_and_zero_sized_windows_never_panic() {
+    let mut harness = harness();
+    for size in [
+        egui::vec2(300.0, 200.0),
+        egui::vec2(1.0, 1.0),
+        egui::vec2(0.0, 0.0),
+        SIZE,
+    ] {
+        harness.set_size(size);
+        harness.run_steps(3);
+    }
+    // Panels hidden (F9), then back: the viewport follows.
+    harness.key_press(egui::Key::F9);
+    harness.run_steps(2);
+    let wide = harness.state().viewport_size();
+    assert!(wide.0 > 1200, "without panels the image is {wide:?}");
+    harness.key_press(egui::Key::F9);
+    harness.run_steps(2);
+    assert!(
+        harness.state().viewport_size().0 < wide.0,
+        "{:?} {:?}",
+        harness.state().viewport_size(),
+        harness.state_mut().state_mut().panels
+    );
+}
+
+#[test]
+fn settings_file_round_trip_and_reset_everything() {
+    let mut harness = harness();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("lab.toml");
+    harness.state_mut().state_mut().paths.settings_file = path.display().to_string();
+    harness.state_mut().settings_mut().light.power_w = 123.0;
+    // Tall enough that the Files section is not scrolled out of view.
+    harness.set_size(egui::vec2(1280.0, 2400.0));
+    harness.get_by_label("Files").click();
+    harness.run();
+    harness.get_by_label("Save (Ctrl+S)").click_accesskit();
+    harness.run();
+    let saved = Settings::load(&path).expect("the app wrote a valid settings file");
+    assert_eq!(saved.light.power_w, 123.0);
+    assert_eq!(&saved, harness.state().settings());
+
+    harness.state_mut().settings_mut().light.power_w = 5.0;
+    harness.get_by_label("Load").click_accesskit();
+    harness.run();
+    assert_eq!(harness.state().settings().light.power_w, 123.0);
+
+    harness.get_by_label("Reset everything").click_accesskit();
+    harness.run();
+    assert_eq!(*harness.state().settings(), Settings::default());
+    // Let the change settle into the undo stack, then bring it back.
+    harness.run_steps(3);
+    harness.key_press_modifiers(egui::Modifiers::COMMAND, egui::Key::Z);
+    harness.run();
+    assert_eq!(harness.state().settings().light.power_w, 123.0);
+}

@@ -34,6 +34,8 @@ pub struct HalfView {
     rendered: Option<RenderKey>,
     scene_generation: u64,
     comparison_generation: u64,
+    /// A reference image is set (the error views have something to show).
+    pub has_comparison: bool,
     /// The last frame's report.
     pub report: FrameReport,
     /// GPU time of each pass of the latest timed frame.
@@ -130,6 +132,7 @@ impl GpuViews {
         {
             h.renderer.set_comparison(image.map(|i| (**i).clone()));
             h.comparison_generation = generation;
+            h.has_comparison = image.is_some();
         }
     }
 
@@ -245,6 +248,7 @@ impl HalfView {
             rendered: None,
             scene_generation,
             comparison_generation: 0,
+            has_comparison: false,
             report: FrameReport::default(),
             times: None,
             render_cpu_ms: 0.0,

@@ -20,7 +20,7 @@ pub const SHORTCUTS: &[(&str, &str)] = &[
     ("F5", "compute the CPU reference"),
     ("Esc", "cancel the reference / close this help"),
     ("F12", "save a screenshot"),
-    ("Tab", "hide/show the side panels"),
+    ("F9", "hide/show the side panels"),
 ];
 
 pub fn window(ctx: &egui::Context, open: &mut bool) {

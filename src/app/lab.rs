@@ -305,7 +305,7 @@ impl LabApp {
                 .on_hover_text("Compare two settings side by side (S)");
             ui.separator();
             ui.toggle_value(&mut self.state.panels.settings, "Settings")
-                .on_hover_text("Show the settings panel (Tab hides both panels)");
+                .on_hover_text("Show the settings panel (F9 hides both panels)");
             ui.toggle_value(&mut self.state.panels.analysis, "Analysis")
                 .on_hover_text("Show the probe, energy, reference and timings panel");
             ui.toggle_value(&mut self.help_open, "Help (F1)")
@@ -354,6 +354,11 @@ impl LabApp {
                             .on_hover_text(preset.description())
                             .clicked()
                         {
+                            // On the built-in scene, presets start from its own view
+                            // (their light positions are tuned for it).
+                            if settings.scene.is_none() {
+                                settings.camera = CameraSettings::default();
+                            }
                             preset.apply(settings);
                             self.status = Some(Status {
                                 text: format!("preset: {} (Ctrl+Z to undo)", preset.title()),
@@ -771,7 +776,7 @@ impl LabApp {
         if pressed(Modifiers::NONE, Key::S) {
             self.state.split.enabled = !self.state.split.enabled;
         }
-        if pressed(Modifiers::NONE, Key::Tab) {
+        if pressed(Modifiers::NONE, Key::F9) {
             let show = !(self.state.panels.settings || self.state.panels.analysis);
             self.state.panels.settings = show;
             self.state.panels.analysis = show;

@@ -8,7 +8,7 @@ use super::legend;
 use super::probe::ProbePixel;
 use super::state::SplitState;
 use crate::presets::Half;
-use crate::settings::Settings;
+use crate::settings::{DebugView, Settings};
 use egui::emath::GuiRounding;
 use egui::{Align2, Color32, CursorIcon, FontId, PointerButton, Pos2, Rect, Sense, Stroke, Vec2};
 use glam::DVec2;
@@ -235,8 +235,12 @@ impl Viewport<'_> {
         let view = settings.view.mode;
         for &half in halves {
             let (area, _) = part(half);
-            let scale = gpu.half(half).and_then(|h| h.scale);
-            if let Some(l) = legend::for_view(view, scale) {
+            let Some(h) = gpu.half(half) else { continue };
+            let compares = matches!(view, DebugView::Error | DebugView::RefVisibility);
+            if compares && !h.has_comparison {
+                continue;
+            }
+            if let Some(l) = legend::for_view(view, h.scale) {
                 legend::paint(&painter, area, &l);
             }
         }
@@ -300,12 +304,7 @@ impl Viewport<'_> {
             painter.circle_stroke(p, 6.0, Stroke::new(2.0, Color32::from_rgb(0, 230, 255)));
         }
         if let Some(text) = banner {
-            label(
-                ui,
-                Pos2::new(rect.center().x, rect.min.y + 48.0),
-                Align2::CENTER_TOP,
-                &text,
-            );
+            label(ui, rect.center(), Align2::CENTER_CENTER, &text);
         }
         out
     }
