@@ -368,3 +368,145 @@ fn settings_file_round_trip_and_reset_everything() {
     harness.run();
     assert_eq!(harness.state().settings().light.power_w, 123.0);
 }
+
+/// Presses at `from`, moves to `to` in a few steps, releases, with `modifiers` held.
+fn drag(harness: &mut Harness<'_, LabApp>, from: egui::Pos2, to: egui::Pos2, modifiers: egui::Modifiers) {
+    use egui::{Event, PointerButton};
+    harness.event(Event::PointerMoved(from));
+    harness.step();
+    harness.event(Event::PointerButton {
+        pos: from,
+        button: PointerButton::Primary,
+        pressed: true,
+        modifiers,
+    });
+    harness.step();
+    for k in 1..=5 {
+        harness.event_modifiers(
+            Event::PointerMoved(from + (to - from) * (k as f32 / 5.0)),
+            modifiers,
+        );
+        harness.step();
+    }
+    harness.event(Event::PointerButton {
+        pos: to,
+        button: PointerButton::Primary,
+        pressed: false,
+        modifiers,
+    });
+    harness.step();
+}
+
+#[test]
+fn dragging_orbits_scrolling_zooms_and_the_light_follows_its_gizmo() {
+    let mut harness = harness();
+    let rect = harness.state().viewport_rect();
+    let c0 = harness.state().settings().camera;
+    let r0 = (c0.eye - c0.target).length();
+    drag(
+        &mut harness,
+        rect.center(),
+        rect.center() + egui::vec2(80.0, 0.0),
+        egui::Modifiers::NONE,
+    );
+    let c1 = harness.state().settings().camera;
+    assert_ne!(c1.eye, c0.eye, "a drag orbits");
+    assert_eq!(c1.target, c0.target);
+    assert!(((c1.eye - c1.target).length() - r0).abs() < 1e-3);
+
+    harness.event(egui::Event::PointerMoved(rect.center()));
+    harness.event(egui::Event::MouseWheel {
+        unit: egui::MouseWheelUnit::Point,
+        delta: egui::vec2(0.0, 120.0),
+        phase: egui::TouchPhase::Move,
+        modifiers: egui::Modifiers::NONE,
+        source: egui::MouseWheelSource::Wheel,
+    });
+    harness.run_steps(4);
+    let c2 = harness.state().settings().camera;
+    assert!(
+        (c2.eye - c2.target).length() < (c1.eye - c1.target).length(),
+        "wheel up zooms in"
+    );
+
+    // Put the light in view, find its gizmo, drag it parallel to the image.
+    harness.key_press(egui::Key::R);
+    harness.state_mut().settings_mut().light.position = glam::Vec3::new(-1.5, 2.0, 2.0);
+    harness.run_steps(2);
+    let s = harness.state().settings().clone();
+    let size = harness.state().viewport_size();
+    let camera = Camera {
+        eye: s.camera.eye,
+        target: s.camera.target,
+        fovy_deg: s.camera.fovy_deg,
+    };
+    // Project by intersecting pixel rays: find the pixel whose ray passes the light.
+    let to_light = (s.light.position - s.camera.eye).as_dvec3().normalize();
+    let f = camera.frame();
+    let t = camera.tan_half_fovy();
+    let aspect = size.0 as f64 / size.1 as f64;
+    let depth = to_light.dot(f.forward);
+    let sx = to_light.dot(f.right) / depth / (t * aspect);
+    let sy = to_light.dot(f.up) / depth / t;
+    let px = egui::vec2(
+        ((sx + 1.0) * 0.5 * size.0 as f64) as f32,
+        ((1.0 - sy) * 0.5 * size.1 as f64) as f32,
+    );
+    let gizmo = rect.min + px;
+    drag(
+        &mut harness,
+        gizmo,
+        gizmo + egui::vec2(60.0, 0.0),
+        egui::Modifiers::NONE,
+    );
+    let moved = harness.state().settings().light.position;
+    assert!(
+        (moved - s.light.position).length() > 0.1,
+        "the light moved: {moved}"
+    );
+    assert_eq!(
+        harness.state().settings().camera,
+        s.camera,
+        "dragging the light does not orbit"
+    );
+    let along_right = (moved - s.light.position).as_dvec3().normalize().dot(f.right);
+    assert!(
+        along_right > 0.99,
+        "moved along the image's x axis ({along_right})"
+    );
+}
+
+#[test]
+fn exr_export_and_a_bad_scene_file() {
+    let mut harness = harness();
+    let dir = tempfile::tempdir().unwrap();
+    let exr = dir.path().join("l.exr");
+    harness.state_mut().state_mut().paths.exr_file = exr.display().to_string();
+    harness.state_mut().state_mut().paths.scene_file = dir.path().join("missing.glb").display().to_string();
+    harness.set_size(egui::vec2(1280.0, 2400.0));
+    harness.run();
+    harness.get_by_label("Files").click_accesskit();
+    harness.run();
+    harness.get_by_label("Export EXR").click_accesskit();
+    harness.run();
+    let image = image::open(&exr).expect("an EXR was written").to_rgba32f();
+    let (w, h) = image.dimensions();
+    assert!(w > 100 && h == harness.state().viewport_size().1, "{w}×{h}");
+    assert!(image.pixels().any(|p| p.0[0] > 0.0), "radiance, not black");
+
+    let before = harness.state().settings().clone();
+    harness.get_by_label("Open scene").click_accesskit();
+    for _ in 0..100 {
+        harness.step();
+        if harness
+            .query_by_label_contains("the current scene is kept")
+            .is_some()
+        {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    harness.get_by_label_contains("missing.glb");
+    harness.get_by_label_contains("the current scene is kept");
+    assert_eq!(*harness.state().settings(), before);
+}

@@ -235,6 +235,10 @@ impl GpuViews {
 }
 
 impl HalfView {
+    pub fn renderer(&self) -> &Renderer {
+        &self.renderer
+    }
+
     fn new(render_state: &egui_wgpu::RenderState, scene: &Scene, scene_generation: u64) -> Self {
         Self {
             renderer: Renderer::new(

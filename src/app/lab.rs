@@ -64,6 +64,7 @@ pub struct LabApp {
     outcome: Arc<Mutex<Option<String>>>,
     frames: u64,
     viewport_size: (u32, u32),
+    viewport_rect: egui::Rect,
     styled: bool,
 }
 
@@ -162,6 +163,7 @@ impl LabApp {
             outcome,
             frames: 0,
             viewport_size: (0, 0),
+            viewport_rect: egui::Rect::NOTHING,
             styled: false,
         })
     }
@@ -193,6 +195,11 @@ impl LabApp {
     /// The renderer of half A (B is the split view's right half).
     pub fn renderer(&self) -> Option<&crate::gpu::Renderer> {
         self.gpu.as_ref().and_then(|g| g.renderer(Half::A))
+    }
+
+    /// Where the image is in the window (points), on the last frame.
+    pub fn viewport_rect(&self) -> egui::Rect {
+        self.viewport_rect
     }
 
     /// Frames rendered by half A so far (the lab renders only on change).
@@ -539,6 +546,7 @@ impl LabApp {
     fn after_viewport(&mut self, response: ViewportResponse) {
         if response.size != (0, 0) {
             self.viewport_size = response.size;
+            self.viewport_rect = response.rect.unwrap_or(egui::Rect::NOTHING);
         }
         if let Some(pixel) = response.clicked {
             self.probe.pixel = Some(pixel);
@@ -858,12 +866,14 @@ impl LabApp {
 
     fn export_exr(&self, path: &Path) -> anyhow::Result<()> {
         crate::image_io::ImageFormat::of_path(path)?;
-        let renderer = self
+        let half = self
             .gpu
             .as_ref()
-            .and_then(|g| g.renderer(Half::A))
+            .and_then(|g| g.half(Half::A))
+            .filter(|h| h.report.size != (0, 0))
             .ok_or_else(|| anyhow::anyhow!("no image to export yet"))?;
-        let (w, h) = self.viewport_size;
+        let renderer = half.renderer();
+        let (w, h) = half.report.size;
         let texels = renderer.read_quantity();
         let flat: Vec<f32> = texels.iter().flatten().copied().collect();
         let image = image::Rgba32FImage::from_raw(w, h, flat)

@@ -34,6 +34,8 @@ pub struct Viewport<'a> {
 pub struct ViewportResponse {
     /// The image size in pixels (0 × 0 when there is no room).
     pub size: (u32, u32),
+    /// Where the image is in the window (points); None when there is no room.
+    pub rect: Option<egui::Rect>,
     /// A pixel clicked this frame.
     pub clicked: Option<ProbePixel>,
     /// Which halves were rendered this frame.
@@ -72,6 +74,7 @@ impl Viewport<'_> {
             return out;
         }
         out.size = size;
+        out.rect = Some(rect);
         let response = ui.allocate_rect(rect, Sense::click_and_drag());
         let height_px = size.1 as f64;
         let wipe_x = rect.min.x + rect.width() * split.wipe.clamp(0.0, 1.0);
