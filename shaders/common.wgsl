@@ -180,8 +180,20 @@ fn sphere_irradiance(power_w: f32, radius_m: f32, cos_theta_in: f32, r_m: f32) -
     let x = sqrt(1.0 / sin2_alpha - 1.0);
     let y = clamp(-x * cos_theta / sin_theta, -1.0, 1.0);
     let s = sin_theta * sqrt(max(1.0 - y * y, 0.0));
-    let form = (cos_theta * acos(y) - x * s) * sin2_alpha + atan(s / x);
+    // Snyder's F rewritten so that its terms do not cancel for a small sphere.
+    let t = s / x;
+    let form = sin2_alpha * (cos_theta * acos(y) + t) - t_minus_atan(t);
     return sphere_radiance(power_w, radius_m) * max(form, 0.0);
+}
+
+// t − atan t without cancellation (physics::radiometry::t_minus_atan).
+fn t_minus_atan(t: f32) -> f32 {
+    if t < 0.05 {
+        let t2 = t * t;
+        let tail = 1.0 / 11.0 - t2 * (1.0 / 13.0 - t2 * (1.0 / 15.0));
+        return t * t2 * (1.0 / 3.0 - t2 * (0.2 - t2 * (1.0 / 7.0 - t2 * (1.0 / 9.0 - t2 * tail))));
+    }
+    return t - atan(t);
 }
 
 // The sRGB transfer of a linear value clamped to [0, 1] (physics::display::srgb_encode).
