@@ -99,11 +99,14 @@ struct DisplayParams {
     values: vec4<f32>,
 }
 
-// ln(cos θ) from the gap d = 1 − cos θ (physics::brdf::ln_cos_from_gap).
+// ln(cos θ) from the gap d = 1 − cos θ: −2 atanh(d / (2 − d)) as a series
+// below 0.1 (physics::brdf::ln_cos_from_gap).
 fn ln_cos_from_gap(gap: f32) -> f32 {
-    if gap < 1e-3 {
-        let d = gap;
-        return -(d * (1.0 + d * (0.5 + d * (1.0 / 3.0 + d * (0.25 + d * 0.2)))));
+    if gap < 0.1 {
+        let x = gap / (2.0 - gap);
+        let x2 = x * x;
+        let tail = 1.0 / 7.0 + x2 * (1.0 / 9.0 + x2 * (1.0 / 11.0 + x2 * (1.0 / 13.0)));
+        return -2.0 * x * (1.0 + x2 * (1.0 / 3.0 + x2 * (0.2 + x2 * tail)));
     }
     return log(1.0 - gap);
 }
