@@ -1,7 +1,8 @@
 //! lumlab: a desktop lighting lab for direct lighting.
 //!
 //! `physics` holds the formulas (no GPU, no UI, no files); `settings` every
-//! user-settable value; `scene` what is drawn; `cli` the command line.
+//! user-settable value; `scene` what is drawn; `cli` the command line;
+//! `stability` the hard cases where direct lighting breaks numerically.
 
 #[macro_use]
 mod named;
@@ -14,3 +15,4 @@ pub mod physics;
 pub mod plot;
 pub mod scene;
 pub mod settings;
+pub mod stability;

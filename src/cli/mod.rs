@@ -7,6 +7,7 @@
 mod args;
 mod energy;
 mod render;
+mod stability;
 
 pub use args::SceneOptions;
 
@@ -27,6 +28,8 @@ pub enum Command {
     Energy(energy::EnergyArgs),
     /// Render the scene on the GPU, headless, to PNG or EXR.
     Render(render::RenderArgs),
+    /// Hard cases (m = 1e6, 89.99°, r = 0, near/far = 1e8…) in f64, f32 and on the GPU, beside naive formulas.
+    Stability(stability::StabilityArgs),
 }
 
 /// Parses the arguments and runs the command; the binary's whole `main`.
@@ -38,6 +41,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Some(Command::Energy(args)) => energy::run(&args),
         Some(Command::Render(args)) => render::run(&args),
+        Some(Command::Stability(args)) => stability::run_command(&args),
         None => anyhow::Result::Err(anyhow::anyhow!(
             "the lab window is not built yet: try 'lumlab energy'"
         )),
