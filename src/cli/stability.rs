@@ -50,9 +50,9 @@ pub fn run_command(args: &StabilityArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// A value in the table: seven significant digits.
+/// A value in the table: six significant digits, and a plain 0.
 fn value(x: f64) -> String {
-    format!("{x:.6e}")
+    if x == 0.0 { "0".into() } else { format!("{x:.5e}") }
 }
 
 /// A difference in the table: two significant digits, 0 when equal.
@@ -115,16 +115,16 @@ fn group(rows: &[Row]) -> String {
         .max()
         .unwrap_or(0);
     out += &format!(
-        "   {:<width$} {:>13} {:>13} {:>13} {:>7} {:>7}",
+        "   {:<width$} {:>12} {:>12} {:>12} {:>7} {:>7}",
         "case", "f64", "f32", "GPU", "Δf32", "ΔGPU"
     );
     if has_naive {
-        out += &format!(" {:>13} {:>7} {:<5}", "naive f32", "Δnaive", "");
+        out += &format!(" {:>12} {:>7} {:<5}", "naive f32", "Δnaive", "");
     }
     out += "\n";
     for r in rows {
         out += &format!(
-            "   {:<width$} {:>13} {:>13} {:>13} {:>7} {:>7}",
+            "   {:<width$} {:>12} {:>12} {:>12} {:>7} {:>7}",
             r.case.label,
             value(r.f64),
             value(r.f32),
@@ -140,9 +140,9 @@ fn group(rows: &[Row]) -> String {
                     } else {
                         "-".into()
                     };
-                    out += &format!(" {:>13} {:>7} {:<5}", value(x), d, flag.name())
+                    out += &format!(" {:>12} {:>7} {:<5}", value(x), d, flag.name())
                 }
-                _ => out += &format!(" {:>13} {:>7} {:<5}", "-", "", ""),
+                _ => out += &format!(" {:>12} {:>7} {:<5}", "-", "", ""),
             }
         }
         out += &format!(" {:<4}", if r.ok() { "ok" } else { "FAIL" });
