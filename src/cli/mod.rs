@@ -28,7 +28,7 @@ pub enum Command {
     Energy(energy::EnergyArgs),
     /// Render the scene on the GPU, headless, to PNG or EXR.
     Render(render::RenderArgs),
-    /// Hard cases (m = 1e6, 89.99°, r = 0, near/far = 1e8…) in f64, f32 and on the GPU, beside naive formulas.
+    /// Hard cases (m = 1e6, 89.99°, r = 0, far/near = 1e8…) in f64, f32 and on the GPU, beside naive formulas.
     Stability(stability::StabilityArgs),
 }
 
