@@ -149,6 +149,25 @@ fn blinn_phong(n: vec3<f32>, l: vec3<f32>, o: vec3<f32>, k: f32, m: f32, norm: u
     return vec2<f32>(diffuse, (1.0 - k) * norm_factor(norm, m) * lobe(cos_h, gap, m));
 }
 
+// Where the light is seen from a surface point (physics::radiometry::incidence).
+struct LightIncidence {
+    // Unit direction towards the light; the normal when the light is on the point.
+    l: vec3<f32>,
+    // Distance to the light (m), clamped to MIN_LIGHT_DISTANCE_M.
+    r: f32,
+    // n·l, signed.
+    cos_theta: f32,
+}
+
+fn light_incidence(to_light: vec3<f32>, n: vec3<f32>) -> LightIncidence {
+    let r2 = dot(to_light, to_light);
+    var l = n;
+    if r2 > 0.0 {
+        l = to_light * (1.0 / sqrt(r2));
+    }
+    return LightIncidence(l, max(sqrt(r2), MIN_LIGHT_DISTANCE_M), dot(n, l));
+}
+
 // E = I max(0, cos θ) / r² (physics::radiometry::point_irradiance).
 fn point_irradiance(intensity: f32, cos_theta: f32, r_m: f32) -> f32 {
     let r = max(r_m, MIN_LIGHT_DISTANCE_M);

@@ -28,18 +28,11 @@ struct Case {
 @group(0) @binding(0) var<storage, read> cases: array<Case>;
 @group(0) @binding(1) var<storage, read_write> values: array<f32>;
 
-// E at p (normal n) from a point light of power Φ at q: the fragment
-// shader's lines in shade.wgsl (fs), then the same sphere_irradiance call.
+// E at p (normal n) from a point light of power Φ at q, as shade.wgsl's fs
+// computes it: light_incidence, then sphere_irradiance.
 fn point_light_irradiance(p: vec3<f32>, n: vec3<f32>, q: vec3<f32>, power_w: f32) -> f32 {
-    let to_light = q - p;
-    let r2 = dot(to_light, to_light);
-    var l = n;
-    if r2 > 0.0 {
-        l = to_light * (1.0 / sqrt(r2));
-    }
-    let r = max(sqrt(r2), MIN_LIGHT_DISTANCE_M);
-    let cos_theta = dot(n, l);
-    return sphere_irradiance(power_w, 0.0, cos_theta, r);
+    let incidence = light_incidence(q - p, n);
+    return sphere_irradiance(power_w, 0.0, incidence.cos_theta, incidence.r);
 }
 
 // The caster's depth as the shadow pass stores it (clip.z / clip.w on the
