@@ -338,14 +338,10 @@ fn fs(in: VsOut) -> FsOut {
         n = -n;
     }
 
-    let to_light = globals.light_rel.xyz - in.rel;
-    let r2 = dot(to_light, to_light);
-    var l = n;
-    if r2 > 0.0 {
-        l = to_light * (1.0 / sqrt(r2));
-    }
-    let r = max(sqrt(r2), MIN_LIGHT_DISTANCE_M);
-    let cos_theta = dot(n, l);
+    let incidence = light_incidence(globals.light_rel.xyz - in.rel, n);
+    let l = incidence.l;
+    let r = incidence.r;
+    let cos_theta = incidence.cos_theta;
 
     // The facet's own normal: the tangent plane the shadow map really holds
     // (the interpolated normal of a curved mesh is not that plane).

@@ -2,6 +2,7 @@
 //!
 //! `physics` holds the formulas (no GPU, no UI, no files); `settings` every
 //! user-settable value; `scene` what is drawn; `cli` the command line;
+//! `stability` the hard cases where direct lighting breaks numerically;
 //! `app` the window (the only module that knows egui); `presets` the
 //! lecture's experiments.
 
@@ -18,3 +19,4 @@ pub mod plot;
 pub mod presets;
 pub mod scene;
 pub mod settings;
+pub mod stability;

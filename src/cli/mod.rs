@@ -7,6 +7,7 @@
 mod args;
 mod energy;
 mod render;
+mod stability;
 
 pub use args::SceneOptions;
 
@@ -62,6 +63,8 @@ pub enum Command {
     Energy(energy::EnergyArgs),
     /// Render the scene on the GPU, headless, to PNG or EXR.
     Render(render::RenderArgs),
+    /// Hard cases (m = 1e6, 89.99°, r = 0, far/near = 1e8…) in f64, f32 and on the GPU, beside naive formulas.
+    Stability(stability::StabilityArgs),
 }
 
 /// Parses the arguments and runs the command; the binary's whole `main`.
@@ -73,6 +76,7 @@ pub fn main() -> ExitCode {
     let result = cli.launch_options().and_then(|options| match &cli.command {
         Some(Command::Energy(args)) => energy::run(args),
         Some(Command::Render(args)) => render::run(args),
+        Some(Command::Stability(args)) => stability::run_command(args),
         None => crate::app::run(options),
     });
     match result {

@@ -157,15 +157,10 @@ impl DisplayPass {
         );
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("display"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: inputs.target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
+            color_attachments: &[binding::color_attachment(
+                inputs.target,
+                wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+            )],
             depth_stencil_attachment: None,
             timestamp_writes,
             occlusion_query_set: None,

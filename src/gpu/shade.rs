@@ -168,28 +168,14 @@ impl ShadePass {
         visible: &[usize],
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
-        let target = |view| {
-            Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
-        };
+        let clear = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("camera pass"),
-            color_attachments: &[target(quantity), target(aux)],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(0.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
+            color_attachments: &[
+                binding::color_attachment(quantity, clear),
+                binding::color_attachment(aux, clear),
+            ],
+            depth_stencil_attachment: binding::depth_attachment(depth, wgpu::LoadOp::Clear(0.0)),
             timestamp_writes,
             occlusion_query_set: None,
             multiview_mask: None,
