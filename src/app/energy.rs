@@ -197,7 +197,7 @@ impl EnergyPanel {
         egui::Grid::new("albedo table").striped(true).show(ui, |ui| {
             ui.label(RichText::new("θ_i").strong());
             for theta in LECTURE_ANGLES_DEG {
-                ui.label(format!("{}°", number(theta)));
+                ui.label(RichText::new(format!("{}°", number(theta))).size(14.0));
             }
             ui.end_row();
             for (c, a, colour) in &data {
@@ -206,7 +206,7 @@ impl EnergyPanel {
                         "Directional albedo; red above 1: the BRDF reflects more than it receives",
                     );
                 for [_, value] in &a.table {
-                    let text = RichText::new(format!("{value:.3}")).monospace();
+                    let text = RichText::new(format!("{value:.3}")).monospace().size(14.0);
                     ui.label(if *value > 1.0 + 1e-9 {
                         text.color(GAIN).strong()
                     } else {

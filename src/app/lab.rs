@@ -248,7 +248,7 @@ impl LabApp {
         if self.state.panels.settings {
             egui::Panel::left("settings panel")
                 .resizable(true)
-                .default_size(360.0)
+                .default_size(330.0)
                 .size_range(260.0..=560.0)
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| action = self.settings_panel(ui));
@@ -257,7 +257,7 @@ impl LabApp {
         if self.state.panels.analysis {
             egui::Panel::right("analysis panel")
                 .resizable(true)
-                .default_size(380.0)
+                .default_size(350.0)
                 .size_range(280.0..=640.0)
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| self.analysis_panel(ui, &ctx));

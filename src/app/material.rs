@@ -4,6 +4,7 @@ use super::View;
 use super::widgets::{derived, log_slider_with_zero, number};
 use crate::physics::Normalization;
 use crate::settings::MaterialSettings;
+use egui::RichText;
 
 /// The BRDF, shown in every tooltip of this panel.
 pub const BRDF: &str = "f_r = c · (k/π + (1 − k) · N(m) · cos^m θ_h), h = normalize(l + o)";
@@ -63,7 +64,7 @@ impl View for MaterialPanel<'_> {
             for &choice in Normalization::ALL {
                 ui.radio_value(norm, choice, choice.name())
                     .on_hover_text(norm_note(choice));
-                ui.label(choice.formula().trim_start_matches("N(m) = "))
+                ui.label(RichText::new(choice.formula().trim_start_matches("N(m) = ")).size(14.0))
                     .on_hover_text(norm_note(choice));
                 ui.end_row();
             }
