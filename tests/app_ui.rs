@@ -510,3 +510,67 @@ fn exr_export_and_a_bad_scene_file() {
     harness.get_by_label_contains("the current scene is kept");
     assert_eq!(*harness.state().settings(), before);
 }
+
+/// Runs the reference job to its end (F5), failing after a while.
+fn compute_reference(harness: &mut Harness<'_, LabApp>) {
+    harness.key_press(egui::Key::F5);
+    harness.run_steps(1);
+    assert!(harness.state().reference_running(), "F5 starts the reference");
+    for _ in 0..3000 {
+        harness.step();
+        if !harness.state().reference_running() {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    panic!("the reference never finished");
+}
+
+#[test]
+fn a_reference_job_feeds_the_error_view_and_its_rmse() {
+    use lumlab::settings::DebugView;
+    let mut harness = harness();
+    // A stand-in reference on the job's thread: black everywhere, fully visible,
+    // so that the error is the GPU's own luminance.
+    harness.state_mut().set_reference_fn(Arc::new(
+        |_scene: &lumlab::scene::Scene, s: &Settings, control: &lumlab::app::JobControl| {
+            let n = (s.image.width * s.image.height) as usize;
+            control.pixels_done.store(n, std::sync::atomic::Ordering::Relaxed);
+            Ok(lumlab::gpu::ComparisonImage {
+                width: s.image.width,
+                height: s.image.height,
+                texels: vec![[0.0, 0.0, 0.0, 1.0]; n],
+            })
+        },
+    ));
+    compute_reference(&mut harness);
+    harness.state_mut().settings_mut().view.mode = DebugView::Error;
+    harness.run();
+    step_until(&mut harness, "the error statistics", |app| {
+        app.error_stats().is_some()
+    });
+    let stats = harness.state().error_stats().unwrap();
+
+    let renderer = harness.state().renderer().unwrap();
+    let (quantity, aux) = (renderer.read_quantity(), renderer.read_aux());
+    let (sum2, n) = quantity
+        .iter()
+        .zip(&aux)
+        .filter(|(_, a)| a[3] > 0.0)
+        .fold((0.0, 0), |(s, n), (q, _)| {
+            let y = 0.2126 * q[0] as f64 + 0.7152 * q[1] as f64 + 0.0722 * q[2] as f64;
+            (s + y * y, n + 1)
+        });
+    assert_eq!(stats.pixels, n);
+    assert!(
+        (stats.rmse / (sum2 / n as f64).sqrt() - 1.0).abs() < 1e-9,
+        "{stats:?}"
+    );
+    harness.get_by_label("RMSE");
+    harness.get_by_label_contains("RMSE = ");
+
+    // Moving the light makes the reference stale, and says so.
+    harness.state_mut().settings_mut().light.position.x += 1.0;
+    harness.run();
+    assert_eq!(harness.query_all_by_label_contains("STALE").count(), 2, "panel and image say so");
+}

@@ -197,6 +197,16 @@ impl LabApp {
         self.gpu.as_ref().and_then(|g| g.renderer(Half::A))
     }
 
+    /// A CPU reference is being computed.
+    pub fn reference_running(&self) -> bool {
+        self.reference.is_running()
+    }
+
+    /// RMSE and friends of the GPU image against the reference, once computed.
+    pub fn error_stats(&self) -> Option<super::ErrorStats> {
+        self.reference.stats
+    }
+
     /// Where the image is in the window (points), on the last frame.
     pub fn viewport_rect(&self) -> egui::Rect {
         self.viewport_rect
@@ -494,6 +504,7 @@ impl LabApp {
     fn viewport(&mut self, ui: &mut egui::Ui) -> ViewportResponse {
         self.update_comparisons();
         let banner = self.reference_banner();
+        let caption = self.error_caption();
         if let Some(gpu) = &mut self.gpu {
             gpu.set_split(self.state.split.enabled, &self.scene);
         }
@@ -503,6 +514,7 @@ impl LabApp {
             gpu: self.gpu.as_mut(),
             probe: self.probe.pixel,
             banner,
+            caption,
         }
         .show(ui)
     }
@@ -526,6 +538,19 @@ impl LabApp {
         let b_matches = result.is_some_and(|r| r.key == key_b);
         let b_image = if b_matches { image } else { None };
         gpu.set_comparison(Half::B, b_image, 2 * self.reference_generation + b_matches as u64);
+    }
+
+    /// The error view's RMSE, on the image where the class can read it.
+    fn error_caption(&self) -> Option<String> {
+        let stats = self
+            .reference
+            .stats
+            .filter(|_| self.state.settings.view.mode == DebugView::Error)?;
+        Some(format!(
+            "RMSE = {} ({} % of mean L_ref)",
+            super::widgets::quantity(stats.rmse, "W/m²/sr"),
+            super::widgets::number(100.0 * stats.relative)
+        ))
     }
 
     fn reference_banner(&self) -> Option<String> {

@@ -30,7 +30,7 @@ mod widgets;
 
 pub use lab::LabApp;
 pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
-pub use reference::{JobControl, ReferenceFn};
+pub use reference::{ErrorStats, JobControl, ReferenceFn};
 pub use state::State;
 
 use crate::scene::Scene;

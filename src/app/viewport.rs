@@ -28,6 +28,8 @@ pub struct Viewport<'a> {
     pub probe: Option<ProbePixel>,
     /// A line to show over the image (e.g. the error view has no reference).
     pub banner: Option<String>,
+    /// A number to show over the image, above the legend (e.g. the RMSE).
+    pub caption: Option<String>,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -61,6 +63,7 @@ impl Viewport<'_> {
             gpu,
             probe,
             banner,
+            caption,
         } = self;
         let ppp = ui.ctx().pixels_per_point();
         let rect = ui.available_rect_before_wrap().round_to_pixels(ppp);
@@ -308,6 +311,14 @@ impl Viewport<'_> {
         }
         if let Some(text) = banner {
             label(ui, rect.center(), Align2::CENTER_CENTER, &text);
+        }
+        if let Some(text) = caption {
+            label(
+                ui,
+                Pos2::new(rect.center().x, rect.max.y - 104.0),
+                Align2::CENTER_BOTTOM,
+                &text,
+            );
         }
         out
     }
