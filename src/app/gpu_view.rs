@@ -40,6 +40,8 @@ pub struct HalfView {
     pub report: FrameReport,
     /// GPU time of each pass of the latest timed frame.
     pub times: Option<PassTimes>,
+    /// GPU time of the last frame that drew the shadow map (and its blur).
+    pub last_shadow_ms: Option<f64>,
     /// CPU time of the last `render` call (encoding and submitting).
     pub render_cpu_ms: f64,
     /// Frames rendered so far (the lab renders only on change).
@@ -177,6 +179,9 @@ impl GpuViews {
         let mut waiting = false;
         for h in self.halves.iter_mut().flatten() {
             if let Some(t) = h.renderer.poll_timings() {
+                if let Some(shadow) = t.shadow_ms {
+                    h.last_shadow_ms = Some(shadow + t.blur_ms.unwrap_or(0.0));
+                }
                 h.times = Some(t);
                 h.times_due = None;
             }
@@ -255,6 +260,7 @@ impl HalfView {
             has_comparison: false,
             report: FrameReport::default(),
             times: None,
+            last_shadow_ms: None,
             render_cpu_ms: 0.0,
             renders: 0,
             times_due: None,

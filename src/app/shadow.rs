@@ -103,7 +103,8 @@ impl View for ShadowPanel<'_> {
                     ui.add(
                         egui::Slider::new(self.light_radius_m, 0.0..=super::light::MAX_RADIUS_M)
                             .text("light R")
-                            .suffix(" m"),
+                            .suffix(" m")
+                            .custom_formatter(|x, _| number(x)),
                     )
                     .on_hover_text(
                         "The light's radius R (same as in the Light panel): the penumbra width is \

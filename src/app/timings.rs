@@ -80,8 +80,11 @@ pub fn ui(ui: &mut egui::Ui, clock: &FrameClock, gpu: Option<&GpuViews>) {
                 value_row(
                     ui,
                     "shadow",
-                    &ms(t.shadow_ms),
-                    "GPU: drawing the depth map from the light (all layers)",
+                    &match (t.shadow_ms, h.last_shadow_ms) {
+                        (None, Some(last)) => format!("reused (last draw {})", ms(Some(last))),
+                        (now, _) => ms(now),
+                    },
+                    "GPU: drawing the depth map from the light (all layers); a reused map costs nothing",
                 );
                 value_row(ui, "blur", &ms(t.blur_ms), "GPU: blurring the VSM/EVSM moments");
                 value_row(
@@ -158,13 +161,10 @@ pub fn ui(ui: &mut egui::Ui, clock: &FrameClock, gpu: Option<&GpuViews>) {
             });
     }
     ui.add_space(4.0);
+    // The adapter's description is long: a wrapping line, not a grid cell.
+    ui.add(egui::Label::new(RichText::new(format!("adapter: {}", caps.adapter)).monospace()).wrap())
+        .on_hover_text("The GPU adapter, its backend and driver");
     egui::Grid::new("adapter").num_columns(2).show(ui, |ui| {
-        value_row(
-            ui,
-            "adapter",
-            &caps.adapter,
-            "The GPU adapter, its backend and driver",
-        );
         value_row(
             ui,
             "backend",
