@@ -572,5 +572,9 @@ fn a_reference_job_feeds_the_error_view_and_its_rmse() {
     // Moving the light makes the reference stale, and says so.
     harness.state_mut().settings_mut().light.position.x += 1.0;
     harness.run();
-    assert_eq!(harness.query_all_by_label_contains("STALE").count(), 2, "panel and image say so");
+    assert_eq!(
+        harness.query_all_by_label_contains("STALE").count(),
+        2,
+        "panel and image say so"
+    );
 }
