@@ -12,6 +12,9 @@
 @group(1) @binding(1) var shadow_compare: sampler_comparison;
 @group(1) @binding(2) var moments: texture_2d_array<f32>;
 @group(1) @binding(3) var moments_sampler: sampler;
+// The same depth texture read as plain floats: GLSL cannot textureLoad a
+// depth texture, so the software filters read it through this binding.
+@group(1) @binding(4) var shadow_depth_values: texture_2d_array<f32>;
 
 struct VsIn {
     @location(0) position: vec3<f32>,
@@ -108,7 +111,7 @@ fn make_receiver(p_l: vec3<f32>, n: vec3<f32>, cos_theta: f32) -> Receiver {
 }
 
 fn stored_depth(layer: u32, texel: vec2<i32>) -> f32 {
-    let d = textureLoad(shadow_depth, texel, i32(layer), 0);
+    let d = textureLoad(shadow_depth_values, texel, i32(layer), 0).x;
     let depth = shadow.layers[layer].depth;
     // d = 0 is the cleared far plane: nothing drawn there.
     return select(linear_depth(d, depth.z, depth.w), 3.0e38, d <= 0.0);

@@ -45,7 +45,7 @@ impl DisplayPass {
                 binding::texture(
                     3,
                     fragment,
-                    wgpu::TextureSampleType::Depth,
+                    wgpu::TextureSampleType::Float { filterable: false },
                     wgpu::TextureViewDimension::D2Array,
                 ),
                 binding::uniform(4, fragment),

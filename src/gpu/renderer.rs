@@ -28,6 +28,8 @@ pub struct Capabilities {
     /// VSM/EVSM moments: Rgba32Float where renderable and filterable.
     pub moments_format: wgpu::TextureFormat,
     pub timestamps: bool,
+    /// The GL backend decides a texture's kind from its layer count.
+    pub gl: bool,
 }
 
 impl Capabilities {
@@ -52,6 +54,18 @@ impl Capabilities {
             hdr_format: pick(f32_ok),
             moments_format: pick(f32_ok && device.features().contains(wgpu::Features::FLOAT32_FILTERABLE)),
             timestamps: device.features().contains(wgpu::Features::TIMESTAMP_QUERY),
+            gl: adapter.get_info().backend == wgpu::Backend::Gl,
+        }
+    }
+
+    /// Layers to allocate for a 2D array of `n`: on GL a single layer makes a
+    /// plain 2D texture and six square layers a cube map, neither of which
+    /// binds as a 2D array, so GL gets one more layer (unused).
+    pub fn array_layers(&self, n: u32) -> u32 {
+        if self.gl && (n == 1 || n.is_multiple_of(6)) {
+            n + 1
+        } else {
+            n
         }
     }
 
@@ -210,16 +224,21 @@ impl Renderer {
         let shadow = ShadowPass::new(device, caps.moments_format);
         shadow.init(queue);
         let mut shade = ShadePass::new(device, caps.hdr_format);
-        let gpu_scene = GpuScene::new(device, queue, scene);
+        let gpu_scene = GpuScene::new(device, queue, scene, &caps);
         shade.set_scene(device, &gpu_scene, &shadow.uniform);
-        let dummy_moments = ShadowTextures::new(device, 1, 1, Some(wgpu::TextureFormat::Rgba16Float))
-            .moments
-            .map(|m| m.array)
-            .expect("moments requested");
+        let dummy_moments = ShadowTextures::new(
+            device,
+            1,
+            caps.array_layers(1),
+            Some(wgpu::TextureFormat::Rgba16Float),
+        )
+        .moments
+        .map(|m| m.array)
+        .expect("moments requested");
         Self {
             overlay: FrustumOverlay::new(device, &shade.globals),
             display: DisplayPass::new(device),
-            shadow_textures: ShadowTextures::new(device, 256, 1, None),
+            shadow_textures: ShadowTextures::new(device, 256, caps.array_layers(1), None),
             timer: GpuTimer::new(device, queue),
             device: device.clone(),
             queue: queue.clone(),
@@ -242,7 +261,7 @@ impl Renderer {
 
     /// Uploads another scene; the shadow map will be redrawn.
     pub fn set_scene(&mut self, scene: &Scene) {
-        self.scene = GpuScene::new(&self.device, &self.queue, scene);
+        self.scene = GpuScene::new(&self.device, &self.queue, scene, &self.caps);
         self.shade
             .set_scene(&self.device, &self.scene, &self.shadow.uniform);
         self.scene_generation += 1;
@@ -402,8 +421,12 @@ impl Renderer {
             LayoutKind::Single => 1,
             LayoutKind::Cube => 6,
         };
-        let (resolution, note) =
-            allowed_resolution(s.resolution, self.caps.max_texture_side, layers, moments_format);
+        let (resolution, note) = allowed_resolution(
+            s.resolution,
+            self.caps.max_texture_side,
+            self.caps.array_layers(layers),
+            moments_format,
+        );
         // Cube faces overlap by the widest filter kernel so taps near a face's
         // edge stay on it; taps off a single frustum see no geometry (lit).
         // The margin does not depend on the filter, so that switching between
@@ -415,7 +438,7 @@ impl Renderer {
         };
         let layout = ShadowLayout::fit(light, &self.scene.bounds, margin);
         let casters = select_casters(&layout, &self.scene.caster_bounds, visible_bounds);
-        let texture_layers = layout.layers.len() as u32;
+        let texture_layers = self.caps.array_layers(layout.layers.len() as u32);
         if self.shadow_textures.resolution != resolution
             || self.shadow_textures.layers != texture_layers
             || self.shadow_textures.moments.is_some() != moments_format.is_some()

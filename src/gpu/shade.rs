@@ -56,6 +56,12 @@ impl ShadePass {
                     wgpu::TextureViewDimension::D2Array,
                 ),
                 binding::sampler(3, fragment, wgpu::SamplerBindingType::Filtering),
+                binding::texture(
+                    4,
+                    fragment,
+                    wgpu::TextureSampleType::Float { filterable: false },
+                    wgpu::TextureViewDimension::D2Array,
+                ),
             ],
         );
         let pipeline_layout =
@@ -152,6 +158,7 @@ impl ShadePass {
                 wgpu::BindingResource::Sampler(&self.compare_sampler),
                 wgpu::BindingResource::TextureView(moments),
                 wgpu::BindingResource::Sampler(&self.moments_sampler),
+                wgpu::BindingResource::TextureView(&shadow.depth_array),
             ],
         )
     }

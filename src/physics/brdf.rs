@@ -1,6 +1,8 @@
 //! The lab's BRDF: a Lambert term mixed with a Blinn-Phong lobe,
 //!
-//!     f_r(l, o) = c · ( k / π + (1 − k) · N(m) · cos^m θ_h ),
+//! ```text
+//! f_r(l, o) = c · ( k / π + (1 − k) · N(m) · cos^m θ_h ),
+//! ```
 //!
 //! with h = normalize(l + o) and cos θ_h = max(0, n·h). The normalization N(m)
 //! is a user choice so that its effect on energy can be seen.
