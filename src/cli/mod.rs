@@ -6,6 +6,7 @@
 
 mod args;
 mod energy;
+mod info;
 
 pub use args::SceneOptions;
 
@@ -24,6 +25,8 @@ pub struct Cli {
 pub enum Command {
     /// Directional albedo a(θ) of the BRDF: the energy-conservation table.
     Energy(energy::EnergyArgs),
+    /// Facts of a scene: counts, bounds, objects, cameras, repairs.
+    Info(info::InfoArgs),
 }
 
 /// Parses the arguments and runs the command; the binary's whole `main`.
@@ -34,6 +37,7 @@ pub fn main() -> ExitCode {
     };
     let result = match cli.command {
         Some(Command::Energy(args)) => energy::run(&args),
+        Some(Command::Info(args)) => info::run(&args),
         None => anyhow::Result::Err(anyhow::anyhow!(
             "the lab window is not built yet: try 'lumlab energy'"
         )),
