@@ -59,6 +59,15 @@ fn has_warning(scene: &Scene, text: &str) -> bool {
     scene.warnings.iter().any(|w| w.contains(text))
 }
 
+/// Every vertex normal of every object is `expected`.
+fn assert_normals_are(scene: &Scene, expected: Vec3) {
+    for object in &scene.objects {
+        for n in &object.mesh.normals {
+            assert!((*n - expected).length() < 1e-6, "{}: {n}", object.name);
+        }
+    }
+}
+
 /// Every triangle's winding agrees with its vertex normals (front faces CCW).
 fn assert_front_faces_follow_normals(scene: &Scene) {
     for object in &scene.objects {
@@ -94,9 +103,7 @@ fn a_square_loads_the_same_from_glb_data_uri_and_external_bin() {
 fn missing_normals_are_generated_facing_the_winding() {
     let scene = load_ok(&Doc::square().glb());
     assert_eq!(scene.facts().has_normals, NormalsPresence::Missing);
-    for n in &scene.objects[0].mesh.normals {
-        assert!((*n - Vec3::Z).length() < 1e-6, "{n}");
-    }
+    assert_normals_are(&scene, Vec3::Z);
     assert_front_faces_follow_normals(&scene);
 }
 
@@ -120,13 +127,7 @@ fn triangle_strips_become_n_minus_2_triangles_with_the_winding_kept() {
     assert_eq!(scene.triangle_count(), 4);
     assert_bounds(&scene, [0.0; 3], [2.0, 1.0, 0.0]);
     assert_front_faces_follow_normals(&scene);
-    assert!(
-        scene.objects[0]
-            .mesh
-            .normals
-            .iter()
-            .all(|n| (*n - Vec3::Z).length() < 1e-6)
-    );
+    assert_normals_are(&scene, Vec3::Z);
     // Without indices the vertices are taken in order.
     let (doc, _) = Doc::simple(
         &[zigzag[1], zigzag[0], zigzag[3], zigzag[2]],
@@ -239,13 +240,7 @@ fn a_mirrored_node_keeps_its_faces_front_facing() {
     let scene = load_every_form(&doc);
     assert_bounds(&scene, [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
     assert_front_faces_follow_normals(&scene);
-    assert!(
-        scene.objects[0]
-            .mesh
-            .normals
-            .iter()
-            .all(|n| (*n - Vec3::Z).length() < 1e-6)
-    );
+    assert_normals_are(&scene, Vec3::Z);
 }
 
 #[test]
@@ -253,10 +248,7 @@ fn every_instance_of_a_mesh_is_drawn_and_counted() {
     let mut doc = Doc::square();
     for x in [2.0, 4.0] {
         let node = doc.node(json!({"mesh": 0, "translation": [x, 0.0, 0.0]}));
-        doc.json["scenes"][0]["nodes"]
-            .as_array_mut()
-            .unwrap()
-            .push(json!(node));
+        doc.add_root(node);
     }
     let scene = load_every_form(&doc);
     let facts = scene.facts();
@@ -291,9 +283,7 @@ fn given_normals_are_kept_and_zero_or_nan_ones_repaired() {
     doc.json["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = json!(normals);
     let scene = load_every_form(&doc);
     assert_eq!(scene.facts().has_normals, NormalsPresence::Every);
-    for n in &scene.objects[0].mesh.normals {
-        assert!((*n - Vec3::Z).length() < 1e-6, "{n}");
-    }
+    assert_normals_are(&scene, Vec3::Z);
     assert!(
         has_warning(&scene, "repaired 2 zero, NaN or infinite normals"),
         "{:?}",
@@ -333,8 +323,31 @@ fn nan_and_infinite_positions_drop_the_triangles_that_use_them() {
     assert!(
         has_warning(
             &scene,
-            "dropped 2 triangles with NaN or infinite corners (2 such vertices)"
+            "dropped 2 triangles with NaN or infinite corners (2 such vertices in the file"
         ),
+        "{:?}",
+        scene.warnings
+    );
+}
+
+/// Found by the fuzzer: finite positions that a node's scale overflows to
+/// infinity are dropped like NaN ones, and never reach the renderer.
+#[test]
+fn positions_a_transform_overflows_are_dropped() {
+    let mut positions = SQUARE.to_vec();
+    positions.push([3.0e38, 1.0, 0.5]);
+    let (mut doc, _) = Doc::simple(
+        &positions,
+        Some((&[0, 1, 2, 0, 2, 3, 0, 1, 4], UNSIGNED_SHORT)),
+        TRIANGLES,
+    );
+    doc.json["nodes"][0]["scale"] = json!([10.0, 1.0, 1.0]);
+    let scene = load_ok(&doc.glb());
+    assert_eq!(scene.triangle_count(), 2);
+    assert!(scene.objects[0].mesh.positions.iter().all(|p| p.is_finite()));
+    assert_bounds(&scene, [0.0; 3], [10.0, 1.0, 0.0]);
+    assert!(
+        has_warning(&scene, "dropped 1 triangles with NaN or infinite corners"),
         "{:?}",
         scene.warnings
     );
@@ -360,10 +373,7 @@ fn degenerate_triangles_are_dropped_and_counted() {
     // Every instance counts its own.
     let mut doc = doc;
     let node = doc.node(json!({"mesh": 0, "translation": [3.0, 0.0, 0.0]}));
-    doc.json["scenes"][0]["nodes"]
-        .as_array_mut()
-        .unwrap()
-        .push(json!(node));
+    doc.add_root(node);
     let scene = load_ok(&doc.glb());
     assert_eq!(scene.facts().triangles, 4);
     assert!(
@@ -377,14 +387,32 @@ fn degenerate_triangles_are_dropped_and_counted() {
 fn a_node_that_flattens_its_mesh_drops_its_triangles() {
     let mut doc = Doc::square();
     let flat = doc.node(json!({"mesh": 0, "translation": [5.0, 0.0, 0.0], "scale": [0.0, 1.0, 1.0]}));
-    doc.json["scenes"][0]["nodes"]
-        .as_array_mut()
-        .unwrap()
-        .push(json!(flat));
+    doc.add_root(flat);
     let scene = load_ok(&doc.glb());
     assert_eq!((scene.objects.len(), scene.triangle_count()), (1, 2));
     assert!(has_warning(&scene, "flattens"), "{:?}", scene.warnings);
     assert_bounds(&scene, [0.0; 3], [5.0, 1.0, 0.0]);
+}
+
+#[test]
+fn triangles_a_transform_collapses_are_dropped_as_degenerate() {
+    // A 0.1 nm square, squeezed a further 1e-20 in its own plane (the node
+    // stays invertible): in f32 its area underflows to zero.
+    let tiny = SQUARE.map(|p| p.map(|c| c * 1e-10));
+    let (mut doc, _) = Doc::simple(&tiny, Some((&[0, 1, 2, 0, 2, 3], UNSIGNED_BYTE)), TRIANGLES);
+    doc.json["nodes"][0]["scale"] = json!([1e-20, 1e-20, 1e20]);
+    let square = doc.vec3s(&SQUARE);
+    let mesh = doc.mesh(vec![json!({"attributes": {"POSITION": square}})]);
+    let node = doc.node(json!({ "mesh": mesh }));
+    doc.add_root(node);
+    let scene = load_ok(&doc.glb());
+    // Only the second mesh (its first three vertices, not indexed) is drawn.
+    assert_eq!((scene.objects.len(), scene.triangle_count()), (1, 1));
+    assert!(
+        has_warning(&scene, "dropped 2 degenerate triangles"),
+        "{:?}",
+        scene.warnings
+    );
 }
 
 #[test]
@@ -469,13 +497,7 @@ fn quantized_positions_load_when_the_extension_is_required() {
     doc.json["extensionsRequired"] = json!(["KHR_mesh_quantization"]);
     let scene = load_every_form(&doc);
     assert_bounds(&scene, [0.0; 3], [2.0, 2.0, 0.0]);
-    assert!(
-        scene.objects[0]
-            .mesh
-            .normals
-            .iter()
-            .all(|n| (*n - Vec3::Z).length() < 1e-6)
-    );
+    assert_normals_are(&scene, Vec3::Z);
 }
 
 #[test]

@@ -70,8 +70,21 @@ fn rich_doc() -> Doc {
     doc
 }
 
-/// Loads `bytes` and checks everything the loader promises.
+/// Loads `bytes` and checks everything the loader promises. A failing
+/// input is saved as `target/fuzz-failure.bin` (the last one written is
+/// the shrunk one): copy it into `tests/data/fuzz/` to keep it.
 fn check(bytes: &[u8]) -> Result<(), TestCaseError> {
+    let result = check_load(bytes);
+    if result.is_err() {
+        let _ = std::fs::write(
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("target/fuzz-failure.bin"),
+            bytes,
+        );
+    }
+    result
+}
+
+fn check_load(bytes: &[u8]) -> Result<(), TestCaseError> {
     let start = Instant::now();
     let result = load_slice(bytes, Path::new("fuzz.glb"), None);
     let took = start.elapsed();
@@ -242,12 +255,14 @@ proptest! {
     }
 
     /// Numbers of the JSON (indices, counts, offsets, strides, types,
-    /// transforms) replaced by edge values, keys removed.
+    /// transforms) replaced by edge values, keys removed, and bytes of the
+    /// binary data overwritten.
     #[test]
     fn json_number_mutations(
         glb in any::<bool>(),
         edits in prop::collection::vec((any::<Index>(), any::<Index>()), 1..6),
         removals in prop::collection::vec(any::<Index>(), 0..3),
+        binary in prop::collection::vec((any::<Index>(), any::<u8>()), 0..4),
     ) {
         let mut doc = rich_doc();
         let mut pointers = Vec::new();
@@ -265,6 +280,10 @@ proptest! {
             {
                 map.remove(key);
             }
+        }
+        for (at, value) in binary {
+            let i = at.index(doc.bin.len());
+            doc.bin[i] = value;
         }
         check(&if glb { doc.glb() } else { doc.gltf_embedded() })?;
     }

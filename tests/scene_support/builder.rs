@@ -125,6 +125,12 @@ impl Doc {
         index
     }
 
+    /// Adds a root node to the default scene.
+    pub fn add_root(&mut self, node: usize) {
+        let scene = self.json["scene"].as_u64().unwrap_or(0) as usize;
+        push(&mut self.json["scenes"][scene]["nodes"], json!(node));
+    }
+
     /// A mesh of one primitive over `positions`, placed by one root node
     /// in a default scene; returns the mesh index.
     pub fn simple(positions: &[[f32; 3]], indices: Option<(&[u32], u32)>, mode: u32) -> (Doc, usize) {

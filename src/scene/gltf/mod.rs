@@ -202,20 +202,30 @@ impl Loader<'_, '_, '_> {
                         tally.degenerate += local.mesh.triangle_count();
                     }
                 }
-                if local.topology == Topology::PointsOrLines || local.mesh.indices.is_empty() || singular {
-                    let points = local.mesh.positions.iter().map(|&q| world.transform_point3(q));
+                let mut mesh = None;
+                if local.topology == Topology::Triangles && !singular {
+                    let mut placed = local.mesh.transformed(world);
+                    let (non_finite, degenerate) = primitive::repair_placed(&mut placed);
+                    tally.non_finite += non_finite;
+                    tally.degenerate += degenerate;
+                    mesh = Some(placed).filter(|m| !m.indices.is_empty());
+                }
+                let Some(mesh) = mesh else {
+                    let points = local
+                        .mesh
+                        .positions
+                        .iter()
+                        .map(|&q| world.transform_point3(q))
+                        .filter(|q| q.is_finite());
                     undrawn_bounds = undrawn_bounds.union(&Aabb::from_points(points));
                     continue;
-                }
+                };
                 let material = match mesh_json.primitives[p].material {
                     Some(m) => m.value(),
                     None => default_material,
                 };
-                let mut object = Object::new(
-                    object_name(root, instance.node, instance.mesh, p),
-                    local.mesh.transformed(world),
-                    material,
-                );
+                let mut object =
+                    Object::new(object_name(root, instance.node, instance.mesh, p), mesh, material);
                 object.casts_shadows = casts;
                 object.receives_shadows = receives;
                 objects.push(object);
@@ -537,7 +547,8 @@ impl Loader<'_, '_, '_> {
             (
                 t.non_finite,
                 format!(
-                    "dropped {} triangles with NaN or infinite corners ({} such vertices)",
+                    "dropped {} triangles with NaN or infinite corners ({} such vertices in the file, \
+                     others made infinite by their node's transform)",
                     t.non_finite, t.non_finite_vertices
                 ),
             ),

@@ -117,17 +117,10 @@ pub(super) fn build(
     drop(indices);
     local.triangles_defined = triangles.len();
 
-    let mut kept = Vec::with_capacity(3 * triangles.len());
-    for t in &triangles {
-        let [a, b, c] = t.map(|i| positions[i as usize]);
-        if !(a.is_finite() && b.is_finite() && c.is_finite()) {
-            local.non_finite += 1;
-        } else if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || (b - a).cross(c - a) == Vec3::ZERO {
-            local.degenerate += 1;
-        } else {
-            kept.extend_from_slice(t);
-        }
-    }
+    let drawable = drawable(&positions, triangles.iter().copied());
+    let kept = drawable.indices;
+    local.non_finite = drawable.non_finite;
+    local.degenerate = drawable.degenerate;
     drop(triangles);
 
     let mut normals = match attribute(Semantic::Normals) {
@@ -194,6 +187,61 @@ pub(super) fn build(
         local.mesh = without_non_finite(&local.mesh);
     }
     Ok(Some(local))
+}
+
+/// The triangles worth drawing, as an index list, and what was dropped.
+pub(super) struct Drawable {
+    pub indices: Vec<u32>,
+    /// Triangles with a NaN or infinite corner.
+    pub non_finite: usize,
+    /// Triangles with two equal corners or zero area.
+    pub degenerate: usize,
+}
+
+/// Sorts `triangles` (indices into `positions`) into kept and dropped.
+pub(super) fn drawable(positions: &[Vec3], triangles: impl ExactSizeIterator<Item = [u32; 3]>) -> Drawable {
+    let mut out = Drawable {
+        indices: Vec::with_capacity(3 * triangles.len()),
+        non_finite: 0,
+        degenerate: 0,
+    };
+    for t in triangles {
+        let [a, b, c] = t.map(|i| positions[i as usize]);
+        if !(a.is_finite() && b.is_finite() && c.is_finite()) {
+            out.non_finite += 1;
+        } else if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || (b - a).cross(c - a) == Vec3::ZERO {
+            out.degenerate += 1;
+        } else {
+            out.indices.extend_from_slice(&t);
+        }
+    }
+    out
+}
+
+/// Repairs a mesh just placed in the world: a large transform can overflow
+/// finite positions to infinity, a nearly flat one can collapse triangles
+/// (both are dropped), an extreme normal matrix can lose normals (they are
+/// generated again). Returns the non-finite and degenerate triangles dropped.
+pub(super) fn repair_placed(mesh: &mut Mesh) -> (usize, usize) {
+    let triangles = mesh.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]);
+    let Drawable {
+        indices,
+        non_finite,
+        degenerate,
+    } = drawable(&mesh.positions, triangles);
+    mesh.indices = indices;
+    if mesh.positions.iter().any(|p| !p.is_finite()) {
+        *mesh = without_non_finite(mesh);
+    }
+    if mesh.normals.iter().any(|n| !usable(*n)) {
+        let generated = vertex_normals(&mesh.positions, &mesh.indices);
+        for (n, g) in mesh.normals.iter_mut().zip(generated) {
+            if !usable(*n) {
+                *n = g;
+            }
+        }
+    }
+    (non_finite, degenerate)
 }
 
 /// A normal that can be normalized: finite and not zero.
