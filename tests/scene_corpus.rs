@@ -594,6 +594,25 @@ fn base_colour_textures_decode_from_png_and_jpeg() {
 }
 
 #[test]
+fn an_image_file_beside_the_scene_is_read() {
+    let mut doc = Doc::square();
+    doc.json["images"] = json!([{"uri": "wood%20grain.png"}]);
+    doc.json["textures"] = json!([{"source": 0}]);
+    doc.material(json!({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}));
+    doc.json["meshes"][0]["primitives"][0]["material"] = json!(0);
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("wood grain.png"),
+        encoded(image::ImageFormat::Png),
+    )
+    .unwrap();
+    let scene = scene::load(&doc.write_external(dir.path(), "textured")).unwrap();
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    assert_eq!(scene.materials[0].base_color_texture, Some(0));
+    assert_eq!((scene.textures[0].width, scene.textures[0].height), (4, 2));
+}
+
+#[test]
 fn an_unreadable_image_is_a_warning_and_the_factor_alone_is_drawn() {
     let mut doc = Doc::square();
     doc.json["images"] = json!([{"uri": "missing.png"}, {"uri": "data:image/png;base64,AAAA"}]);
