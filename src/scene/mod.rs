@@ -132,7 +132,9 @@ pub struct Mesh {
     pub positions: Vec<Vec3>,
     /// Unit normals, one per position.
     pub normals: Vec<Vec3>,
-    /// Texture coordinates (set 0), one per position; zeros when the file has none.
+    /// Texture coordinates, one per position: the set the material's base
+    /// colour texture samples (set 0 but for rare files); zeros when the
+    /// file has none.
     pub uvs: Vec<Vec2>,
     /// Three indices per triangle.
     pub indices: Vec<u32>,
@@ -160,7 +162,7 @@ pub struct Material {
     pub name: String,
     /// Linear RGBA (glTF baseColorFactor).
     pub base_color: Vec4,
-    /// Index into [`Scene::textures`], multiplied with `base_color`, sampled by uv set 0.
+    /// Index into [`Scene::textures`], multiplied with `base_color`, sampled at the mesh's uvs.
     pub base_color_texture: Option<usize>,
     /// The material's own diffuse/specular mix, if it gives one.
     pub k: Option<f32>,
