@@ -6,6 +6,7 @@
 
 mod args;
 mod energy;
+mod info;
 mod render;
 mod stability;
 
@@ -61,6 +62,8 @@ impl Cli {
 pub enum Command {
     /// Directional albedo a(θ) of the BRDF: the energy-conservation table.
     Energy(energy::EnergyArgs),
+    /// Facts of a scene: counts, bounds, objects, cameras, repairs.
+    Info(info::InfoArgs),
     /// Render the scene on the GPU, headless, to PNG or EXR.
     Render(render::RenderArgs),
     /// Hard cases (m = 1e6, 89.99°, r = 0, far/near = 1e8…) in f64, f32 and on the GPU, beside naive formulas.
@@ -75,6 +78,7 @@ pub fn main() -> ExitCode {
     };
     let result = cli.launch_options().and_then(|options| match &cli.command {
         Some(Command::Energy(args)) => energy::run(args),
+        Some(Command::Info(args)) => info::run(args),
         Some(Command::Render(args)) => render::run(args),
         Some(Command::Stability(args)) => stability::run_command(args),
         None => crate::app::run(options),
