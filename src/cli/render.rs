@@ -82,7 +82,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         scene.triangle_count(),
         report.resolution,
         report.layout_summary(),
-        times.map_or("time n/a".into(), |t| format!("{:.2} ms", t.total_ms())),
+        times.map_or("time n/a".into(), |t| t.to_string()),
     );
     Ok(())
 }

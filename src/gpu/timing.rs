@@ -24,6 +24,22 @@ pub struct PassTimes {
     pub display_ms: Option<f64>,
 }
 
+impl std::fmt::Display for PassTimes {
+    /// "12.3 ms (shadow 1.0, shade 10.2, display 1.1)": passes that ran.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let parts: Vec<String> = [
+            ("shadow", self.shadow_ms),
+            ("blur", self.blur_ms),
+            ("shade", self.shade_ms),
+            ("display", self.display_ms),
+        ]
+        .iter()
+        .filter_map(|(name, ms)| ms.map(|ms| format!("{name} {ms:.1}")))
+        .collect();
+        write!(f, "{:.1} ms ({})", self.total_ms(), parts.join(", "))
+    }
+}
+
 impl PassTimes {
     pub fn total_ms(&self) -> f64 {
         [self.shadow_ms, self.blur_ms, self.shade_ms, self.display_ms]
