@@ -12,5 +12,6 @@ pub mod image_io;
 pub mod output;
 pub mod physics;
 pub mod plot;
+pub mod reference;
 pub mod scene;
 pub mod settings;

@@ -6,6 +6,7 @@
 
 mod args;
 mod energy;
+mod reference;
 mod render;
 
 pub use args::SceneOptions;
@@ -27,6 +28,8 @@ pub enum Command {
     Energy(energy::EnergyArgs),
     /// Render the scene on the GPU, headless, to PNG or EXR.
     Render(render::RenderArgs),
+    /// Ray-trace the scene on the CPU (the exact reference), to PNG or EXR.
+    Reference(reference::ReferenceArgs),
 }
 
 /// Parses the arguments and runs the command; the binary's whole `main`.
@@ -38,6 +41,7 @@ pub fn main() -> ExitCode {
     let result = match cli.command {
         Some(Command::Energy(args)) => energy::run(&args),
         Some(Command::Render(args)) => render::run(&args),
+        Some(Command::Reference(args)) => reference::run(&args),
         None => anyhow::Result::Err(anyhow::anyhow!(
             "the lab window is not built yet: try 'lumlab energy'"
         )),

@@ -1,0 +1,385 @@
+//! The CPU reference: a ray tracer that renders the same scene, camera, light
+//! and BRDF as the GPU path, in f64 through `physics`, exactly where it can be
+//! (point light: one shadow ray gives V ∈ {0, 1}) and by stratified Monte Carlo
+//! with a noise estimate where it cannot (the sphere light's penumbra).
+//!
+//! It shares no code with `gpu`: it judges the renderer. Per pixel, the primary
+//! ray comes from [`Camera::ray_direction`](crate::scene::Camera::ray_direction)
+//! through the pixel centre (one sample per pixel) or through jittered strata
+//! of the pixel square (more samples, box filter). See `shading` for the
+//! radiance and the shadow-ray epsilon, `bvh` for exact ray casting,
+//! `sampling` for strata and the noise estimate.
+//!
+//! ```no_run
+//! # use lumlab::{reference::*, scene, settings::Settings};
+//! let settings = Settings::default();
+//! let reference = Reference::new(&scene::default_scene());
+//! let image = reference.render(&settings, &ReferenceOptions::default(), &RenderControl::default())?;
+//! let png = image.to_display_rgba8(settings.view.exposure_ev as f64);
+//! # Ok::<(), ReferenceError>(())
+//! ```
+
+pub mod bvh;
+mod image;
+pub mod intersect;
+pub mod sampling;
+mod shading;
+mod texture;
+
+pub use image::{LUMINANCE, NoiseSummary, ReferenceImage, RenderStats, luminance};
+pub use shading::{SHADOW_OFFSET_REL, STOP_SHORT_REL, ShadingSample};
+
+use crate::scene::{Material, Scene};
+use crate::settings::{Settings, SettingsError};
+use bvh::{BvhTriangle, TriangleBvh};
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+use sampling::{Rng, Strata, collapsed_strata_variance};
+use shading::Setup;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::Instant;
+use texture::LinearTexture;
+
+/// How much work the reference does per pixel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReferenceOptions {
+    /// Primary samples per pixel: 1 is the pixel centre; more are jittered
+    /// over a grid of strata of the pixel square (box filter).
+    pub spp: u32,
+    /// Strata N of the sphere light's cone per primary sample (ignored for a
+    /// point light). Squares (16, 64, 256) stratify best.
+    pub light_samples: u32,
+    /// Seed of every random number: same seed, same image.
+    pub seed: u64,
+}
+
+impl ReferenceOptions {
+    /// The pixel centre, 64 light samples (8 × 8 strata), seed 0.
+    pub const DEFAULT: Self = Self {
+        spp: 1,
+        light_samples: 64,
+        seed: 0,
+    };
+}
+
+impl Default for ReferenceOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// Progress and cancellation, shared with the thread that watches a render.
+#[derive(Debug, Default)]
+pub struct RenderControl {
+    /// Pixels finished so far (of width × height).
+    pub pixels_done: AtomicUsize,
+    /// Set to stop the render; it then returns [`ReferenceError::Cancelled`].
+    pub cancel: AtomicBool,
+}
+
+impl RenderControl {
+    pub fn cancel(&self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.load(Ordering::Relaxed)
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum ReferenceError {
+    #[error("the reference render was cancelled")]
+    Cancelled,
+    #[error(transparent)]
+    Settings(#[from] SettingsError),
+}
+
+/// One triangle's shading data, in the scene's order.
+#[derive(Clone, Debug)]
+struct TriangleInfo {
+    object: usize,
+    /// Index within the object's mesh.
+    index: usize,
+    corners: [DVec3; 3],
+    normals: [DVec3; 3],
+    uvs: [DVec2; 3],
+}
+
+#[derive(Clone, Debug)]
+struct ObjectInfo {
+    /// Index into `Reference::materials` (always valid).
+    material: usize,
+    /// The scene's material index, None when it was out of range.
+    material_index: Option<usize>,
+    receives_shadows: bool,
+}
+
+/// A scene prepared for ray tracing: build once, render many settings.
+pub struct Reference {
+    bvh: TriangleBvh,
+    triangles: Vec<TriangleInfo>,
+    objects: Vec<ObjectInfo>,
+    /// The scene's materials, then the default one for invalid indices.
+    materials: Vec<Material>,
+    textures: Vec<Option<LinearTexture>>,
+    /// Triangles left out: indices out of range.
+    skipped_triangles: usize,
+}
+
+/// Edge length of the square tiles the image is split into for the threads.
+const TILE: u32 = 16;
+
+impl Reference {
+    /// Flattens the scene's triangles and builds the BVH. Triangles whose
+    /// indices point outside their mesh are skipped (counted).
+    pub fn new(scene: &Scene) -> Self {
+        let mut materials = scene.materials.clone();
+        let fallback = materials.len();
+        materials.push(Material::default());
+        let mut objects = Vec::with_capacity(scene.objects.len());
+        let mut triangles = Vec::with_capacity(scene.triangle_count());
+        let mut bvh_triangles = Vec::with_capacity(scene.triangle_count());
+        let mut skipped_triangles = 0;
+        for (object_id, object) in scene.objects.iter().enumerate() {
+            let material_index = (object.material < fallback).then_some(object.material);
+            objects.push(ObjectInfo {
+                material: material_index.unwrap_or(fallback),
+                material_index,
+                receives_shadows: object.receives_shadows,
+            });
+            let mesh = &object.mesh;
+            for (index, ids) in mesh.indices.chunks_exact(3).enumerate() {
+                let ids = [ids[0] as usize, ids[1] as usize, ids[2] as usize];
+                let Some(corners) = corner_values(&mesh.positions, ids) else {
+                    skipped_triangles += 1;
+                    continue;
+                };
+                let corners = corners.map(|p| p.as_dvec3());
+                let face = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+                // Missing normals: the face's own; missing uvs: zero.
+                let normals =
+                    corner_values(&mesh.normals, ids).map_or([face; 3], |n| n.map(|n| n.as_dvec3()));
+                let uvs = corner_values(&mesh.uvs, ids).map_or([DVec2::ZERO; 3], |t| t.map(|t| t.as_dvec2()));
+                bvh_triangles.push(BvhTriangle {
+                    corners,
+                    occludes: object.casts_shadows,
+                });
+                triangles.push(TriangleInfo {
+                    object: object_id,
+                    index,
+                    corners,
+                    normals,
+                    uvs,
+                });
+            }
+        }
+        Self {
+            bvh: TriangleBvh::new(&bvh_triangles),
+            triangles,
+            objects,
+            materials,
+            textures: scene.textures.iter().map(LinearTexture::new).collect(),
+            skipped_triangles,
+        }
+    }
+
+    /// Triangles that rays can hit (degenerate ones left out).
+    pub fn triangle_count(&self) -> usize {
+        self.bvh.len()
+    }
+
+    /// Triangles left out because their indices point outside their mesh.
+    pub fn skipped_triangles(&self) -> usize {
+        self.skipped_triangles
+    }
+
+    /// Everything about the primary sample through image point (x, y) of
+    /// the settings' image (pixels; the centre of pixel (i, j) is
+    /// (i + 0.5, j + 0.5)); None on background. At a pixel centre with one
+    /// sample per pixel this is exactly the sample `render` took there.
+    pub fn trace_pixel(
+        &self,
+        settings: &Settings,
+        options: &ReferenceOptions,
+        x: f64,
+        y: f64,
+    ) -> Option<ShadingSample> {
+        let setup = Setup::new(settings, options.light_samples, options.seed);
+        let pixel = pixel_index(&setup, x.floor(), y.floor());
+        let mut rng = Rng::new(options.seed, pixel, 0);
+        self.shade(&setup, x, y, &mut rng, &mut Vec::new())
+    }
+
+    /// Renders the image, in parallel over tiles, reporting progress and
+    /// stopping early when cancelled through `control`.
+    pub fn render(
+        &self,
+        settings: &Settings,
+        options: &ReferenceOptions,
+        control: &RenderControl,
+    ) -> Result<ReferenceImage, ReferenceError> {
+        settings.validate()?;
+        let start = Instant::now();
+        let setup = Setup::new(settings, options.light_samples, options.seed);
+        let (width, height) = (setup.width, setup.height);
+        let tiles: Vec<(u32, u32)> = (0..height.div_ceil(TILE))
+            .flat_map(|ty| (0..width.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
+            .collect();
+        let spp = Strata::new(options.spp);
+        let rendered: Vec<Option<Tile>> = tiles
+            .par_iter()
+            .map(|&(x0, y0)| self.render_tile(&setup, spp, x0, y0, control))
+            .collect();
+        if control.cancelled() {
+            return Err(ReferenceError::Cancelled);
+        }
+        let pixels = width as usize * height as usize;
+        let mut image = ReferenceImage {
+            width,
+            height,
+            radiance: vec![[0.0; 3]; pixels],
+            visibility: vec![0.0; pixels],
+            coverage: vec![0.0; pixels],
+            noise: vec![0.0; pixels],
+            noise_known: true,
+            stats: RenderStats {
+                spp: spp.count(),
+                light_samples: if setup.is_sphere_light() {
+                    setup.light_strata.count()
+                } else {
+                    0
+                },
+                ..RenderStats::default()
+            },
+        };
+        for tile in rendered.into_iter().flatten() {
+            image.stats.primary_rays += tile.primary_rays;
+            image.stats.shadow_rays += tile.shadow_rays;
+            image.noise_known &= tile.noise_known;
+            for (k, px) in tile.pixels.iter().enumerate() {
+                let (i, j) = (tile.x0 + k as u32 % tile.width, tile.y0 + k as u32 / tile.width);
+                let at = image.index(i, j);
+                image.radiance[at] = px.radiance;
+                image.visibility[at] = px.visibility;
+                image.coverage[at] = px.coverage;
+                image.noise[at] = px.noise;
+            }
+        }
+        image.stats.elapsed = start.elapsed();
+        Ok(image)
+    }
+
+    /// One tile, or None when cancelled.
+    fn render_tile(
+        &self,
+        setup: &Setup,
+        spp: Strata,
+        x0: u32,
+        y0: u32,
+        control: &RenderControl,
+    ) -> Option<Tile> {
+        let (x1, y1) = ((x0 + TILE).min(setup.width), (y0 + TILE).min(setup.height));
+        let mut tile = Tile {
+            x0,
+            y0,
+            width: x1 - x0,
+            pixels: Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize),
+            primary_rays: 0,
+            shadow_rays: 0,
+            noise_known: true,
+        };
+        let n = spp.count();
+        let mut scratch = Vec::new();
+        let mut sample_luminance = Vec::with_capacity(n as usize);
+        for j in y0..y1 {
+            if control.cancelled() {
+                return None;
+            }
+            for i in x0..x1 {
+                let pixel = pixel_index(setup, i as f64, j as f64);
+                let mut sum = [0.0; 3];
+                let (mut hits, mut visibility) = (0u32, 0.0);
+                let mut variance = 0.0;
+                sample_luminance.clear();
+                for s in 0..n {
+                    let mut rng = Rng::new(setup.seed, pixel, s as u64);
+                    // DESIGN.md: one sample per pixel is the pixel centre.
+                    let (dx, dy) = if n == 1 {
+                        (0.5, 0.5)
+                    } else {
+                        spp.jittered(s, &mut rng)
+                    };
+                    let sample = self.shade(setup, i as f64 + dx, j as f64 + dy, &mut rng, &mut scratch);
+                    tile.primary_rays += 1;
+                    let Some(sample) = sample else {
+                        sample_luminance.push(0.0);
+                        continue;
+                    };
+                    tile.shadow_rays += sample.shadow_rays as u64;
+                    hits += 1;
+                    visibility += sample.visibility;
+                    let l = sample.radiance.to_array();
+                    for c in 0..3 {
+                        sum[c] += l[c];
+                    }
+                    sample_luminance.push(luminance(l));
+                    match sample.std_error {
+                        Some(se) => variance += se * se,
+                        None => tile.noise_known &= n > 1,
+                    }
+                }
+                // One sample: its own light-sampling error; more: the spread
+                // between the pixel's strata, which includes it.
+                let noise = if n == 1 {
+                    variance.sqrt()
+                } else {
+                    collapsed_strata_variance(&sample_luminance).map_or(0.0, f64::sqrt)
+                };
+                tile.pixels.push(Pixel {
+                    radiance: sum.map(|c| c / n as f64),
+                    visibility: if hits > 0 {
+                        (visibility / hits as f64) as f32
+                    } else {
+                        0.0
+                    },
+                    coverage: hits as f32 / n as f32,
+                    noise: noise as f32,
+                });
+            }
+            control
+                .pixels_done
+                .fetch_add((x1 - x0) as usize, Ordering::Relaxed);
+        }
+        Some(tile)
+    }
+}
+
+/// The values of `values` at the three indices, None when one is out of range.
+fn corner_values<T: Copy>(values: &[T], ids: [usize; 3]) -> Option<[T; 3]> {
+    Some([*values.get(ids[0])?, *values.get(ids[1])?, *values.get(ids[2])?])
+}
+
+/// The pixel's number for seeding its random streams (clamped into the image).
+fn pixel_index(setup: &Setup, i: f64, j: f64) -> u64 {
+    let i = i.clamp(0.0, setup.width.saturating_sub(1) as f64) as u64;
+    let j = j.clamp(0.0, setup.height.saturating_sub(1) as f64) as u64;
+    j * setup.width as u64 + i
+}
+
+struct Pixel {
+    radiance: [f64; 3],
+    visibility: f32,
+    coverage: f32,
+    noise: f32,
+}
+
+struct Tile {
+    x0: u32,
+    y0: u32,
+    width: u32,
+    pixels: Vec<Pixel>,
+    primary_rays: u64,
+    shadow_rays: u64,
+    noise_known: bool,
+}

@@ -1,0 +1,345 @@
+//! One primary sample: the camera ray, its closest hit, and the reflected
+//! radiance there, L = c · light colour · ∫ f_r L_e V cos⁺θ dω.
+//!
+//! Point light (R = 0): L = c · colour · (f_d + f_s)(l) · E · V with
+//! E = I cos⁺θ / r², I = Φ / 4π, and V ∈ {0, 1} from one shadow ray.
+//!
+//! Sphere light (R > 0): the cone the sphere subtends from p (sin α = R / d) is
+//! sampled uniformly in solid angle over N strata; with Ω = 2π (1 − cos α) and
+//! L_e = Φ / (4π² R²), L = c · colour · (Ω / N) Σ (f_d + f_s)(l_i) L_e V_i cos⁺θ_i.
+//! It converges to the penumbra as N grows; unoccluded and above the horizon
+//! its E-part equals `sphere_irradiance` (the point light's E).
+//!
+//! Shadow rays: from p moved off the surface by ε = [`SHADOW_OFFSET_REL`] ×
+//! the largest |coordinate| of the hit triangle, along the geometric normal on
+//! the viewer's side, to the light (its centre, or the sample's point on the
+//! sphere), stopping [`STOP_SHORT_REL`] of the way short of it. The hit point
+//! is interpolated from the corners, so it lies on the triangle's plane to a
+//! few ulps of those coordinates (~10⁻¹⁶ relative); 10⁻⁹ is 10⁷ times that, so
+//! the ray can never re-hit its own plane (no acne at any angle: the self-hit
+//! distance stays negative whatever cos θ divides both by), while at 1 m
+//! from the origin it is 1 nm: no occluder closer than that exists in a scene.
+
+use super::Reference;
+use super::image::luminance;
+use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
+use crate::physics::brdf::blinn_phong;
+use crate::physics::radiometry::{
+    incidence, intensity, point_irradiance, sphere_irradiance, sphere_radiance,
+};
+use crate::physics::{BrdfParams, BrdfTerms, Normalization};
+use crate::scene::Camera;
+use crate::settings::Settings;
+use glam::{DVec2, DVec3};
+
+/// Shadow-ray origin offset, relative to the hit triangle's coordinates.
+pub const SHADOW_OFFSET_REL: f64 = 1e-9;
+/// Shadow rays end this fraction of their length before the light.
+pub const STOP_SHORT_REL: f64 = 1e-9;
+
+/// Everything a sample needs from the settings, in f64.
+#[derive(Clone, Debug)]
+pub(super) struct Setup {
+    pub camera: Camera,
+    pub width: u32,
+    pub height: u32,
+    pub light_position: DVec3,
+    pub power_w: f64,
+    pub radius_m: f64,
+    pub light_color: DVec3,
+    pub k: f64,
+    pub m: f64,
+    pub norm: Normalization,
+    pub use_scene_materials: bool,
+    pub color_override: Option<DVec3>,
+    pub shadows: bool,
+    pub light_strata: Strata,
+    pub seed: u64,
+}
+
+impl Setup {
+    pub fn new(settings: &Settings, light_samples: u32, seed: u64) -> Self {
+        let (c, l, m) = (&settings.camera, &settings.light, &settings.material);
+        Self {
+            camera: Camera {
+                eye: c.eye,
+                target: c.target,
+                fovy_deg: c.fovy_deg,
+            },
+            width: settings.image.width,
+            height: settings.image.height,
+            light_position: l.position.as_dvec3(),
+            power_w: l.power_w as f64,
+            radius_m: l.radius_m as f64,
+            light_color: l.color.as_dvec3(),
+            k: m.k as f64,
+            m: m.m as f64,
+            norm: m.norm,
+            use_scene_materials: m.use_scene_materials,
+            color_override: m.color_override.map(|c| c.as_dvec3()),
+            shadows: settings.shadow.enabled,
+            light_strata: Strata::new(light_samples),
+            seed,
+        }
+    }
+
+    pub fn is_sphere_light(&self) -> bool {
+        self.radius_m > 0.0
+    }
+}
+
+/// Everything known about one primary sample: what the pixel probe shows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShadingSample {
+    /// Index into `Scene::objects`.
+    pub object: usize,
+    /// Triangle within that object's mesh.
+    pub triangle: usize,
+    /// Index into `Scene::materials` (None: the object's index was invalid
+    /// and the default material was used).
+    pub material: Option<usize>,
+    /// Distance from the eye (m).
+    pub distance_m: f64,
+    pub position: DVec3,
+    /// The interpolated vertex normal, normalized, turned towards the viewer
+    /// on double-sided materials.
+    pub normal: DVec3,
+    /// The triangle's own normal, on the viewer's side.
+    pub geometric_normal: DVec3,
+    pub uv: DVec2,
+    /// The BRDF colour c (linear RGB): base colour × texture, or the override.
+    pub color: DVec3,
+    pub k: f64,
+    pub m: f64,
+    /// Unit direction to the light's centre, its distance (m) and n·l.
+    pub to_light: DVec3,
+    pub light_distance_m: f64,
+    pub cos_theta: f64,
+    /// Unoccluded irradiance E (W/m²) from `physics::radiometry`.
+    pub irradiance: f64,
+    /// f_r / c towards the light's centre (1/sr).
+    pub brdf: BrdfTerms<f64>,
+    /// Visibility V ∈ [0, 1] (see `ReferenceImage::visibility`).
+    pub visibility: f64,
+    /// Reflected radiance L (W/m²/sr).
+    pub radiance: DVec3,
+    /// Standard error of L's luminance (W/m²/sr): 0 for a point light; None
+    /// with a single light sample.
+    pub std_error: Option<f64>,
+    pub shadow_rays: u32,
+}
+
+/// The light's contribution at a shading point: L / (c · colour) and V.
+struct LightEstimate {
+    /// ∫ (f_d + f_s) L_e V cos⁺θ dω, or its estimate (W/m²/sr per unit c).
+    scaled_radiance: f64,
+    visibility: f64,
+    /// Standard error of `scaled_radiance`.
+    std_error: Option<f64>,
+    shadow_rays: u32,
+}
+
+/// The shading point as the light estimators see it.
+struct Surface {
+    p: DVec3,
+    n: DVec3,
+    o: DVec3,
+    /// p lifted off the surface for shadow rays.
+    shadow_origin: DVec3,
+    brdf: BrdfParams<f64>,
+    /// Shadow rays are cast (shadows on and the object receives them).
+    shadowed: bool,
+}
+
+impl Reference {
+    /// The primary sample through image point (x, y) (pixels, centres at
+    /// i + 0.5), with the random stream `rng` for the light's samples.
+    pub(super) fn shade(
+        &self,
+        setup: &Setup,
+        x: f64,
+        y: f64,
+        rng: &mut Rng,
+        scratch: &mut Vec<f64>,
+    ) -> Option<ShadingSample> {
+        let eye = setup.camera.eye.as_dvec3();
+        let dir = setup.camera.ray_direction(x, y, setup.width, setup.height);
+        let hit = self.bvh.closest_hit(eye, dir, 0.0, f64::INFINITY)?;
+        let tri = &self.triangles[hit.triangle];
+        let object = &self.objects[tri.object];
+        let material = &self.materials[object.material];
+        let [b0, b1, b2] = hit.at.barycentric;
+        let [a, b, c] = tri.corners;
+        let p = a * b0 + b * b1 + c * b2;
+        let o = -dir;
+        let face = (b - a).cross(c - a).normalize();
+        let geometric_normal = if face.dot(o) < 0.0 { -face } else { face };
+        let mut n = (tri.normals[0] * b0 + tri.normals[1] * b1 + tri.normals[2] * b2).normalize_or(face);
+        if material.double_sided && n.dot(o) < 0.0 {
+            n = -n;
+        }
+        let uv = tri.uvs[0] * b0 + tri.uvs[1] * b1 + tri.uvs[2] * b2;
+
+        let color = match setup.color_override {
+            Some(c) => c,
+            None => {
+                let base = material.base_color.truncate().as_dvec3();
+                match material
+                    .base_color_texture
+                    .and_then(|t| self.textures.get(t)?.as_ref())
+                {
+                    Some(texture) => base * texture.sample(uv),
+                    None => base,
+                }
+            }
+        };
+        let own = |value: Option<f32>, default: f64| match value {
+            Some(v) if setup.use_scene_materials => v as f64,
+            _ => default,
+        };
+        let (k, m) = (own(material.k, setup.k), own(material.m, setup.m));
+
+        let scale = a.abs().max(b.abs()).max(c.abs()).max_element();
+        let surface = Surface {
+            p,
+            n,
+            o,
+            shadow_origin: p + geometric_normal * (SHADOW_OFFSET_REL * scale),
+            brdf: BrdfParams {
+                k,
+                m,
+                norm: setup.norm,
+            },
+            shadowed: setup.shadows && object.receives_shadows,
+        };
+        let q = setup.light_position;
+        let inc = incidence(p, n, q);
+        let (irradiance, estimate) = if setup.is_sphere_light() {
+            (
+                sphere_irradiance(setup.power_w, setup.radius_m, inc.cos_theta, inc.r),
+                self.sphere_light(setup, &surface, rng, scratch),
+            )
+        } else {
+            let e = point_irradiance(intensity(setup.power_w), inc.cos_theta, inc.r);
+            (e, self.point_light(setup, &surface, e, inc.l, inc.cos_theta))
+        };
+        let tint = color * setup.light_color;
+        Some(ShadingSample {
+            object: tri.object,
+            triangle: tri.index,
+            material: object.material_index,
+            distance_m: hit.at.t,
+            position: p,
+            normal: n,
+            geometric_normal,
+            uv,
+            color,
+            k,
+            m,
+            to_light: inc.l,
+            light_distance_m: inc.r,
+            cos_theta: inc.cos_theta,
+            irradiance,
+            brdf: blinn_phong(n, inc.l, o, &surface.brdf),
+            visibility: estimate.visibility,
+            radiance: tint * estimate.scaled_radiance,
+            std_error: estimate.std_error.map(|se| luminance(tint.to_array()) * se),
+            shadow_rays: estimate.shadow_rays,
+        })
+    }
+
+    /// Whether the segment from the shadow origin to `target` is blocked,
+    /// stopping short of the target.
+    fn blocked(&self, surface: &Surface, target: DVec3) -> bool {
+        let d = target - surface.shadow_origin;
+        self.bvh
+            .occluded(surface.shadow_origin, d, 0.0, 1.0 - STOP_SHORT_REL)
+    }
+
+    fn point_light(&self, setup: &Setup, s: &Surface, e: f64, l: DVec3, cos_theta: f64) -> LightEstimate {
+        let f = blinn_phong(s.n, l, s.o, &s.brdf).total();
+        let (visibility, shadow_rays) = if !s.shadowed {
+            (1.0, 0)
+        } else if cos_theta <= 0.0 {
+            // Attached shadow: the light is below the surface's horizon.
+            (0.0, 0)
+        } else {
+            (
+                if self.blocked(s, setup.light_position) {
+                    0.0
+                } else {
+                    1.0
+                },
+                1,
+            )
+        };
+        LightEstimate {
+            scaled_radiance: f * e * visibility,
+            visibility,
+            std_error: Some(0.0),
+            shadow_rays,
+        }
+    }
+
+    fn sphere_light(&self, setup: &Setup, s: &Surface, rng: &mut Rng, y: &mut Vec<f64>) -> LightEstimate {
+        let (q, radius) = (setup.light_position, setup.radius_m);
+        let le = sphere_radiance(setup.power_w, radius);
+        let to_centre = q - s.p;
+        let d2 = to_centre.length_squared();
+        let d = d2.sqrt();
+        let inside = d <= radius;
+        let cone = if inside {
+            // Inside the light: emission from every direction of the hemisphere.
+            Cone::hemisphere(s.n)
+        } else {
+            Cone::new(to_centre / d, radius * radius / d2)
+        };
+        let strata = setup.light_strata;
+        let weight = cone.solid_angle() * le;
+        let (mut cos_sum, mut visible_cos_sum) = (0.0, 0.0);
+        let mut shadow_rays = 0;
+        y.clear();
+        for i in 0..strata.count() {
+            let sample = cone.direction(strata.jittered(i, rng));
+            let l = sample.direction;
+            let cos = s.n.dot(l).max(0.0);
+            let mut v = 1.0;
+            if cos > 0.0 && s.shadowed {
+                // Distance along l to the sphere: the near root outside it,
+                // the far one inside; R² − d² sin²θ is the half-chord squared.
+                let b = if inside {
+                    l.dot(to_centre)
+                } else {
+                    d * sample.cos_theta
+                };
+                let half_chord = if inside {
+                    (radius * radius - d2 + b * b).max(0.0).sqrt()
+                } else {
+                    (radius * radius - d2 * sample.sin2_theta).max(0.0).sqrt()
+                };
+                let t = if inside { b + half_chord } else { b - half_chord };
+                shadow_rays += 1;
+                if self.blocked(s, s.p + l * t) {
+                    v = 0.0;
+                }
+            }
+            cos_sum += cos;
+            visible_cos_sum += v * cos;
+            y.push(weight * blinn_phong(s.n, l, s.o, &s.brdf).total() * v * cos);
+        }
+        let n = y.len() as f64;
+        let visibility = if !s.shadowed {
+            1.0
+        } else if cos_sum > 0.0 {
+            visible_cos_sum / cos_sum
+        } else {
+            0.0
+        };
+        LightEstimate {
+            scaled_radiance: y.iter().sum::<f64>() / n,
+            visibility,
+            std_error: collapsed_strata_variance(y).map(f64::sqrt),
+            shadow_rays,
+        }
+    }
+}
