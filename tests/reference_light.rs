@@ -220,6 +220,40 @@ fn shadows_off_means_full_visibility_everywhere() {
     }
 }
 
+#[test]
+fn no_shadow_acne_at_grazing_light_far_from_the_origin() {
+    // A tilted square 20 km from the origin, lit 0.5° above its plane (and
+    // by a sphere light dipping below it): nothing can shadow it but itself,
+    // so V must be exactly 1 wherever the light is above the horizon.
+    let frame = glam::Mat4::from_translation(Vec3::new(1.0e4, 5.0e3, -2.0e4))
+        * glam::Mat4::from_rotation_x(0.3)
+        * glam::Mat4::from_rotation_z(-0.2);
+    let square = shapes::ground(Vec3::ZERO, 4.0).transformed(frame);
+    let scene = Scene {
+        objects: vec![Object::new("square", square, 0)],
+        materials: vec![Material::default()],
+        ..Scene::default()
+    };
+    let normal = frame.transform_vector3(Vec3::Y).normalize();
+    let along = frame.transform_vector3(Vec3::X).normalize();
+    let centre = frame.transform_point3(Vec3::ZERO);
+    let grazing = 0.5_f32.to_radians();
+    let light = centre + (along * grazing.cos() + normal * grazing.sin()) * 50.0;
+    let eye = centre + normal * 3.5 + along * 1.0;
+    for radius in [0.0, 0.6] {
+        let mut settings = lambert_settings(eye, centre, 45.0, (40, 30), light);
+        settings.light.radius_m = radius;
+        let image = render(&scene, &settings, 16, 0);
+        let covered = image.coverage.iter().filter(|&&c| c > 0.0).count();
+        assert!(covered > 1000, "{covered} pixels see the square");
+        for (at, &v) in image.visibility.iter().enumerate() {
+            if image.coverage[at] > 0.0 {
+                assert_eq!(v, 1.0, "R = {radius}: acne at pixel {at}");
+            }
+        }
+    }
+}
+
 /// Light straight above a square occluder: light at height H, radius R,
 /// square of half side a at height h. Whether every point of the sphere is
 /// hidden from the ground point p, or every point visible, in closed form per
