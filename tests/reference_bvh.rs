@@ -1,10 +1,13 @@
 //! The BVH finds exactly what testing every triangle finds: the same closest
 //! hit (same distance, bit for bit) and the same shadow-ray answer, on
 //! thousands of random rays through a generated scene of spheres and boxes,
-//! including rays aimed at vertices and edges and rays from far away.
+//! including rays aimed at vertices and edges, rays from far away and rays
+//! whose direction is a micrometre long. The direction grids (rays from or to
+//! a common point) agree with brute force too.
 
 use glam::{DVec3, Vec3};
 use lumlab::reference::bvh::{BvhTriangle, TriangleBvh, closest_hit_brute_force, occluded_brute_force};
+use lumlab::reference::grid::{Answer, DirectionGrid};
 use lumlab::reference::sampling::Rng;
 use lumlab::scene::{Aabb, Mesh, shapes};
 
@@ -70,14 +73,20 @@ fn bvh_hits_equal_brute_force_on_random_rays() {
     assert!(triangles.len() > 5000, "{} triangles", triangles.len());
     let bvh = TriangleBvh::new(&triangles);
     let (mut hits, mut blocked) = (0, 0);
-    for ray in 0..6000 {
-        let (origin, direction) = match ray % 3 {
+    for ray in 0..8000 {
+        let (origin, direction) = match ray % 4 {
             // From anywhere, anywhere.
             0 => (random_point(&mut rng, 7.0), random_direction(&mut rng)),
             // Aimed at a vertex, an edge or a face.
             1 => {
                 let origin = random_point(&mut rng, 7.0);
                 (origin, point_on(&triangles, &mut rng) - origin)
+            }
+            // From just off a surface to another, with a direction a
+            // micrometre long (shadow rays are not normalized).
+            3 => {
+                let origin = point_on(&triangles, &mut rng) + random_direction(&mut rng) * 1e-6;
+                (origin, (point_on(&triangles, &mut rng) - origin) * 1e-6)
             }
             // From far away (a camera a kilometre off), at the scene.
             _ => {
@@ -110,7 +119,7 @@ fn bvh_hits_equal_brute_force_on_random_rays() {
             _ => panic!("ray {ray}: {origin} → {direction}: brute force {expected:?}, BVH {got:?}"),
         }
         // A shadow-ray segment along the same ray, ending at a random length.
-        let t_max = rng.next_f64() * 2.0;
+        let t_max = rng.next_f64() * if ray % 4 == 3 { 2e6 } else { 2.0 };
         let expected = occluded_brute_force(&triangles, origin, direction, 0.0, t_max);
         assert_eq!(
             bvh.occluded(origin, direction, 0.0, t_max),
@@ -123,5 +132,63 @@ fn bvh_hits_equal_brute_force_on_random_rays() {
     assert!(
         hits > 2000 && blocked > 300,
         "{hits} hits, {blocked} blocked segments"
+    );
+}
+
+#[test]
+fn direction_grids_equal_brute_force_for_rays_through_their_centre() {
+    let mut rng = Rng::new(11, 0, 0);
+    let triangles = generated_scene(&mut rng);
+    let centres = [
+        // A camera outside, a light above, a point on the ground (a light
+        // lying on a surface) and a box corner.
+        DVec3::new(6.0, 4.0, 9.0),
+        DVec3::new(0.5, 5.0, -0.3),
+        DVec3::new(1.25, 0.0, -2.5),
+        triangles[2].corners[0],
+    ];
+    let (mut answered, mut deferred) = (0, 0);
+    for centre in centres {
+        let grid = DirectionGrid::new(centre, &triangles, |_| true);
+        let occluders = DirectionGrid::new(centre, &triangles, |t| t.occludes);
+        for ray in 0..3000 {
+            let target = match ray % 3 {
+                0 => point_on(&triangles, &mut rng),
+                1 => centre + random_direction(&mut rng),
+                // On the edges between cube faces: |x| = |y|.
+                _ => {
+                    let d = random_direction(&mut rng);
+                    centre
+                        + DVec3::new(
+                            d.x.abs().max(d.y.abs()) * d.x.signum(),
+                            d.x.abs().max(d.y.abs()) * d.y.signum(),
+                            d.z,
+                        )
+                }
+            };
+            let direction = target - centre;
+            if direction.length_squared() == 0.0 {
+                continue;
+            }
+            match grid.closest_from_centre(&triangles, direction) {
+                Answer::Known(hit) => {
+                    let expected = closest_hit_brute_force(&triangles, centre, direction, 0.0, f64::INFINITY);
+                    assert_eq!(hit, expected, "ray {ray} from {centre} along {direction}");
+                    answered += 1;
+                }
+                Answer::AskBvh => deferred += 1,
+            }
+            // A shadow ray from somewhere along the line towards the centre.
+            let origin = centre + direction * (0.2 + 2.0 * rng.next_f64());
+            let t_max = 1.0 - 1e-9;
+            if let Answer::Known(blocked) = occluders.blocked_towards_centre(&triangles, origin, t_max) {
+                let expected = occluded_brute_force(&triangles, origin, centre - origin, 0.0, t_max);
+                assert_eq!(blocked, expected, "shadow ray {ray} from {origin} to {centre}");
+            }
+        }
+    }
+    assert!(
+        answered > 5000,
+        "{answered} answered, {deferred} deferred to the BVH"
     );
 }

@@ -9,23 +9,29 @@
 //!   about 100 times the worst rounding of an f32 ray (origin, direction,
 //!   slab distances: a few units of 6·10⁻⁸ in this frame);
 //! - a ray first clipped in f64 to the padded scene box starts its f32 copy
-//!   just before the box, so a camera kilometres away loses no precision,
-//!   and the f32 far limit is the f64 one plus a few pads.
+//!   just before the box (and before obvhs's own clamp of node entries at
+//!   10⁻⁴), so a camera kilometres away loses no precision, and the f32 far
+//!   limit is the f64 one plus a few pads.
 //!
 //! The f64 test decides every hit, so the BVH answers exactly what testing
 //! every triangle would (see `closest_hit_brute_force` and the tests).
 
 use super::intersect::{ShearedRay, TriangleHit};
-use glam::DVec3;
-use obvhs::ray::{Ray, RayHit};
+// `UVec2` is named inside obvhs's `traverse!` macro.
+use glam::{DVec3, UVec2, Vec3A};
+use obvhs::cwbvh::Traversal;
+use obvhs::ray::Ray;
 use obvhs::{Boundable, BvhBuildParams, aabb::Aabb, cwbvh::CwBvh};
 
 /// Padding of every triangle's box in the normalized frame (scene extent = 1).
 pub const PAD: f64 = 1e-5;
-/// obvhs's CWBVH node test only counts a node entered at f32 t ≥ 10⁻⁴: the f32
-/// ray begins this far (in the frame) before the segment it stands for, so
-/// every node along the segment is entered well after that clamp.
-const EARLY_START: f64 = 2e-4 + 2.0 * PAD;
+/// How far (in the f32 ray's parameter s) its copy begins before the
+/// segment: obvhs's node test only counts a node entered at s ≥ 10⁻⁴, and
+/// this is also more than two pads of frame distance.
+const EARLY_START: f64 = 2e-4;
+/// How far (in s) beyond the segment's end the f32 copy reaches: four pads
+/// of frame distance at least (its direction is at least 1 long).
+const PAD_S: f64 = 4.0 * PAD;
 
 /// A triangle to cast rays against.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,6 +48,12 @@ pub struct Hit {
     pub triangle: usize,
     /// Distance along the ray (its direction's units) and barycentrics.
     pub at: TriangleHit,
+}
+
+/// Whether hit `a` on triangle `ta` wins over `b`: nearer, or as near with a
+/// lower index (so that every way of casting agrees on shared edges).
+pub fn closer(a: TriangleHit, ta: usize, b: Hit) -> bool {
+    a.t < b.at.t || (a.t == b.at.t && ta < b.triangle)
 }
 
 /// The padded box of one triangle in the normalized frame.
@@ -62,8 +74,8 @@ pub struct TriangleBvh {
     /// Leaf slot → index in the caller's list.
     original: Vec<usize>,
     centre: DVec3,
-    /// World metres per unit of the normalized frame.
-    scale: f64,
+    /// Units of the normalized frame per world metre.
+    per_scale: f64,
     /// The padded scene box (world, f64).
     min: DVec3,
     max: DVec3,
@@ -93,7 +105,7 @@ impl TriangleBvh {
                 occludes: Vec::new(),
                 original: Vec::new(),
                 centre: DVec3::ZERO,
-                scale: 1.0,
+                per_scale: 1.0,
                 min: DVec3::ZERO,
                 max: DVec3::ZERO,
             };
@@ -127,7 +139,7 @@ impl TriangleBvh {
             original,
             bvh: Some(bvh),
             centre,
-            scale,
+            per_scale: 1.0 / scale,
             min: min - pad_world,
             max: max + pad_world,
         }
@@ -142,77 +154,91 @@ impl TriangleBvh {
         self.corners.is_empty()
     }
 
-    /// The part (t_start, t_end) of the ray inside the padded scene box
-    /// within (t_min, t_max), by the slab test in f64; None when it misses.
-    fn clip(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
-        let (mut t0, mut t1) = (t_min, t_max);
-        for axis in 0..3 {
-            let (o, d) = (origin[axis], direction[axis]);
-            let (lo, hi) = (self.min[axis], self.max[axis]);
-            if d == 0.0 {
-                if o < lo || o > hi {
-                    return None;
-                }
-                continue;
-            }
-            let (a, b) = ((lo - o) / d, (hi - o) / d);
-            t0 = t0.max(a.min(b));
-            t1 = t1.min(a.max(b));
+    /// The ray prepared for traversal: clipped in f64 to the padded scene
+    /// box within (t_min, t_max) by the slab test when it starts outside
+    /// the box; its f32 copy in the frame, with the same parameter t, begins
+    /// a little before the clipped start and reaches a few pads beyond its
+    /// end; None when it misses the box.
+    #[inline(always)]
+    fn query(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> Option<Query> {
+        let inside = origin.cmpge(self.min).all() && origin.cmple(self.max).all();
+        let (t0, t1) = if inside {
+            // Shadow rays: the segment as given (beyond the box is empty).
+            (t_min, t_max)
+        } else {
+            // A zero component gives ±∞ and, on a slab face, NaN, which
+            // min/max skip: a ray in a face's plane misses (no triangle lies
+            // on the padded box's faces).
+            let inv = direction.recip();
+            let a = (self.min - origin) * inv;
+            let b = (self.max - origin) * inv;
+            (
+                a.min(b).max_element().max(t_min),
+                a.max(b).min_element().min(t_max),
+            )
+        };
+        let meets_box = t0 <= t1;
+        if !meets_box {
+            return None;
         }
-        (t0 <= t1).then_some((t0, t1))
-    }
-
-    /// Where the f32 ray begins: [`EARLY_START`] before the clipped start, so
-    /// that obvhs's node entry clamp and the box's faces skip nothing (the f64
-    /// test still keeps only t > t_min).
-    fn early_start(&self, t_start: f64, direction: DVec3) -> f64 {
-        t_start - EARLY_START * self.scale / direction.length()
-    }
-
-    /// The f32 copy of the ray segment starting at `t_start`, in the
-    /// normalized frame, reaching a few pads beyond `t_end`.
-    fn frame_ray(&self, origin: DVec3, direction: DVec3, t_start: f64, t_end: f64) -> Ray {
-        let start = (origin + direction * t_start - self.centre) / self.scale;
-        let length = direction.length();
-        let far = if t_end.is_finite() {
-            ((t_end - t_start) * length / self.scale + 4.0 * PAD) as f32
+        // The f32 ray's direction is d in frame units scaled so that its
+        // largest component is 1 (so obvhs's clamp of 1 / d_i at ±1/ε only
+        // touches near-parallel axes, as for unit vectors); its parameter is
+        // s = (t − t_start) · s_per_t, and |direction| ∈ [1, √3] makes a
+        // frame distance D between D / √3 and D in s.
+        let d_frame = direction * self.per_scale;
+        let s_per_t = d_frame.abs().max_element();
+        let t_per_s = 1.0 / s_per_t;
+        let unit = (d_frame * t_per_s).as_vec3a();
+        let limit = Vec3A::splat(1.0 / f32::EPSILON);
+        // obvhs only enters nodes at s ≥ 10⁻⁴: begin well before that, and
+        // before the box's padded face.
+        let t_start = t0 - EARLY_START * t_per_s;
+        let far = if t1.is_finite() {
+            ((t1 - t_start) * s_per_t + PAD_S) as f32
         } else {
             f32::INFINITY
         };
-        Ray::new(start.as_vec3a(), (direction / length).as_vec3a(), 0.0, far)
-    }
-
-    /// The f32 distance in the frame that keeps every node up to the f64
-    /// distance `t` (plus a few pads) in the traversal.
-    fn frame_distance(&self, t: f64, t_start: f64, length: f64) -> f32 {
-        ((t - t_start) * length / self.scale + 4.0 * PAD) as f32
+        let ray = Ray {
+            origin: ((origin - self.centre + direction * t_start) * self.per_scale).as_vec3a(),
+            direction: unit,
+            inv_direction: unit.recip().clamp(-limit, limit),
+            tmin: 0.0,
+            tmax: far,
+        };
+        Some(Query {
+            ray,
+            t_start,
+            s_per_t,
+            sheared: ShearedRay::new(origin, direction),
+        })
     }
 
     /// The closest hit with t ∈ (t_min, t_max) (units of `direction`).
     pub fn closest_hit(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
         let bvh = self.bvh.as_ref()?;
-        let (t_start, t_end) = self.clip(origin, direction, t_min, t_max)?;
-        let t_start = self.early_start(t_start, direction);
-        let ray = self.frame_ray(origin, direction, t_start, t_end);
-        let sheared = ShearedRay::new(origin, direction);
-        let length = direction.length();
-        let mut best: Option<(usize, TriangleHit)> = None;
-        let mut best_t = t_max;
-        let mut record = RayHit::none();
-        bvh.ray_traverse(ray, &mut record, |_, slot| {
-            match sheared.intersect(&self.corners[slot], t_min, best_t) {
-                Some(hit) => {
-                    best_t = hit.t;
-                    best = Some((slot, hit));
-                    self.frame_distance(hit.t, t_start, length)
+        let query = self.query(origin, direction, t_min, t_max)?;
+        let mut best: Option<Hit> = None;
+        let mut limit = t_max;
+        let mut ray = query.ray;
+        TRAVERSAL.with_borrow_mut(|state| {
+            state.reinit(ray.direction);
+            let mut node;
+            obvhs::traverse!(bvh, node, state, node.intersect_ray(&ray, state.oct_inv4), {
+                let slot = state.primitive_id as usize;
+                if let Some(at) = query.sheared.intersect(&self.corners[slot], t_min, limit) {
+                    let triangle = self.original[slot];
+                    if best.is_none_or(|b| closer(at, triangle, b)) {
+                        best = Some(Hit { triangle, at });
+                        // Equal distances stay candidates (lowest index wins).
+                        limit = at.t.next_up();
+                        // Keep every node up to the new best (plus a few pads).
+                        ray.tmax = ((at.t - query.t_start) * query.s_per_t + PAD_S) as f32;
+                    }
                 }
-                None => f32::INFINITY,
-            }
+            });
         });
-        best.map(|(slot, at)| Hit {
-            triangle: self.original[slot],
-            at,
-        })
+        best
     }
 
     /// Whether an occluding triangle lies at t ∈ (t_min, t_max) along the ray.
@@ -220,22 +246,40 @@ impl TriangleBvh {
         let Some(bvh) = self.bvh.as_ref() else {
             return false;
         };
-        let nonempty = t_max > t_min;
-        if !nonempty {
-            return false;
-        }
-        let Some((t_start, t_end)) = self.clip(origin, direction, t_min, t_max) else {
+        let Some(query) = self.query(origin, direction, t_min, t_max) else {
             return false;
         };
-        let t_start = self.early_start(t_start, direction);
-        let ray = self.frame_ray(origin, direction, t_start, t_end);
-        let sheared = ShearedRay::new(origin, direction);
-        !bvh.ray_traverse_miss(ray, |_, slot| {
-            let blocks =
-                self.occludes[slot] && sheared.intersect(&self.corners[slot], t_min, t_max).is_some();
-            if blocks { 0.0 } else { f32::INFINITY }
-        })
+        let ray = query.ray;
+        let mut blocked = false;
+        TRAVERSAL.with_borrow_mut(|state| {
+            state.reinit(ray.direction);
+            let mut node;
+            obvhs::traverse!(bvh, node, state, node.intersect_ray(&ray, state.oct_inv4), {
+                let slot = state.primitive_id as usize;
+                if self.occludes[slot] && query.sheared.hits(&self.corners[slot], t_min, t_max) {
+                    blocked = true;
+                    break;
+                }
+            });
+        });
+        blocked
     }
+}
+
+thread_local! {
+    /// Each thread's traversal state (a 32-entry stack), reused from ray to
+    /// ray instead of being built and zeroed for every one.
+    static TRAVERSAL: std::cell::RefCell<Traversal> = std::cell::RefCell::new(Traversal::default());
+}
+
+/// A ray ready for traversal (see [`TriangleBvh::query`]).
+struct Query {
+    /// The f32 copy in the normalized frame, parameter s = (t − t_start) · s_per_t.
+    ray: Ray,
+    /// The f64 parameter where the f32 copy begins.
+    t_start: f64,
+    s_per_t: f64,
+    sheared: ShearedRay,
 }
 
 /// The closest hit by testing every triangle: what the BVH must reproduce.
@@ -249,8 +293,10 @@ pub fn closest_hit_brute_force(
     let sheared = ShearedRay::new(origin, direction);
     let mut best: Option<Hit> = None;
     for (i, tri) in triangles.iter().enumerate() {
-        let limit = best.map_or(t_max, |b| b.at.t);
-        if let Some(at) = sheared.intersect(&tri.corners, t_min, limit) {
+        let limit = best.map_or(t_max, |b| b.at.t.next_up());
+        if let Some(at) = sheared.intersect(&tri.corners, t_min, limit)
+            && best.is_none_or(|b| closer(at, i, b))
+        {
             best = Some(Hit { triangle: i, at });
         }
     }
@@ -268,7 +314,7 @@ pub fn occluded_brute_force(
     let sheared = ShearedRay::new(origin, direction);
     triangles
         .iter()
-        .any(|tri| tri.occludes && sheared.intersect(&tri.corners, t_min, t_max).is_some())
+        .any(|tri| tri.occludes && sheared.hits(&tri.corners, t_min, t_max))
 }
 
 #[cfg(test)]

@@ -46,26 +46,56 @@ impl ShearedRay {
         if direction[kz] < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
+        let sz = 1.0 / direction[kz];
         Self {
             origin,
             direction,
             kx,
             ky,
             kz,
-            sx: direction[kx] / direction[kz],
-            sy: direction[ky] / direction[kz],
-            sz: 1.0 / direction[kz],
+            sx: direction[kx] * sz,
+            sy: direction[ky] * sz,
+            sz,
         }
     }
 
     /// The hit with t ∈ (t_min, t_max), both faces counted; None for a miss
     /// or a degenerate (zero-area in projection) triangle.
     #[inline]
-    pub fn intersect(&self, [a, b, c]: &[DVec3; 3], t_min: f64, t_max: f64) -> Option<TriangleHit> {
+    pub fn intersect(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> Option<TriangleHit> {
+        let e = self.edges(corners)?;
+        // A division-free test a little wider than the range first; then the
+        // range on the computed t itself, so that the closest of several
+        // hits is decided by their computed distances alone, in any order.
+        let slack = 1.0 + 4.0 * f64::EPSILON;
+        if !(e.t_scaled * slack > t_min * e.det && e.t_scaled < t_max * e.det * slack) {
+            return None;
+        }
+        // One division serves the distance and the barycentrics.
+        let inv = 1.0 / e.det;
+        let t = e.t_scaled * inv;
+        (t > t_min && t < t_max).then_some(TriangleHit {
+            t,
+            barycentric: [e.u * inv, e.v * inv, e.w * inv],
+        })
+    }
+
+    /// Whether the ray meets the triangle at t ∈ (t_min, t_max), without
+    /// any division (t = t_scaled / det compared as in Woop et al.).
+    #[inline]
+    pub fn hits(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> bool {
+        self.edges(corners)
+            .is_some_and(|e| e.t_scaled > t_min * e.det && e.t_scaled < t_max * e.det)
+    }
+
+    /// The edge functions and the scaled distance, with signs normalized so
+    /// that det > 0; None when the ray misses the triangle's interior.
+    #[inline(always)]
+    fn edges(&self, [a, b, c]: &[DVec3; 3]) -> Option<Edges> {
         let (kx, ky, kz) = (self.kx, self.ky, self.kz);
-        let a = *a - self.origin;
-        let b = *b - self.origin;
-        let c = *c - self.origin;
+        let a = (*a - self.origin).to_array();
+        let b = (*b - self.origin).to_array();
+        let c = (*c - self.origin).to_array();
         let (ax, ay) = (a[kx] - self.sx * a[kz], a[ky] - self.sy * a[kz]);
         let (bx, by) = (b[kx] - self.sx * b[kz], b[ky] - self.sy * b[kz]);
         let (cx, cy) = (c[kx] - self.sx * c[kz], c[ky] - self.sy * c[kz]);
@@ -81,16 +111,25 @@ impl ShearedRay {
             return None;
         }
         let t_scaled = u * self.sz * a[kz] + v * self.sz * b[kz] + w * self.sz * c[kz];
-        let t = t_scaled / det;
-        if !(t > t_min && t < t_max) {
-            return None;
-        }
-        let inv = 1.0 / det;
-        Some(TriangleHit {
-            t,
-            barycentric: [u * inv, v * inv, w * inv],
+        let sign = det.signum();
+        Some(Edges {
+            u: sign * u,
+            v: sign * v,
+            w: sign * w,
+            det: sign * det,
+            t_scaled: sign * t_scaled,
         })
     }
+}
+
+/// The unnormalized result of the test: t = t_scaled / det, barycentrics
+/// (u, v, w) / det.
+struct Edges {
+    u: f64,
+    v: f64,
+    w: f64,
+    det: f64,
+    t_scaled: f64,
 }
 
 #[cfg(test)]

@@ -7,8 +7,10 @@
 //! ray comes from [`Camera::ray_direction`](crate::scene::Camera::ray_direction)
 //! through the pixel centre (one sample per pixel) or through jittered strata
 //! of the pixel square (more samples, box filter). See `shading` for the
-//! radiance and the shadow-ray epsilon, `bvh` for exact ray casting,
-//! `sampling` for strata and the noise estimate.
+//! radiance and the shadow-ray epsilon, `bvh` for exact ray casting (an f32
+//! BVH that never misses, an f64 watertight triangle test that decides),
+//! `grid` for the faster exact path of rays from the eye and to a point
+//! light, `sampling` for strata and the noise estimate.
 //!
 //! ```no_run
 //! # use lumlab::{reference::*, scene, settings::Settings};
@@ -20,6 +22,7 @@
 //! ```
 
 pub mod bvh;
+pub mod grid;
 mod image;
 pub mod intersect;
 pub mod sampling;
@@ -33,6 +36,7 @@ use crate::scene::{Material, Scene};
 use crate::settings::{Settings, SettingsError};
 use bvh::{BvhTriangle, TriangleBvh};
 use glam::{DVec2, DVec3};
+use grid::DirectionGrid;
 use rayon::prelude::*;
 use sampling::{Rng, Strata, collapsed_strata_variance};
 use shading::Setup;
@@ -102,6 +106,14 @@ struct TriangleInfo {
     /// Index within the object's mesh.
     index: usize,
     corners: [DVec3; 3],
+    /// The unit normal of the face (counter-clockwise winding).
+    face_normal: DVec3,
+    /// The normalized vertex normal when all three are equal (a flat
+    /// facet): interpolating and normalizing would give it again.
+    flat_normal: Option<DVec3>,
+    /// How far shadow rays start off this triangle (m): SHADOW_OFFSET_REL ×
+    /// its largest |coordinate|.
+    shadow_offset_m: f64,
     normals: [DVec3; 3],
     uvs: [DVec2; 3],
 }
@@ -118,6 +130,9 @@ struct ObjectInfo {
 /// A scene prepared for ray tracing: build once, render many settings.
 pub struct Reference {
     bvh: TriangleBvh,
+    /// The BVH's triangles, in the order of `triangles`: what the direction
+    /// grids are built from.
+    bvh_triangles: Vec<BvhTriangle>,
     triangles: Vec<TriangleInfo>,
     objects: Vec<ObjectInfo>,
     /// The scene's materials, then the default one for invalid indices.
@@ -165,10 +180,15 @@ impl Reference {
                     corners,
                     occludes: object.casts_shadows,
                 });
+                let largest = corners.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
                 triangles.push(TriangleInfo {
                     object: object_id,
                     index,
                     corners,
+                    face_normal: face.normalize_or_zero(),
+                    flat_normal: (normals[0] == normals[1] && normals[0] == normals[2])
+                        .then(|| normals[0].normalize_or(face.normalize_or_zero())),
+                    shadow_offset_m: SHADOW_OFFSET_REL * largest,
                     normals,
                     uvs,
                 });
@@ -176,6 +196,7 @@ impl Reference {
         }
         Self {
             bvh: TriangleBvh::new(&bvh_triangles),
+            bvh_triangles,
             triangles,
             objects,
             materials,
@@ -208,7 +229,7 @@ impl Reference {
         let setup = Setup::new(settings, options.light_samples, options.seed);
         let pixel = pixel_index(&setup, x.floor(), y.floor());
         let mut rng = Rng::new(options.seed, pixel, 0);
-        self.shade(&setup, x, y, &mut rng, &mut Vec::new())
+        self.probe(&setup, x, y, &mut rng)
     }
 
     /// Renders the image, in parallel over tiles, reporting progress and
@@ -221,7 +242,15 @@ impl Reference {
     ) -> Result<ReferenceImage, ReferenceError> {
         settings.validate()?;
         let start = Instant::now();
-        let setup = Setup::new(settings, options.light_samples, options.seed);
+        let mut setup = Setup::new(settings, options.light_samples, options.seed);
+        // Every primary ray leaves the eye and every point-light shadow ray
+        // ends at the light: both are cast through direction grids there.
+        setup.eye_grid = Some(DirectionGrid::new(setup.rays.eye, &self.bvh_triangles, |_| true));
+        if setup.shadows && !setup.is_sphere_light() {
+            let light = setup.light_position;
+            setup.light_grid = Some(DirectionGrid::new(light, &self.bvh_triangles, |t| t.occludes));
+        }
+        let setup = setup;
         let (width, height) = (setup.width, setup.height);
         let tiles: Vec<(u32, u32)> = (0..height.div_ceil(TILE))
             .flat_map(|ty| (0..width.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
@@ -310,22 +339,23 @@ impl Reference {
                     } else {
                         spp.jittered(s, &mut rng)
                     };
-                    let sample = self.shade(setup, i as f64 + dx, j as f64 + dy, &mut rng, &mut scratch);
                     tile.primary_rays += 1;
-                    let Some(sample) = sample else {
+                    let Some(surface) = self.surface(setup, i as f64 + dx, j as f64 + dy) else {
                         sample_luminance.push(0.0);
                         continue;
                     };
-                    tile.shadow_rays += sample.shadow_rays as u64;
+                    let light = self.light(setup, &surface, &mut rng, &mut scratch);
+                    tile.shadow_rays += light.shadow_rays as u64;
                     hits += 1;
-                    visibility += sample.visibility;
-                    let l = sample.radiance.to_array();
+                    visibility += light.visibility;
+                    let l = (surface.tint * light.scaled_radiance).to_array();
                     for c in 0..3 {
                         sum[c] += l[c];
                     }
                     sample_luminance.push(luminance(l));
-                    match sample.std_error {
-                        Some(se) => variance += se * se,
+                    let tint_y = luminance(surface.tint.to_array());
+                    match light.std_error {
+                        Some(se) => variance += (tint_y * se).powi(2),
                         None => tile.noise_known &= n > 1,
                     }
                 }

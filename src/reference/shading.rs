@@ -21,6 +21,7 @@
 //! from the origin it is 1 nm: no occluder closer than that exists in a scene.
 
 use super::Reference;
+use super::grid::{Answer, DirectionGrid};
 use super::image::luminance;
 use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
 use crate::physics::brdf::blinn_phong;
@@ -29,6 +30,7 @@ use crate::physics::radiometry::{
 };
 use crate::physics::{BrdfParams, BrdfTerms, Normalization};
 use crate::scene::Camera;
+use crate::scene::camera::Frame;
 use crate::settings::Settings;
 use glam::{DVec2, DVec3};
 
@@ -37,10 +39,44 @@ pub const SHADOW_OFFSET_REL: f64 = 1e-9;
 /// Shadow rays end this fraction of their length before the light.
 pub const STOP_SHORT_REL: f64 = 1e-9;
 
+/// [`Camera::ray_direction`] with the camera's frame and tan(fovy / 2)
+/// computed once per image instead of once per ray: the same expression,
+/// term for term and in the same order, so the same bits (tested).
+#[derive(Clone, Debug)]
+pub(super) struct PixelRays {
+    pub eye: DVec3,
+    frame: Frame,
+    tan_half_fovy: f64,
+    aspect: f64,
+    width: f64,
+    height: f64,
+}
+
+impl PixelRays {
+    pub fn new(camera: &Camera, width: u32, height: u32) -> Self {
+        Self {
+            eye: camera.eye.as_dvec3(),
+            frame: camera.frame(),
+            tan_half_fovy: camera.tan_half_fovy(),
+            aspect: width as f64 / height as f64,
+            width: width as f64,
+            height: height as f64,
+        }
+    }
+
+    /// The unit direction through image point (x, y) (pixels).
+    pub fn direction(&self, x: f64, y: f64) -> DVec3 {
+        let (f, t) = (&self.frame, self.tan_half_fovy);
+        let sx = (2.0 * x / self.width - 1.0) * t * self.aspect;
+        let sy = (1.0 - 2.0 * y / self.height) * t;
+        (f.forward + f.right * sx + f.up * sy).normalize()
+    }
+}
+
 /// Everything a sample needs from the settings, in f64.
 #[derive(Clone, Debug)]
 pub(super) struct Setup {
-    pub camera: Camera,
+    pub rays: PixelRays,
     pub width: u32,
     pub height: u32,
     pub light_position: DVec3,
@@ -55,17 +91,22 @@ pub(super) struct Setup {
     pub shadows: bool,
     pub light_strata: Strata,
     pub seed: u64,
+    /// Primary rays through a grid around the eye, and point-light shadow
+    /// rays through one around the light (none: the BVH alone).
+    pub eye_grid: Option<DirectionGrid>,
+    pub light_grid: Option<DirectionGrid>,
 }
 
 impl Setup {
     pub fn new(settings: &Settings, light_samples: u32, seed: u64) -> Self {
         let (c, l, m) = (&settings.camera, &settings.light, &settings.material);
+        let camera = Camera {
+            eye: c.eye,
+            target: c.target,
+            fovy_deg: c.fovy_deg,
+        };
         Self {
-            camera: Camera {
-                eye: c.eye,
-                target: c.target,
-                fovy_deg: c.fovy_deg,
-            },
+            rays: PixelRays::new(&camera, settings.image.width, settings.image.height),
             width: settings.image.width,
             height: settings.image.height,
             light_position: l.position.as_dvec3(),
@@ -80,6 +121,8 @@ impl Setup {
             shadows: settings.shadow.enabled,
             light_strata: Strata::new(light_samples),
             seed,
+            eye_grid: None,
+            light_grid: None,
         }
     }
 
@@ -130,41 +173,48 @@ pub struct ShadingSample {
 }
 
 /// The light's contribution at a shading point: L / (c · colour) and V.
-struct LightEstimate {
+pub(super) struct LightEstimate {
     /// ∫ (f_d + f_s) L_e V cos⁺θ dω, or its estimate (W/m²/sr per unit c).
-    scaled_radiance: f64,
-    visibility: f64,
+    pub scaled_radiance: f64,
+    pub visibility: f64,
     /// Standard error of `scaled_radiance`.
-    std_error: Option<f64>,
-    shadow_rays: u32,
+    pub std_error: Option<f64>,
+    pub shadow_rays: u32,
 }
 
-/// The shading point as the light estimators see it.
-struct Surface {
+/// Where a primary ray lands, and the surface there as the light sees it.
+pub(super) struct Surface {
+    /// Index into `Reference::triangles`.
+    triangle: usize,
+    distance_m: f64,
     p: DVec3,
+    /// The shading normal (towards the viewer on double-sided materials).
     n: DVec3,
+    /// The face's normal on the viewer's side.
+    geometric_normal: DVec3,
+    /// Unit direction to the eye.
     o: DVec3,
+    uv: DVec2,
+    color: DVec3,
+    /// c · light colour: L = tint · LightEstimate::scaled_radiance.
+    pub tint: DVec3,
+    brdf: BrdfParams<f64>,
     /// p lifted off the surface for shadow rays.
     shadow_origin: DVec3,
-    brdf: BrdfParams<f64>,
     /// Shadow rays are cast (shadows on and the object receives them).
     shadowed: bool,
 }
 
 impl Reference {
-    /// The primary sample through image point (x, y) (pixels, centres at
-    /// i + 0.5), with the random stream `rng` for the light's samples.
-    pub(super) fn shade(
-        &self,
-        setup: &Setup,
-        x: f64,
-        y: f64,
-        rng: &mut Rng,
-        scratch: &mut Vec<f64>,
-    ) -> Option<ShadingSample> {
-        let eye = setup.camera.eye.as_dvec3();
-        let dir = setup.camera.ray_direction(x, y, setup.width, setup.height);
-        let hit = self.bvh.closest_hit(eye, dir, 0.0, f64::INFINITY)?;
+    /// The surface seen through image point (x, y) (pixels, centres at
+    /// i + 0.5); None on background.
+    pub(super) fn surface(&self, setup: &Setup, x: f64, y: f64) -> Option<Surface> {
+        let dir = setup.rays.direction(x, y);
+        let grid = setup.eye_grid.as_ref();
+        let hit = match grid.map(|g| g.closest_from_centre(&self.bvh_triangles, dir)) {
+            Some(Answer::Known(hit)) => hit?,
+            _ => self.bvh.closest_hit(setup.rays.eye, dir, 0.0, f64::INFINITY)?,
+        };
         let tri = &self.triangles[hit.triangle];
         let object = &self.objects[tri.object];
         let material = &self.materials[object.material];
@@ -172,14 +222,15 @@ impl Reference {
         let [a, b, c] = tri.corners;
         let p = a * b0 + b * b1 + c * b2;
         let o = -dir;
-        let face = (b - a).cross(c - a).normalize();
+        let face = tri.face_normal;
         let geometric_normal = if face.dot(o) < 0.0 { -face } else { face };
-        let mut n = (tri.normals[0] * b0 + tri.normals[1] * b1 + tri.normals[2] * b2).normalize_or(face);
+        let mut n = tri.flat_normal.unwrap_or_else(|| {
+            (tri.normals[0] * b0 + tri.normals[1] * b1 + tri.normals[2] * b2).normalize_or(face)
+        });
         if material.double_sided && n.dot(o) < 0.0 {
             n = -n;
         }
         let uv = tri.uvs[0] * b0 + tri.uvs[1] * b1 + tri.uvs[2] * b2;
-
         let color = match setup.color_override {
             Some(c) => c,
             None => {
@@ -197,55 +248,83 @@ impl Reference {
             Some(v) if setup.use_scene_materials => v as f64,
             _ => default,
         };
-        let (k, m) = (own(material.k, setup.k), own(material.m, setup.m));
-
-        let scale = a.abs().max(b.abs()).max(c.abs()).max_element();
-        let surface = Surface {
+        Some(Surface {
+            triangle: hit.triangle,
+            distance_m: hit.at.t,
             p,
             n,
+            geometric_normal,
             o,
-            shadow_origin: p + geometric_normal * (SHADOW_OFFSET_REL * scale),
+            uv,
+            color,
+            tint: color * setup.light_color,
             brdf: BrdfParams {
-                k,
-                m,
+                k: own(material.k, setup.k),
+                m: own(material.m, setup.m),
                 norm: setup.norm,
             },
+            shadow_origin: p + geometric_normal * tri.shadow_offset_m,
             shadowed: setup.shadows && object.receives_shadows,
-        };
-        let q = setup.light_position;
-        let inc = incidence(p, n, q);
-        let (irradiance, estimate) = if setup.is_sphere_light() {
-            (
-                sphere_irradiance(setup.power_w, setup.radius_m, inc.cos_theta, inc.r),
-                self.sphere_light(setup, &surface, rng, scratch),
-            )
+        })
+    }
+
+    /// The light's contribution at the surface, with the light-sample stream `rng`.
+    pub(super) fn light(
+        &self,
+        setup: &Setup,
+        s: &Surface,
+        rng: &mut Rng,
+        scratch: &mut Vec<f64>,
+    ) -> LightEstimate {
+        if setup.is_sphere_light() {
+            self.sphere_light(setup, s, rng, scratch)
         } else {
-            let e = point_irradiance(intensity(setup.power_w), inc.cos_theta, inc.r);
-            (e, self.point_light(setup, &surface, e, inc.l, inc.cos_theta))
-        };
-        let tint = color * setup.light_color;
+            self.point_light(setup, s)
+        }
+    }
+
+    /// Everything about the primary sample through (x, y): the pixel probe.
+    pub(super) fn probe(&self, setup: &Setup, x: f64, y: f64, rng: &mut Rng) -> Option<ShadingSample> {
+        let s = self.surface(setup, x, y)?;
+        let estimate = self.light(setup, &s, rng, &mut Vec::new());
+        let tri = &self.triangles[s.triangle];
+        let inc = incidence(s.p, s.n, setup.light_position);
         Some(ShadingSample {
             object: tri.object,
             triangle: tri.index,
-            material: object.material_index,
-            distance_m: hit.at.t,
-            position: p,
-            normal: n,
-            geometric_normal,
-            uv,
-            color,
-            k,
-            m,
+            material: self.objects[tri.object].material_index,
+            distance_m: s.distance_m,
+            position: s.p,
+            normal: s.n,
+            geometric_normal: s.geometric_normal,
+            uv: s.uv,
+            color: s.color,
+            k: s.brdf.k,
+            m: s.brdf.m,
             to_light: inc.l,
             light_distance_m: inc.r,
             cos_theta: inc.cos_theta,
-            irradiance,
-            brdf: blinn_phong(n, inc.l, o, &surface.brdf),
+            irradiance: sphere_irradiance(setup.power_w, setup.radius_m, inc.cos_theta, inc.r),
+            brdf: blinn_phong(s.n, inc.l, s.o, &s.brdf),
             visibility: estimate.visibility,
-            radiance: tint * estimate.scaled_radiance,
-            std_error: estimate.std_error.map(|se| luminance(tint.to_array()) * se),
+            radiance: s.tint * estimate.scaled_radiance,
+            std_error: estimate.std_error.map(|se| luminance(s.tint.to_array()) * se),
             shadow_rays: estimate.shadow_rays,
         })
+    }
+
+    /// Whether the segment from the shadow origin to the point light is
+    /// blocked, through the light's grid when there is one.
+    fn blocked_from_light(&self, setup: &Setup, s: &Surface) -> bool {
+        let t_max = 1.0 - STOP_SHORT_REL;
+        match setup
+            .light_grid
+            .as_ref()
+            .map(|g| g.blocked_towards_centre(&self.bvh_triangles, s.shadow_origin, t_max))
+        {
+            Some(Answer::Known(blocked)) => blocked,
+            _ => self.blocked(s, setup.light_position),
+        }
     }
 
     /// Whether the segment from the shadow origin to `target` is blocked,
@@ -256,25 +335,29 @@ impl Reference {
             .occluded(surface.shadow_origin, d, 0.0, 1.0 - STOP_SHORT_REL)
     }
 
-    fn point_light(&self, setup: &Setup, s: &Surface, e: f64, l: DVec3, cos_theta: f64) -> LightEstimate {
-        let f = blinn_phong(s.n, l, s.o, &s.brdf).total();
+    /// L / (c · colour) = (f_d + f_s)(l) · E · V, with V from one shadow ray;
+    /// the BRDF is evaluated only where light arrives.
+    fn point_light(&self, setup: &Setup, s: &Surface) -> LightEstimate {
+        let q = setup.light_position;
+        let inc = incidence(s.p, s.n, q);
         let (visibility, shadow_rays) = if !s.shadowed {
             (1.0, 0)
-        } else if cos_theta <= 0.0 {
+        } else if inc.cos_theta <= 0.0 {
             // Attached shadow: the light is below the surface's horizon.
             (0.0, 0)
+        } else if self.blocked_from_light(setup, s) {
+            (0.0, 1)
         } else {
-            (
-                if self.blocked(s, setup.light_position) {
-                    0.0
-                } else {
-                    1.0
-                },
-                1,
-            )
+            (1.0, 1)
+        };
+        let scaled_radiance = if visibility > 0.0 && inc.cos_theta > 0.0 {
+            let e = point_irradiance(intensity(setup.power_w), inc.cos_theta, inc.r);
+            blinn_phong(s.n, inc.l, s.o, &s.brdf).total() * e
+        } else {
+            0.0
         };
         LightEstimate {
-            scaled_radiance: f * e * visibility,
+            scaled_radiance,
             visibility,
             std_error: Some(0.0),
             shadow_rays,
@@ -325,7 +408,12 @@ impl Reference {
             }
             cos_sum += cos;
             visible_cos_sum += v * cos;
-            y.push(weight * blinn_phong(s.n, l, s.o, &s.brdf).total() * v * cos);
+            let f = if v * cos > 0.0 {
+                blinn_phong(s.n, l, s.o, &s.brdf).total()
+            } else {
+                0.0
+            };
+            y.push(weight * f * v * cos);
         }
         let n = y.len() as f64;
         let visibility = if !s.shadowed {
@@ -340,6 +428,32 @@ impl Reference {
             visibility,
             std_error: collapsed_strata_variance(y).map(f64::sqrt),
             shadow_rays,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn pixel_rays_are_the_cameras_rays_bit_for_bit() {
+        let camera = Camera {
+            eye: Vec3::new(1.5, 2.25, -7.0),
+            target: Vec3::new(0.1, 0.4, 0.3),
+            fovy_deg: 37.5,
+        };
+        let (w, h) = (963, 541);
+        let rays = PixelRays::new(&camera, w, h);
+        let mut rng = Rng::new(0, 0, 0);
+        for _ in 0..10_000 {
+            let (x, y) = (rng.next_f64() * w as f64, rng.next_f64() * h as f64);
+            assert_eq!(
+                rays.direction(x, y),
+                camera.ray_direction(x, y, w, h),
+                "({x}, {y})"
+            );
         }
     }
 }
