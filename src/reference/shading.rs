@@ -208,6 +208,7 @@ pub(super) struct Surface {
 impl Reference {
     /// The surface seen through image point (x, y) (pixels, centres at
     /// i + 0.5); None on background.
+    #[inline]
     pub(super) fn surface(&self, setup: &Setup, x: f64, y: f64) -> Option<Surface> {
         let dir = setup.rays.direction(x, y);
         let grid = setup.eye_grid.as_ref();
