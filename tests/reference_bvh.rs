@@ -192,3 +192,38 @@ fn direction_grids_equal_brute_force_for_rays_through_their_centre() {
         "{answered} answered, {deferred} deferred to the BVH"
     );
 }
+
+#[test]
+fn occluders_gathered_near_a_ball_block_exactly_what_brute_force_does() {
+    let mut rng = Rng::new(13, 0, 0);
+    let triangles = generated_scene(&mut rng);
+    let bvh = TriangleBvh::new(&triangles);
+    let mut candidates = Vec::new();
+    let (mut gathered, mut blocked) = (0, 0);
+    for trial in 0..400 {
+        // A shading point on the scene, a sphere light somewhere above.
+        let from = point_on(&triangles, &mut rng) + DVec3::Y * 1e-6;
+        let centre = random_point(&mut rng, 6.0) + DVec3::Y * 4.0;
+        let radius = 0.05 + rng.next_f64();
+        if !bvh.gather_near_ball(from, centre, radius, 4000, &mut candidates) {
+            continue;
+        }
+        gathered += 1;
+        for _ in 0..16 {
+            // A point in the ball: the end of one shadow ray.
+            let target = centre + random_direction(&mut rng) * radius * rng.next_f64().cbrt();
+            let d = target - from;
+            let expected = occluded_brute_force(&triangles, from, d, 0.0, 1.0 - 1e-9);
+            assert_eq!(
+                bvh.blocked_by(&candidates, from, d, 1.0 - 1e-9),
+                expected,
+                "trial {trial}: {from} → {target}"
+            );
+            blocked += expected as u32;
+        }
+    }
+    assert!(
+        gathered > 200 && blocked > 100,
+        "{gathered} gathered, {blocked} blocked"
+    );
+}

@@ -39,7 +39,7 @@ use glam::{DVec2, DVec3};
 use grid::DirectionGrid;
 use rayon::prelude::*;
 use sampling::{Rng, Strata, collapsed_strata_variance};
-use shading::Setup;
+use shading::{Scratch, Setup};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Instant;
 use texture::LinearTexture;
@@ -319,7 +319,7 @@ impl Reference {
             noise_known: true,
         };
         let n = spp.count();
-        let mut scratch = Vec::new();
+        let mut scratch = Scratch::default();
         let mut sample_luminance = Vec::with_capacity(n as usize);
         for j in y0..y1 {
             if control.cancelled() {

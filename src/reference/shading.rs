@@ -172,6 +172,18 @@ pub struct ShadingSample {
     pub shadow_rays: u32,
 }
 
+/// Buffers reused from sample to sample by one thread.
+#[derive(Debug, Default)]
+pub(super) struct Scratch {
+    /// The light samples' terms, for the mean and the noise estimate.
+    y: Vec<f64>,
+    /// Occluders near the shadow rays of one shading point.
+    candidates: Vec<u32>,
+}
+
+/// Gathered occluders beyond this many: each shadow ray goes through the BVH.
+const MAX_CANDIDATES: usize = 24;
+
 /// The light's contribution at a shading point: L / (c · colour) and V.
 pub(super) struct LightEstimate {
     /// ∫ (f_d + f_s) L_e V cos⁺θ dω, or its estimate (W/m²/sr per unit c).
@@ -275,7 +287,7 @@ impl Reference {
         setup: &Setup,
         s: &Surface,
         rng: &mut Rng,
-        scratch: &mut Vec<f64>,
+        scratch: &mut Scratch,
     ) -> LightEstimate {
         if setup.is_sphere_light() {
             self.sphere_light(setup, s, rng, scratch)
@@ -287,7 +299,7 @@ impl Reference {
     /// Everything about the primary sample through (x, y): the pixel probe.
     pub(super) fn probe(&self, setup: &Setup, x: f64, y: f64, rng: &mut Rng) -> Option<ShadingSample> {
         let s = self.surface(setup, x, y)?;
-        let estimate = self.light(setup, &s, rng, &mut Vec::new());
+        let estimate = self.light(setup, &s, rng, &mut Scratch::default());
         let tri = &self.triangles[s.triangle];
         let inc = incidence(s.p, s.n, setup.light_position);
         Some(ShadingSample {
@@ -365,8 +377,22 @@ impl Reference {
         }
     }
 
-    fn sphere_light(&self, setup: &Setup, s: &Surface, rng: &mut Rng, y: &mut Vec<f64>) -> LightEstimate {
+    fn sphere_light(
+        &self,
+        setup: &Setup,
+        s: &Surface,
+        rng: &mut Rng,
+        scratch: &mut Scratch,
+    ) -> LightEstimate {
         let (q, radius) = (setup.light_position, setup.radius_m);
+        // Every shadow ray of this point runs from its shadow origin to the
+        // sphere: gather the occluders near that path once, then test each
+        // ray against those few (or, when there are many, through the BVH).
+        let Scratch { y, candidates } = scratch;
+        let gathered = s.shadowed
+            && self
+                .bvh
+                .gather_near_ball(s.shadow_origin, q, radius, MAX_CANDIDATES, candidates);
         let le = sphere_radiance(setup.power_w, radius);
         let to_centre = q - s.p;
         let d2 = to_centre.length_squared();
@@ -403,7 +429,15 @@ impl Reference {
                 };
                 let t = if inside { b + half_chord } else { b - half_chord };
                 shadow_rays += 1;
-                if self.blocked(s, s.p + l * t) {
+                let target = s.p + l * t;
+                let blocked = if gathered {
+                    let d = target - s.shadow_origin;
+                    self.bvh
+                        .blocked_by(candidates, s.shadow_origin, d, 1.0 - STOP_SHORT_REL)
+                } else {
+                    self.blocked(s, target)
+                };
+                if blocked {
                     v = 0.0;
                 }
             }
