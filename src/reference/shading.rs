@@ -281,21 +281,6 @@ impl Reference {
         })
     }
 
-    /// The light's contribution at the surface, with the light-sample stream `rng`.
-    pub(super) fn light(
-        &self,
-        setup: &Setup,
-        s: &Surface,
-        rng: &mut Rng,
-        scratch: &mut Scratch,
-    ) -> LightEstimate {
-        if setup.is_sphere_light() {
-            self.sphere_light(setup, s, rng, scratch)
-        } else {
-            self.point_light(setup, s)
-        }
-    }
-
     /// Everything about the primary sample through (x, y): the pixel probe.
     pub(super) fn probe(&self, setup: &Setup, x: f64, y: f64, rng: &mut Rng) -> Option<ShadingSample> {
         let s = self.surface(setup, x, y)?;
@@ -377,13 +362,19 @@ impl Reference {
         }
     }
 
-    fn sphere_light(
+    /// The light's contribution at the surface: the point light's in
+    /// closed form, the sphere light's estimated with the light-sample
+    /// stream `rng`.
+    pub(super) fn light(
         &self,
         setup: &Setup,
         s: &Surface,
         rng: &mut Rng,
         scratch: &mut Scratch,
     ) -> LightEstimate {
+        if !setup.is_sphere_light() {
+            return self.point_light(setup, s);
+        }
         let (q, radius) = (setup.light_position, setup.radius_m);
         // Every shadow ray of this point runs from its shadow origin to the
         // sphere: gather the occluders near that path once, then test each
