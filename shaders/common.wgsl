@@ -99,11 +99,14 @@ struct DisplayParams {
     values: vec4<f32>,
 }
 
-// ln(cos θ) from the gap d = 1 − cos θ (physics::brdf::ln_cos_from_gap).
+// ln(cos θ) from the gap d = 1 − cos θ: −2 atanh(d / (2 − d)) as a series
+// below 0.1 (physics::brdf::ln_cos_from_gap).
 fn ln_cos_from_gap(gap: f32) -> f32 {
-    if gap < 1e-3 {
-        let d = gap;
-        return -(d * (1.0 + d * (0.5 + d * (1.0 / 3.0 + d * (0.25 + d * 0.2)))));
+    if gap < 0.1 {
+        let x = gap / (2.0 - gap);
+        let x2 = x * x;
+        let tail = 1.0 / 7.0 + x2 * (1.0 / 9.0 + x2 * (1.0 / 11.0 + x2 * (1.0 / 13.0)));
+        return -2.0 * x * (1.0 + x2 * (1.0 / 3.0 + x2 * (0.2 + x2 * tail)));
     }
     return log(1.0 - gap);
 }
@@ -146,6 +149,25 @@ fn blinn_phong(n: vec3<f32>, l: vec3<f32>, o: vec3<f32>, k: f32, m: f32, norm: u
     return vec2<f32>(diffuse, (1.0 - k) * norm_factor(norm, m) * lobe(cos_h, gap, m));
 }
 
+// Where the light is seen from a surface point (physics::radiometry::incidence).
+struct LightIncidence {
+    // Unit direction towards the light; the normal when the light is on the point.
+    l: vec3<f32>,
+    // Distance to the light (m), clamped to MIN_LIGHT_DISTANCE_M.
+    r: f32,
+    // n·l, signed.
+    cos_theta: f32,
+}
+
+fn light_incidence(to_light: vec3<f32>, n: vec3<f32>) -> LightIncidence {
+    let r2 = dot(to_light, to_light);
+    var l = n;
+    if r2 > 0.0 {
+        l = to_light * (1.0 / sqrt(r2));
+    }
+    return LightIncidence(l, max(sqrt(r2), MIN_LIGHT_DISTANCE_M), dot(n, l));
+}
+
 // E = I max(0, cos θ) / r² (physics::radiometry::point_irradiance).
 fn point_irradiance(intensity: f32, cos_theta: f32, r_m: f32) -> f32 {
     let r = max(r_m, MIN_LIGHT_DISTANCE_M);
@@ -180,8 +202,20 @@ fn sphere_irradiance(power_w: f32, radius_m: f32, cos_theta_in: f32, r_m: f32) -
     let x = sqrt(1.0 / sin2_alpha - 1.0);
     let y = clamp(-x * cos_theta / sin_theta, -1.0, 1.0);
     let s = sin_theta * sqrt(max(1.0 - y * y, 0.0));
-    let form = (cos_theta * acos(y) - x * s) * sin2_alpha + atan(s / x);
+    // Snyder's F rewritten so that its terms do not cancel for a small sphere.
+    let t = s / x;
+    let form = sin2_alpha * (cos_theta * acos(y) + t) - t_minus_atan(t);
     return sphere_radiance(power_w, radius_m) * max(form, 0.0);
+}
+
+// t − atan t without cancellation (physics::radiometry::t_minus_atan).
+fn t_minus_atan(t: f32) -> f32 {
+    if t < 0.05 {
+        let t2 = t * t;
+        let tail = 1.0 / 11.0 - t2 * (1.0 / 13.0 - t2 * (1.0 / 15.0));
+        return t * t2 * (1.0 / 3.0 - t2 * (0.2 - t2 * (1.0 / 7.0 - t2 * (1.0 / 9.0 - t2 * tail))));
+    }
+    return t - atan(t);
 }
 
 // The sRGB transfer of a linear value clamped to [0, 1] (physics::display::srgb_encode).

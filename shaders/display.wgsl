@@ -4,7 +4,8 @@
 @group(0) @binding(0) var quantity: texture_2d<f32>;
 @group(0) @binding(1) var aux: texture_2d<f32>;
 @group(0) @binding(2) var comparison: texture_2d<f32>;
-@group(0) @binding(3) var shadow_depth: texture_depth_2d_array;
+// The light's depth map read as plain floats (GLSL cannot load depth textures).
+@group(0) @binding(3) var shadow_depth: texture_2d_array<f32>;
 @group(0) @binding(4) var<uniform> shadow: Shadow;
 @group(0) @binding(5) var<uniform> params: DisplayParams;
 @group(0) @binding(6) var<storage, read> scale: array<u32, 4>;
@@ -66,7 +67,7 @@ fn depth_view(position: vec2<f32>) -> vec3<f32> {
     }
     let res = shadow.misc.x;
     let texel = vec2<i32>(fract(local) * res);
-    let d = textureLoad(shadow_depth, texel, i32(layer), 0);
+    let d = textureLoad(shadow_depth, texel, i32(layer), 0).x;
     if d <= 0.0 {
         return grey(0.0);
     }
@@ -103,12 +104,12 @@ fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
             color = ramp(q.x / scale_max(), false);
         }
         case VIEW_BRDF: {
-            // Four decades below the largest value, log scale.
-            color = ramp(1.0 + log2(max(q.x, 1e-30) / scale_max()) / (4.0 * log2(10.0)), false);
+            // Two decades below the largest value, log scale.
+            color = ramp(1.0 + log2(max(q.x, 1e-30) / scale_max()) / (2.0 * log2(10.0)), false);
         }
         case VIEW_TEXEL_DENSITY: {
             // log2 of texels per pixel in [−4, 4]: under 1 (red) is magnified and aliased.
-            color = ramp(0.5 + log2(max(q.x, 1e-6)) / 8.0, true);
+            color = ramp(0.5 - log2(max(q.x, 1e-6)) / 8.0, true);
         }
         case VIEW_REF_VISIBILITY: {
             if has_reference {

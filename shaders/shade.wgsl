@@ -12,6 +12,9 @@
 @group(1) @binding(1) var shadow_compare: sampler_comparison;
 @group(1) @binding(2) var moments: texture_2d_array<f32>;
 @group(1) @binding(3) var moments_sampler: sampler;
+// The same depth texture read as plain floats: GLSL cannot textureLoad a
+// depth texture, so the software filters read it through this binding.
+@group(1) @binding(4) var shadow_depth_values: texture_2d_array<f32>;
 
 struct VsIn {
     @location(0) position: vec3<f32>,
@@ -108,7 +111,7 @@ fn make_receiver(p_l: vec3<f32>, n: vec3<f32>, cos_theta: f32) -> Receiver {
 }
 
 fn stored_depth(layer: u32, texel: vec2<i32>) -> f32 {
-    let d = textureLoad(shadow_depth, texel, i32(layer), 0);
+    let d = textureLoad(shadow_depth_values, texel, i32(layer), 0).x;
     let depth = shadow.layers[layer].depth;
     // d = 0 is the cleared far plane: nothing drawn there.
     return select(linear_depth(d, depth.z, depth.w), 3.0e38, d <= 0.0);
@@ -306,7 +309,12 @@ fn filter_moments(r: Receiver) -> f32 {
     return min(p_pos, p_neg);
 }
 
+// V ∈ [0, 1]: filter weights sum to one only up to rounding.
 fn visibility(r: Receiver, pixel: vec2<f32>) -> f32 {
+    return clamp(filtered_visibility(r, pixel), 0.0, 1.0);
+}
+
+fn filtered_visibility(r: Receiver, pixel: vec2<f32>) -> f32 {
     switch shadow.mode.w {
         case FILTER_NONE: { return depth_test(r, vec2<i32>(floor(r.tc))); }
         case FILTER_HW2X2: { return filter_hw2x2(r); }
@@ -333,14 +341,10 @@ fn fs(in: VsOut) -> FsOut {
         n = -n;
     }
 
-    let to_light = globals.light_rel.xyz - in.rel;
-    let r2 = dot(to_light, to_light);
-    var l = n;
-    if r2 > 0.0 {
-        l = to_light * (1.0 / sqrt(r2));
-    }
-    let r = max(sqrt(r2), MIN_LIGHT_DISTANCE_M);
-    let cos_theta = dot(n, l);
+    let incidence = light_incidence(globals.light_rel.xyz - in.rel, n);
+    let l = incidence.l;
+    let r = incidence.r;
+    let cos_theta = incidence.cos_theta;
 
     // The facet's own normal: the tangent plane the shadow map really holds
     // (the interpolated normal of a curved mesh is not that plane).

@@ -1,17 +1,23 @@
 //! lumlab: a desktop lighting lab for direct lighting.
 //!
 //! `physics` holds the formulas (no GPU, no UI, no files); `settings` every
-//! user-settable value; `scene` what is drawn; `cli` the command line.
+//! user-settable value; `scene` what is drawn; `cli` the command line;
+//! `stability` the hard cases where direct lighting breaks numerically;
+//! `app` the window (the only module that knows egui); `presets` the
+//! lecture's experiments.
 
 #[macro_use]
 mod named;
 
+pub mod app;
 pub mod cli;
 pub mod gpu;
 pub mod image_io;
 pub mod output;
 pub mod physics;
 pub mod plot;
+pub mod presets;
 pub mod reference;
 pub mod scene;
 pub mod settings;
+pub mod stability;

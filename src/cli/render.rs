@@ -57,7 +57,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         );
     }
     match format {
-        ImageFormat::Png => write_png_rgba8(&args.out, &renderer.read_display())?,
+        ImageFormat::Png => {
+            let image = renderer.read_display();
+            let legend = crate::gpu::colormap::legend(settings.view.mode, renderer.read_scale());
+            match legend {
+                Some(legend) => write_png_rgba8(&args.out, &crate::plot::with_legend(&image, &legend)?)?,
+                None => write_png_rgba8(&args.out, &image)?,
+            }
+        }
         ImageFormat::Exr => {
             let texels = renderer.read_quantity();
             let flat: Vec<f32> = texels.iter().flatten().copied().collect();

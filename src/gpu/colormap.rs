@@ -47,3 +47,56 @@ pub fn wgsl() -> String {
         list(&DIVERGING)
     )
 }
+
+/// How a false-colour view maps values to its ramp, for a legend.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Legend {
+    pub title: String,
+    pub ramp: &'static [[f32; 3]; STOPS],
+    /// Positions along the ramp (0 … 1) and their labels.
+    pub ticks: Vec<(f32, String)>,
+}
+
+/// A short number for a tick label.
+fn short(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if (1e-3..1e4).contains(&x.abs()) {
+        format!("{}", (x * 1e3).round() / 1e3)
+    } else {
+        format!("{x:.2e}")
+    }
+}
+
+/// The legend of a false-colour view whose largest value is `scale` (as the
+/// display shader maps it), or None for views shown in grey or radiance.
+pub fn legend(view: crate::settings::DebugView, scale: f32) -> Option<Legend> {
+    use crate::settings::DebugView as V;
+    let scale = scale.max(1e-30) as f64;
+    let quarters = [0.0_f32, 0.25, 0.5, 0.75, 1.0];
+    let ticks = |label: &dyn Fn(f32) -> String| quarters.iter().map(|&t| (t, label(t))).collect();
+    let legend = match view {
+        V::Irradiance => Legend {
+            title: "irradiance E·V (W/m²)".into(),
+            ramp: &SEQUENTIAL,
+            ticks: ticks(&|t| short(t as f64 * scale)),
+        },
+        V::Brdf => Legend {
+            title: "BRDF f_r / c (1/sr), log scale".into(),
+            ramp: &SEQUENTIAL,
+            ticks: ticks(&|t| short(scale * 10f64.powf(2.0 * (t as f64 - 1.0)))),
+        },
+        V::TexelDensity => Legend {
+            title: "shadow-map texels per pixel (red: magnified, aliased)".into(),
+            ramp: &DIVERGING,
+            ticks: ticks(&|t| short(2f64.powf(8.0 * (0.5 - t as f64)))),
+        },
+        V::Error => Legend {
+            title: "signed error of luminance L − L_ref (W/m²/sr)".into(),
+            ramp: &DIVERGING,
+            ticks: ticks(&|t| short((2.0 * t as f64 - 1.0) * scale)),
+        },
+        _ => return None,
+    };
+    Some(legend)
+}

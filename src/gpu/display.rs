@@ -45,7 +45,7 @@ impl DisplayPass {
                 binding::texture(
                     3,
                     fragment,
-                    wgpu::TextureSampleType::Depth,
+                    wgpu::TextureSampleType::Float { filterable: false },
                     wgpu::TextureViewDimension::D2Array,
                 ),
                 binding::uniform(4, fragment),
@@ -157,15 +157,10 @@ impl DisplayPass {
         );
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("display"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: inputs.target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::BLACK),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
+            color_attachments: &[binding::color_attachment(
+                inputs.target,
+                wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+            )],
             depth_stencil_attachment: None,
             timestamp_writes,
             occlusion_query_set: None,
@@ -174,6 +169,11 @@ impl DisplayPass {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &group, &[]);
         pass.draw(0..3, 0..1);
+    }
+
+    /// The buffer holding the last view's scale (an f32 in its first 4 bytes).
+    pub fn scale_buffer(&self) -> &wgpu::Buffer {
+        &self.scale
     }
 
     /// The largest value of the last displayed view (its false-colour scale).

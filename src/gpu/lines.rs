@@ -134,23 +134,8 @@ impl FrustumOverlay {
     ) {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("frustum overlay"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Load,
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
+            color_attachments: &[binding::color_attachment(target, wgpu::LoadOp::Load)],
+            depth_stencil_attachment: binding::depth_attachment(depth, wgpu::LoadOp::Load),
             timestamp_writes: None,
             occlusion_query_set: None,
             multiview_mask: None,

@@ -19,4 +19,4 @@ pub mod timing;
 pub mod uniforms;
 
 pub use context::{GpuContext, GpuError};
-pub use renderer::{ComparisonImage, FrameReport, Renderer};
+pub use renderer::{ComparisonImage, FloatTarget, FrameReport, PendingScale, PendingTexels, Renderer};

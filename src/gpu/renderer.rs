@@ -6,7 +6,7 @@
 use super::display::{DISPLAY_FORMAT, DisplayInputs, DisplayPass};
 use super::light_frustum::{Frustum, LayoutKind, ShadowLayout, select_casters};
 use super::lines::FrustumOverlay;
-use super::readback::read_texture;
+use super::readback::{PendingRead, ReadState, read_texture};
 use super::scene_buffers::GpuScene;
 use super::shade::ShadePass;
 use super::shadow::{DEPTH_FORMAT, MapKind, ShadowPass, ShadowTextures, allowed_resolution};
@@ -28,6 +28,8 @@ pub struct Capabilities {
     /// VSM/EVSM moments: Rgba32Float where renderable and filterable.
     pub moments_format: wgpu::TextureFormat,
     pub timestamps: bool,
+    /// The GL backend decides a texture's kind from its layer count.
+    pub gl: bool,
 }
 
 impl Capabilities {
@@ -52,6 +54,18 @@ impl Capabilities {
             hdr_format: pick(f32_ok),
             moments_format: pick(f32_ok && device.features().contains(wgpu::Features::FLOAT32_FILTERABLE)),
             timestamps: device.features().contains(wgpu::Features::TIMESTAMP_QUERY),
+            gl: adapter.get_info().backend == wgpu::Backend::Gl,
+        }
+    }
+
+    /// Layers to allocate for a 2D array of `n`: on GL a single layer makes a
+    /// plain 2D texture and six square layers a cube map, neither of which
+    /// binds as a 2D array, so GL gets one more layer (unused).
+    pub fn array_layers(&self, n: u32) -> u32 {
+        if self.gl && (n == 1 || n.is_multiple_of(6)) {
+            n + 1
+        } else {
+            n
         }
     }
 
@@ -105,6 +119,9 @@ impl FrameReport {
         }
     }
 }
+
+/// Texels by which cube faces overlap: the widest kernel (PCSS, 48) and two more.
+const CUBE_MARGIN_TEXELS: f64 = 50.0;
 
 /// What the shadow map was drawn for: when it is unchanged, so is the map.
 #[derive(Clone, Debug, PartialEq)]
@@ -207,16 +224,21 @@ impl Renderer {
         let shadow = ShadowPass::new(device, caps.moments_format);
         shadow.init(queue);
         let mut shade = ShadePass::new(device, caps.hdr_format);
-        let gpu_scene = GpuScene::new(device, queue, scene);
+        let gpu_scene = GpuScene::new(device, queue, scene, &caps);
         shade.set_scene(device, &gpu_scene, &shadow.uniform);
-        let dummy_moments = ShadowTextures::new(device, 1, 1, Some(wgpu::TextureFormat::Rgba16Float))
-            .moments
-            .map(|m| m.array)
-            .expect("moments requested");
+        let dummy_moments = ShadowTextures::new(
+            device,
+            1,
+            caps.array_layers(1),
+            Some(wgpu::TextureFormat::Rgba16Float),
+        )
+        .moments
+        .map(|m| m.array)
+        .expect("moments requested");
         Self {
             overlay: FrustumOverlay::new(device, &shade.globals),
             display: DisplayPass::new(device),
-            shadow_textures: ShadowTextures::new(device, 256, 1, None),
+            shadow_textures: ShadowTextures::new(device, 256, caps.array_layers(1), None),
             timer: GpuTimer::new(device, queue),
             device: device.clone(),
             queue: queue.clone(),
@@ -239,7 +261,7 @@ impl Renderer {
 
     /// Uploads another scene; the shadow map will be redrawn.
     pub fn set_scene(&mut self, scene: &Scene) {
-        self.scene = GpuScene::new(&self.device, &self.queue, scene);
+        self.scene = GpuScene::new(&self.device, &self.queue, scene, &self.caps);
         self.shade
             .set_scene(&self.device, &self.scene, &self.shadow.uniform);
         self.scene_generation += 1;
@@ -395,23 +417,28 @@ impl Renderer {
             self.shadow_key = None;
             return raw;
         }
-        let kernel_texels = match s.filter {
-            Filter::Pcf => s.pcf_size as f32 / 2.0 + 1.0,
-            Filter::Poisson => s.poisson_radius_texels + 1.0,
-            Filter::Pcss => 49.0,
-            Filter::Vsm | Filter::Evsm => s.vsm_blur_texels as f32 + 1.0,
-            Filter::None | Filter::Hw2x2 => 1.0,
-        };
         let layers = match ShadowLayout::fit(light, &self.scene.bounds, 0.0).kind {
             LayoutKind::Single => 1,
             LayoutKind::Cube => 6,
         };
-        let (resolution, note) =
-            allowed_resolution(s.resolution, self.caps.max_texture_side, layers, moments_format);
-        let margin = (kernel_texels as f64 + 2.0) / resolution as f64;
+        let (resolution, note) = allowed_resolution(
+            s.resolution,
+            self.caps.max_texture_side,
+            self.caps.array_layers(layers),
+            moments_format,
+        );
+        // Cube faces overlap by the widest filter kernel so taps near a face's
+        // edge stay on it; taps off a single frustum see no geometry (lit).
+        // The margin does not depend on the filter, so that switching between
+        // depth filters reuses the map.
+        let margin = if layers == 6 {
+            CUBE_MARGIN_TEXELS / resolution as f64
+        } else {
+            0.0
+        };
         let layout = ShadowLayout::fit(light, &self.scene.bounds, margin);
         let casters = select_casters(&layout, &self.scene.caster_bounds, visible_bounds);
-        let texture_layers = layout.layers.len() as u32;
+        let texture_layers = self.caps.array_layers(layout.layers.len() as u32);
         if self.shadow_textures.resolution != resolution
             || self.shadow_textures.layers != texture_layers
             || self.shadow_textures.moments.is_some() != moments_format.is_some()
@@ -518,7 +545,10 @@ impl Renderer {
         let shadow_group = self
             .shade
             .shadow_group(&self.device, &self.shadow_textures, &self.dummy_moments);
-        let writes = self.timer.as_mut().map(|t| t.writes(Pass::Shade, true, true));
+        let writes = self
+            .timer
+            .as_mut()
+            .and_then(|t| t.writes(Pass::Shade, true, true));
         self.shade.encode(
             &mut encoder,
             &self.scene,
@@ -538,7 +568,10 @@ impl Renderer {
             target: &targets.display_view,
             size: targets.size,
         };
-        let writes = self.timer.as_mut().map(|t| t.writes(Pass::Display, true, true));
+        let writes = self
+            .timer
+            .as_mut()
+            .and_then(|t| t.writes(Pass::Display, true, true));
         self.display.encode(&self.device, &mut encoder, &inputs, writes);
         if settings.view.mode == DebugView::Frustum && report.layout.is_some() {
             self.overlay
@@ -577,14 +610,50 @@ impl Renderer {
     fn read_float_target(&self, texture: &wgpu::Texture) -> Vec<[f32; 4]> {
         let bytes_per_texel = texture.format().block_copy_size(None).unwrap_or(16);
         let bytes = read_texture(&self.device, &self.queue, texture, 0, bytes_per_texel);
-        if bytes_per_texel == 16 {
-            bytemuck::cast_slice(&bytes).to_vec()
-        } else {
-            bytemuck::cast_slice::<u8, [u16; 4]>(&bytes)
-                .iter()
-                .map(|h| h.map(|x| half::f16::from_bits(x).to_f32()))
-                .collect()
+        decode_float_texels(&bytes, bytes_per_texel)
+    }
+
+    /// Starts reading a rectangle of the last frame's quantity or aux target
+    /// without blocking (the app's pixel probe and error statistics); None
+    /// before the first frame or when the rectangle leaves the image.
+    pub fn request_texels(
+        &self,
+        target: FloatTarget,
+        origin: (u32, u32),
+        size: (u32, u32),
+    ) -> Option<PendingTexels> {
+        let t = self.targets.as_ref()?;
+        let fits = |o: u32, s: u32, side: u32| s > 0 && o.checked_add(s).is_some_and(|end| end <= side);
+        if !(fits(origin.0, size.0, t.size.0) && fits(origin.1, size.1, t.size.1)) {
+            return None;
         }
+        let texture = match target {
+            FloatTarget::Quantity => &t.quantity,
+            FloatTarget::Aux => &t.aux,
+        };
+        let bytes_per_texel = texture.format().block_copy_size(None).unwrap_or(16);
+        Some(PendingTexels {
+            read: PendingRead::texture_region(
+                &self.device,
+                &self.queue,
+                texture,
+                origin,
+                size,
+                bytes_per_texel,
+            ),
+            bytes_per_texel,
+        })
+    }
+
+    /// Starts reading the last false-colour scale (see [`Self::read_scale`])
+    /// without blocking.
+    pub fn request_scale(&self) -> PendingScale {
+        PendingScale(PendingRead::buffer(
+            &self.device,
+            &self.queue,
+            self.display.scale_buffer(),
+            16,
+        ))
     }
 
     /// The last frame's view quantity, row-major from the top (W/m²/sr for `shaded`).
@@ -613,6 +682,68 @@ impl Renderer {
     /// The largest value of the last false-colour view (its scale).
     pub fn read_scale(&self) -> f32 {
         self.display.read_scale(&self.device, &self.queue)
+    }
+}
+
+/// The frame's float targets that can be read back.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FloatTarget {
+    /// The view's quantity (radiance L in W/m²/sr for `shaded`).
+    Quantity,
+    /// V, shadow-map texels per pixel, max(0, n·l), coverage.
+    Aux,
+}
+
+/// Texels on their way back (see [`Renderer::request_texels`]).
+pub struct PendingTexels {
+    read: PendingRead,
+    bytes_per_texel: u32,
+}
+
+impl PendingTexels {
+    /// The texels, row-major from the top of the rectangle, once they are here.
+    pub fn poll(&self) -> ReadState<Vec<[f32; 4]>> {
+        match self.read.poll() {
+            ReadState::Ready(bytes) => ReadState::Ready(decode_float_texels(&bytes, self.bytes_per_texel)),
+            ReadState::Waiting => ReadState::Waiting,
+            ReadState::Failed => ReadState::Failed,
+        }
+    }
+}
+
+/// A false-colour scale on its way back (see [`Renderer::request_scale`]).
+pub struct PendingScale(PendingRead);
+
+impl PendingScale {
+    pub fn poll(&self) -> ReadState<f32> {
+        match self.0.poll() {
+            ReadState::Ready(bytes) if bytes.len() >= 4 => {
+                ReadState::Ready(f32::from_bits(u32::from_le_bytes([
+                    bytes[0], bytes[1], bytes[2], bytes[3],
+                ])))
+            }
+            ReadState::Waiting => ReadState::Waiting,
+            _ => ReadState::Failed,
+        }
+    }
+}
+
+/// RGBA texels from Rgba32Float (16 bytes) or Rgba16Float (8 bytes) rows.
+fn decode_float_texels(bytes: &[u8], bytes_per_texel: u32) -> Vec<[f32; 4]> {
+    if bytes_per_texel == 16 {
+        bytes
+            .chunks_exact(16)
+            .map(|t| {
+                std::array::from_fn(|c| {
+                    f32::from_le_bytes([t[4 * c], t[4 * c + 1], t[4 * c + 2], t[4 * c + 3]])
+                })
+            })
+            .collect()
+    } else {
+        bytes
+            .chunks_exact(8)
+            .map(|t| std::array::from_fn(|c| half::f16::from_le_bytes([t[2 * c], t[2 * c + 1]]).to_f32()))
+            .collect()
     }
 }
 

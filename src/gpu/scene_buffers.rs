@@ -66,7 +66,12 @@ pub struct GpuScene {
 }
 
 impl GpuScene {
-    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> Self {
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        scene: &Scene,
+        caps: &super::renderer::Capabilities,
+    ) -> Self {
         let mut vertices = Vec::new();
         let mut indices: Vec<u32> = Vec::new();
         let mut draws = Vec::with_capacity(scene.objects.len());
@@ -99,7 +104,7 @@ impl GpuScene {
                 usage,
             })
         };
-        let (textures, layer_of) = upload_textures(device, queue, scene);
+        let (textures, layer_of) = upload_textures(device, queue, scene, caps);
         let mut materials: Vec<MaterialRaw> = scene
             .materials
             .iter()
@@ -181,7 +186,12 @@ impl GpuScene {
 
 /// Every base-colour texture resampled to one square size as a layer of an
 /// sRGB texture array; returns the array and each texture's layer.
-fn upload_textures(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> (wgpu::Texture, Vec<u32>) {
+fn upload_textures(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &Scene,
+    caps: &super::renderer::Capabilities,
+) -> (wgpu::Texture, Vec<u32>) {
     let max_layers = device.limits().max_texture_array_layers as usize;
     let used = &scene.textures[..scene.textures.len().min(max_layers)];
     let side = used
@@ -190,7 +200,7 @@ fn upload_textures(device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) ->
         .max()
         .unwrap_or(1)
         .clamp(1, MAX_TEXTURE_SIDE);
-    let layers = used.len().max(1) as u32;
+    let layers = caps.array_layers(used.len().max(1) as u32);
     let texture = device.create_texture(&wgpu::TextureDescriptor {
         label: Some("base colour textures"),
         size: wgpu::Extent3d {

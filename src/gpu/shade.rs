@@ -56,6 +56,12 @@ impl ShadePass {
                     wgpu::TextureViewDimension::D2Array,
                 ),
                 binding::sampler(3, fragment, wgpu::SamplerBindingType::Filtering),
+                binding::texture(
+                    4,
+                    fragment,
+                    wgpu::TextureSampleType::Float { filterable: false },
+                    wgpu::TextureViewDimension::D2Array,
+                ),
             ],
         );
         let pipeline_layout =
@@ -152,6 +158,7 @@ impl ShadePass {
                 wgpu::BindingResource::Sampler(&self.compare_sampler),
                 wgpu::BindingResource::TextureView(moments),
                 wgpu::BindingResource::Sampler(&self.moments_sampler),
+                wgpu::BindingResource::TextureView(&shadow.depth_array),
             ],
         )
     }
@@ -168,28 +175,14 @@ impl ShadePass {
         visible: &[usize],
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
-        let target = |view| {
-            Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })
-        };
+        let clear = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("camera pass"),
-            color_attachments: &[target(quantity), target(aux)],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(0.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
+            color_attachments: &[
+                binding::color_attachment(quantity, clear),
+                binding::color_attachment(aux, clear),
+            ],
+            depth_stencil_attachment: binding::depth_attachment(depth, wgpu::LoadOp::Clear(0.0)),
             timestamp_writes,
             occlusion_query_set: None,
             multiview_mask: None,

@@ -13,16 +13,19 @@ pub enum Shader {
     Reduce,
     Display,
     Lines,
+    /// The hard-case grid of `lumlab stability` (a compute pass).
+    Stability,
 }
 
 impl Shader {
-    pub const ALL: [Shader; 6] = [
+    pub const ALL: [Shader; 7] = [
         Self::Shadow,
         Self::Blur,
         Self::Shade,
         Self::Reduce,
         Self::Display,
         Self::Lines,
+        Self::Stability,
     ];
 
     pub fn name(self) -> &'static str {
@@ -33,6 +36,7 @@ impl Shader {
             Self::Reduce => "reduce.wgsl",
             Self::Display => "display.wgsl",
             Self::Lines => "lines.wgsl",
+            Self::Stability => "stability.wgsl",
         }
     }
 
@@ -44,6 +48,7 @@ impl Shader {
             Self::Reduce => include_str!("../../shaders/reduce.wgsl"),
             Self::Display => include_str!("../../shaders/display.wgsl"),
             Self::Lines => include_str!("../../shaders/lines.wgsl"),
+            Self::Stability => include_str!("../../shaders/stability.wgsl"),
         }
     }
 

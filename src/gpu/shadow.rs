@@ -286,24 +286,14 @@ impl ShadowPass {
             .collect();
         for (n, &layer) in active.iter().enumerate() {
             let moments = textures.moments.as_ref().zip(moments_clear);
-            let color = moments.map(|(m, clear)| wgpu::RenderPassColorAttachment {
-                view: &m.layers[layer],
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color {
-                        r: clear[0],
-                        g: clear[1],
-                        b: clear[2],
-                        a: clear[3],
-                    }),
-                    store: wgpu::StoreOp::Store,
-                },
+            let color = moments.map(|(m, clear)| {
+                let [r, g, b, a] = clear;
+                binding::color_attachment(&m.layers[layer], wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a }))
             });
-            let color_attachments = [color];
+            let color_attachments = [color.flatten()];
             let timestamp_writes = timer
                 .as_deref_mut()
-                .map(|t| t.writes(Pass::Shadow, n == 0, n + 1 == active.len()));
+                .and_then(|t| t.writes(Pass::Shadow, n == 0, n + 1 == active.len()));
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("shadow layer"),
                 color_attachments: if moments.is_some() {
@@ -311,15 +301,11 @@ impl ShadowPass {
                 } else {
                     &[]
                 },
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &textures.depth_layers[layer],
-                    depth_ops: Some(wgpu::Operations {
-                        // Reversed Z: 0 is the far plane, "nothing here".
-                        load: wgpu::LoadOp::Clear(0.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
+                // Reversed Z: 0 is the far plane, "nothing here".
+                depth_stencil_attachment: binding::depth_attachment(
+                    &textures.depth_layers[layer],
+                    wgpu::LoadOp::Clear(0.0),
+                ),
                 timestamp_writes,
                 occlusion_query_set: None,
                 multiview_mask: None,
@@ -439,18 +425,13 @@ impl BlurPass {
                 let index = 2 * n + direction;
                 let timestamp_writes = timer
                     .as_deref_mut()
-                    .map(|t| t.writes(Pass::Blur, index == 0, index + 1 == steps));
+                    .and_then(|t| t.writes(Pass::Blur, index == 0, index + 1 == steps));
                 let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                     label: Some("moment blur"),
-                    color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                        view: target,
-                        depth_slice: None,
-                        resolve_target: None,
-                        ops: wgpu::Operations {
-                            load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                            store: wgpu::StoreOp::Store,
-                        },
-                    })],
+                    color_attachments: &[binding::color_attachment(
+                        target,
+                        wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    )],
                     depth_stencil_attachment: None,
                     timestamp_writes,
                     occlusion_query_set: None,

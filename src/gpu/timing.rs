@@ -95,30 +95,22 @@ impl GpuTimer {
     /// Timestamp writes for a render or compute pass: `first` and `last` say
     /// whether this pass begins or ends the timed span (a span may cover
     /// several passes, e.g. the six cube faces).
-    pub fn writes(&mut self, pass: Pass, first: bool, last: bool) -> wgpu::RenderPassTimestampWrites<'_> {
-        let i = pass as u32;
-        if last {
-            self.written[i as usize] = true;
-        }
-        wgpu::RenderPassTimestampWrites {
-            query_set: &self.queries,
-            beginning_of_pass_write_index: first.then_some(2 * i),
-            end_of_pass_write_index: last.then_some(2 * i + 1),
-        }
-    }
-
-    pub fn compute_writes(
+    /// None for the passes in the middle of a span (wgpu wants at least one index).
+    pub fn writes(
         &mut self,
         pass: Pass,
         first: bool,
         last: bool,
-    ) -> wgpu::ComputePassTimestampWrites<'_> {
-        let w = self.writes(pass, first, last);
-        wgpu::ComputePassTimestampWrites {
-            query_set: w.query_set,
-            beginning_of_pass_write_index: w.beginning_of_pass_write_index,
-            end_of_pass_write_index: w.end_of_pass_write_index,
+    ) -> Option<wgpu::RenderPassTimestampWrites<'_>> {
+        let i = pass as u32;
+        if last {
+            self.written[i as usize] = true;
         }
+        (first || last).then_some(wgpu::RenderPassTimestampWrites {
+            query_set: &self.queries,
+            beginning_of_pass_write_index: first.then_some(2 * i),
+            end_of_pass_write_index: last.then_some(2 * i + 1),
+        })
     }
 
     /// Resolves the queries and copies them for reading, unless the previous

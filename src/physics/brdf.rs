@@ -1,6 +1,8 @@
 //! The lab's BRDF: a Lambert term mixed with a Blinn-Phong lobe,
 //!
-//!     f_r(l, o) = c · ( k / π + (1 − k) · N(m) · cos^m θ_h ),
+//! ```text
+//! f_r(l, o) = c · ( k / π + (1 − k) · N(m) · cos^m θ_h ),
+//! ```
 //!
 //! with h = normalize(l + o) and cos θ_h = max(0, n·h). The normalization N(m)
 //! is a user choice so that its effect on energy can be seen.
@@ -77,14 +79,20 @@ impl<S: Real> BrdfTerms<S> {
     }
 }
 
-/// ln(cos θ) from the gap d = 1 − cos θ ∈ [0, 1), accurate for tiny d where
-/// ln(cos θ) itself would round to 0. A short series stands in for log1p,
-/// which WGSL lacks; the shader uses the same code.
+/// ln(cos θ) from the gap d = 1 − cos θ ∈ [0, 1), accurate for small d where
+/// ln(1 − d) would lose the digits of d in the subtraction. With x = d/(2 − d),
+/// 1 − d = (1 − x)/(1 + x), so ln(1 − d) = −2 atanh x = −2 (x + x³/3 + x⁵/5 + …),
+/// a series that stands in for log1p (which WGSL lacks) up to d = 0.1; the
+/// shader uses the same code. Beyond, ln(1 − d) is exact enough: the lobe
+/// m ln cos θ only stays visible there for m < 70, so its error stays below 70 ε.
 pub fn ln_cos_from_gap<S: Real>(gap: S) -> S {
-    if gap < S::lit(1e-3) {
-        // ln(1 − d) = −(d + d²/2 + d³/3 + d⁴/4 + d⁵/5), error below d⁶/6.
-        let d = gap;
-        -(d * (S::one() + d * (S::lit(0.5) + d * (S::lit(1.0 / 3.0) + d * (S::lit(0.25) + d * S::lit(0.2))))))
+    if gap < S::lit(0.1) {
+        // x ≤ 0.053: the terms up to x¹³/13 leave an error below x¹⁵/15 ≈ 5e-16 x.
+        let x = gap / (S::lit(2.0) - gap);
+        let x2 = x * x;
+        let lit = S::lit;
+        let tail = lit(1.0 / 7.0) + x2 * (lit(1.0 / 9.0) + x2 * (lit(1.0 / 11.0) + x2 * lit(1.0 / 13.0)));
+        -lit(2.0) * x * (S::one() + x2 * (lit(1.0 / 3.0) + x2 * (lit(0.2) + x2 * tail)))
     } else {
         (S::one() - gap).ln()
     }
@@ -244,9 +252,22 @@ mod tests {
 
     #[test]
     fn ln_cos_series_matches_ln() {
-        for &d in &[1e-12_f64, 1e-6, 5e-4, 9.99e-4, 1e-3, 0.2] {
+        for &d in &[1e-12_f64, 1e-6, 5e-4, 9.99e-4, 1e-3, 0.05, 0.0999, 0.1, 0.2] {
             let exact = (-d).ln_1p();
             assert!((ln_cos_from_gap(d) / exact - 1.0).abs() < 1e-15, "{d}");
+        }
+    }
+
+    #[test]
+    fn lobe_keeps_its_precision_in_f32_between_narrow_and_wide() {
+        // m = 5000 is still visible at d = 1e-3 … 1.4e-3, where ln(1 − d)
+        // in f32 would cost m × 6e-8 = 3e-4 of relative error.
+        let m = 5000.0;
+        for i in 0..200 {
+            let d32 = 1e-3_f32 + 2e-6 * i as f32;
+            let exact = (m * (-(d32 as f64)).ln_1p()).exp();
+            let f32v = lobe(1.0 - d32, d32, m as f32) as f64;
+            assert!((f32v / exact - 1.0).abs() < 2e-6, "d = {d32}: {f32v} vs {exact}");
         }
     }
 }

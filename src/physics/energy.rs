@@ -1,6 +1,8 @@
 //! Energy conservation: the directional albedo of the BRDF,
 //!
-//!     a(θ_i) = ∫_{Ω+} f_r(l, o) cos θ_o dω_o   (with c = 1),
+//! ```text
+//! a(θ_i) = ∫_{Ω+} f_r(l, o) cos θ_o dω_o   (with c = 1),
+//! ```
 //!
 //! by deterministic adaptive quadrature. A BRDF conserves energy only if
 //! a(θ_i) ≤ 1 for every θ_i.

@@ -97,8 +97,28 @@ pub fn sphere_irradiance<S: Real>(power_w: S, radius_m: S, cos_theta: S, r_m: S)
     let x = (one / sin2_alpha - one).sqrt();
     let y = (-x * cos_theta / sin_theta).max(-one).min(one);
     let s = sin_theta * (one - y * y).max(zero).sqrt();
-    let form = (cos_theta * y.acos() - x * s) * sin2_alpha + (s / x).atan();
+    // Snyder's F = (cos θ acos y − x s) sin²α + atan(s / x). With t = s / x and
+    // x² sin²α = 1 − sin²α it is F = sin²α (cos θ acos y + t) − (t − atan t):
+    // the form Snyder's terms take without cancelling each other, which for a
+    // small sphere (α → 0) would leave rounding noise of order α instead of
+    // a value of order α³.
+    let t = s / x;
+    let form = sin2_alpha * (cos_theta * y.acos() + t) - t_minus_atan(t);
     sphere_radiance(power_w, radius_m) * form.max(zero)
+}
+
+/// t − atan t for t ≥ 0 without cancellation: below 0.05 its series
+/// t³/3 − t⁵/5 + … + t¹⁵/15 (truncation below t¹⁷/17), above it directly.
+pub fn t_minus_atan<S: Real>(t: S) -> S {
+    if t < S::lit(0.05) {
+        let t2 = t * t;
+        let lit = S::lit;
+        let tail = lit(1.0 / 11.0) - t2 * (lit(1.0 / 13.0) - t2 * lit(1.0 / 15.0));
+        t * t2
+            * (lit(1.0 / 3.0) - t2 * (lit(0.2) - t2 * (lit(1.0 / 7.0) - t2 * (lit(1.0 / 9.0) - t2 * tail))))
+    } else {
+        t - t.atan()
+    }
 }
 
 #[cfg(test)]
@@ -187,6 +207,33 @@ mod tests {
             sphere_irradiance(power, radius, (125.0_f64).to_radians().cos(), r),
             0.0
         );
+    }
+
+    #[test]
+    fn a_tiny_sphere_straddling_the_horizon_keeps_its_precision_in_f32() {
+        // R/r = 1e-4: F is of order α³ while Snyder's separate terms are of
+        // order α; written as they are, f32 got E wrong by a factor of ten.
+        let (power, radius, r) = (1.0_f64, 1e-4, 1.0);
+        let scale = point_irradiance(intensity(power), 1.0, r);
+        for fraction in [-0.9, -0.5, 0.0, 0.5, 0.9] {
+            let cos32 = (fraction * radius / r) as f32;
+            let e64 = sphere_irradiance(power, radius, cos32 as f64, r);
+            let e32 = sphere_irradiance(power as f32, radius as f32, cos32, r as f32);
+            assert!(e64 > 0.0 && e64 < scale * radius, "{fraction}: {e64}");
+            assert!(
+                (e32 as f64 - e64).abs() < 1e-3 * e64,
+                "{fraction}: f32 {e32} vs f64 {e64}"
+            );
+        }
+    }
+
+    #[test]
+    fn t_minus_atan_is_continuous_at_its_switch() {
+        let below = t_minus_atan(0.05_f64 - 1e-12);
+        let direct = (0.05_f64 - 1e-12) - (0.05_f64 - 1e-12).atan();
+        assert!((below / direct - 1.0).abs() < 1e-12);
+        let series = 1e-9 / 3.0 - 1e-15 / 5.0 + 1e-21 / 7.0;
+        assert!((t_minus_atan(1e-3_f64) / series - 1.0).abs() < 1e-14);
     }
 
     #[test]

@@ -6,10 +6,15 @@
 
 pub mod bounds;
 pub mod camera;
+pub mod default_scene;
+pub mod facts;
+pub mod gltf;
 pub mod shapes;
+pub mod stress;
 
 pub use bounds::Aabb;
 pub use camera::Camera;
+pub use facts::{NormalsPresence, ObjectFacts, SceneFacts, SourceInfo};
 
 use crate::settings::Settings;
 use glam::{Vec2, Vec3, Vec4};
@@ -22,6 +27,54 @@ use thiserror::Error;
 pub enum SceneError {
     #[error("cannot load scene '{path}': {message}")]
     Invalid { path: PathBuf, message: String },
+    #[error("cannot read scene '{path}': {source}")]
+    Read { path: PathBuf, source: std::io::Error },
+    #[error("cannot load scene '{path}': {problem}")]
+    Load { path: PathBuf, problem: LoadProblem },
+}
+
+impl SceneError {
+    /// What went wrong, for callers that react to the kind of problem.
+    pub fn problem(&self) -> Option<&LoadProblem> {
+        match self {
+            SceneError::Load { problem, .. } => Some(problem),
+            _ => None,
+        }
+    }
+}
+
+/// Why a file could not be turned into a scene (one line each).
+#[derive(Clone, Debug, Error, PartialEq)]
+pub enum LoadProblem {
+    /// Neither glTF JSON nor a binary glTF container.
+    #[error("not a glTF file: {0}")]
+    NotGltf(String),
+    /// A GLB container whose chunks do not fit its bytes.
+    #[error("truncated or corrupt GLB: {0}")]
+    BadGlb(String),
+    /// A buffer or image the file names cannot be read.
+    #[error("{what} cannot be read: {reason}")]
+    MissingData { what: String, reason: String },
+    /// An index, offset or length points outside what it refers to.
+    #[error("{what}: {detail}")]
+    OutOfRange { what: String, detail: String },
+    /// A value the format does not allow.
+    #[error("{what}: {detail}")]
+    InvalidValue { what: String, detail: String },
+    #[error("it requires the extension {0}, which the lab does not support")]
+    UnsupportedExtension(String),
+    #[error("it defines no scene and no node")]
+    NoScene,
+    #[error("{0}")]
+    NoMesh(String),
+    /// Every triangle was degenerate or had a non-finite corner.
+    #[error("nothing to draw: {0}")]
+    NothingToDraw(String),
+    #[error("too large: {0}")]
+    TooLarge(String),
+    /// The glTF library or the loader panicked; caught so the lab stays up.
+    #[error("internal error while reading it ({0})")]
+    Internal(String),
 }
 
 /// The scene the settings name: their glTF/GLB file, or the built-in scene.
@@ -32,46 +85,15 @@ pub fn for_settings(settings: &Settings) -> Result<Scene, SceneError> {
     }
 }
 
-/// Loads a glTF or GLB file.
+/// Loads a glTF (`.gltf` with external or embedded data) or GLB file.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    Err(SceneError::Invalid {
-        path: path.to_owned(),
-        message: "glTF loading is not implemented yet".into(),
-    })
+    gltf::load(path)
 }
 
-/// The built-in scene (a stand-in until the generated asset lands).
+/// The built-in scene: `assets/default_scene.glb`, built by
+/// [`default_scene::build`] and embedded in the binary.
 pub fn default_scene() -> Scene {
-    use shapes::{cuboid, ground, sphere};
-    let materials = vec![
-        Material {
-            name: "ground".into(),
-            base_color: Vec4::new(0.75, 0.75, 0.75, 1.0),
-            ..Material::default()
-        },
-        Material {
-            name: "red".into(),
-            base_color: Vec4::new(0.8, 0.15, 0.1, 1.0),
-            ..Material::default()
-        },
-    ];
-    let objects = vec![
-        Object::new("ground", ground(Vec3::ZERO, 12.0), 0),
-        Object::new(
-            "box",
-            cuboid(Aabb {
-                min: Vec3::new(-0.5, 0.0, -0.5),
-                max: Vec3::new(0.5, 1.0, 0.5),
-            }),
-            1,
-        ),
-        Object::new("sphere", sphere(Vec3::new(1.8, 0.5, 0.6), 0.5, 48, 24), 1),
-    ];
-    Scene {
-        objects,
-        materials,
-        ..Scene::default()
-    }
+    default_scene::load_embedded()
 }
 
 /// A flattened scene.
@@ -84,6 +106,9 @@ pub struct Scene {
     pub cameras: Vec<SceneCamera>,
     /// What was repaired or skipped while loading, one line each.
     pub warnings: Vec<String>,
+    /// What the file defines beyond the flattened objects (counts, the
+    /// bounds of points and lines); `None` for scenes built in code.
+    pub source: Option<SourceInfo>,
 }
 
 /// One mesh primitive instance, in world space.
@@ -107,7 +132,9 @@ pub struct Mesh {
     pub positions: Vec<Vec3>,
     /// Unit normals, one per position.
     pub normals: Vec<Vec3>,
-    /// Texture coordinates (set 0), one per position; zeros when the file has none.
+    /// Texture coordinates, one per position: the set the material's base
+    /// colour texture samples (set 0 but for rare files); zeros when the
+    /// file has none.
     pub uvs: Vec<Vec2>,
     /// Three indices per triangle.
     pub indices: Vec<u32>,
@@ -135,7 +162,7 @@ pub struct Material {
     pub name: String,
     /// Linear RGBA (glTF baseColorFactor).
     pub base_color: Vec4,
-    /// Index into [`Scene::textures`], multiplied with `base_color`, sampled by uv set 0.
+    /// Index into [`Scene::textures`], multiplied with `base_color`, sampled at the mesh's uvs.
     pub base_color_texture: Option<usize>,
     /// The material's own diffuse/specular mix, if it gives one.
     pub k: Option<f32>,

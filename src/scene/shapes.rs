@@ -22,6 +22,15 @@ impl Mesh {
             .extend([base, base + 1, base + 2, base, base + 2, base + 3]);
     }
 
+    /// Adds `other`'s triangles to this mesh.
+    pub fn append(&mut self, other: &Mesh) {
+        let base = self.positions.len() as u32;
+        self.positions.extend_from_slice(&other.positions);
+        self.normals.extend_from_slice(&other.normals);
+        self.uvs.extend_from_slice(&other.uvs);
+        self.indices.extend(other.indices.iter().map(|i| base + i));
+    }
+
     /// The mesh with every position moved by `transform` (normals by its
     /// inverse transpose); a mirroring transform keeps the faces front-facing.
     pub fn transformed(&self, transform: Mat4) -> Mesh {
@@ -65,8 +74,52 @@ pub fn ground(center: Vec3, size: f32) -> Mesh {
     mesh
 }
 
+/// The same square split into `cells` × `cells` quads: small triangles keep
+/// the rasterizer's f32 interpolation of positions precise.
+pub fn ground_grid(center: Vec3, size: f32, cells: u32) -> Mesh {
+    let mut mesh = Mesh::default();
+    let step = size / cells as f32;
+    let origin = center - Vec3::new(0.5 * size, 0.0, 0.5 * size);
+    for i in 0..cells {
+        for j in 0..cells {
+            let a = origin + Vec3::new(i as f32 * step, 0.0, (j + 1) as f32 * step);
+            mesh.push_quad(
+                [
+                    a,
+                    a + Vec3::X * step,
+                    a + Vec3::new(step, 0.0, -step),
+                    a - Vec3::Z * step,
+                ],
+                Vec3::Y,
+            );
+        }
+    }
+    mesh
+}
+
 /// An axis-aligned box with flat faces.
 pub fn cuboid(bounds: Aabb) -> Mesh {
+    cuboid_faces(bounds, |_| true)
+}
+
+/// A horizontal slab of side `size` and `thickness` whose top, at
+/// `top_center`, is split into `cells` × `cells` quads: a ground that is a
+/// closed box, precise under the rasterizer.
+pub fn ground_slab(top_center: Vec3, size: f32, thickness: f32, cells: u32) -> Mesh {
+    let h = 0.5 * size;
+    let mut mesh = ground_grid(top_center, size, cells);
+    mesh.append(&cuboid_faces(
+        Aabb {
+            min: top_center + Vec3::new(-h, -thickness, -h),
+            max: top_center + Vec3::new(h, 0.0, h),
+        },
+        |normal| normal != Vec3::Y,
+    ));
+    mesh
+}
+
+/// The faces of an axis-aligned box whose outward normal `keep` accepts.
+fn cuboid_faces(bounds: Aabb, keep: impl Fn(Vec3) -> bool) -> Mesh {
     let c = bounds.corners();
     let mut mesh = Mesh::default();
     // Corner i has x from bit 0, y from bit 1, z from bit 2.
@@ -78,7 +131,7 @@ pub fn cuboid(bounds: Aabb) -> Mesh {
         ([4, 5, 7, 6], Vec3::Z),
         ([1, 0, 2, 3], Vec3::NEG_Z),
     ];
-    for (idx, normal) in faces {
+    for (idx, normal) in faces.into_iter().filter(|&(_, n)| keep(n)) {
         mesh.push_quad(idx.map(|i| c[i]), normal);
     }
     mesh
@@ -182,12 +235,23 @@ mod tests {
     #[test]
     fn shapes_wind_counter_clockwise_towards_their_normals() {
         assert_outward(&ground(Vec3::ZERO, 2.0));
+        assert_outward(&ground_grid(Vec3::ZERO, 2.0, 3));
         assert_outward(&cuboid(Aabb {
             min: Vec3::ZERO,
             max: Vec3::ONE,
         }));
         assert_outward(&sphere(Vec3::ONE, 0.5, 16, 8));
         assert_outward(&cylinder(Vec3::ZERO, 0.3, 1.0, 12));
+    }
+
+    #[test]
+    fn the_ground_slab_is_a_closed_box_with_a_fine_top() {
+        let slab = ground_slab(Vec3::ZERO, 2.0, 0.1, 3);
+        assert_outward(&slab);
+        assert_eq!(slab.triangle_count(), 2 * 3 * 3 + 2 * 5);
+        let bounds = Aabb::from_points(slab.positions.iter().copied());
+        assert_eq!(bounds.max, Vec3::new(1.0, 0.0, 1.0));
+        assert_eq!(bounds.min, Vec3::new(-1.0, -0.1, -1.0));
     }
 
     #[test]

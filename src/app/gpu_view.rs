@@ -1,0 +1,370 @@
+//! The renderers behind the viewport: one per half of the split view, each
+//! drawing into its own display texture, which egui shows as a native
+//! texture (no CPU round trip). A half re-renders only when what it shows
+//! changed: its settings, the image size, the scene or the reference.
+
+use super::probe::{GpuSample, quantity_is_radiance};
+use crate::gpu::readback::ReadState;
+use crate::gpu::renderer::Capabilities;
+use crate::gpu::timing::PassTimes;
+use crate::gpu::{ComparisonImage, FloatTarget, FrameReport, PendingScale, PendingTexels, Renderer};
+use crate::presets::Half;
+use crate::scene::Scene;
+use crate::settings::{DebugView, Settings};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// What a frame was rendered from: when it is unchanged, so is the image.
+#[derive(Clone, PartialEq)]
+struct RenderKey {
+    settings: Settings,
+    size: (u32, u32),
+    scene_generation: u64,
+    comparison_generation: u64,
+}
+
+/// One half of the viewport: a renderer and the texture egui shows.
+pub struct HalfView {
+    renderer: Renderer,
+    /// egui samples user textures as sRGB-encoded values (Rgba8Unorm), the
+    /// renderer writes Rgba8UnormSrgb: the bytes are copied on the GPU into
+    /// this texture so that they reach the screen unchanged.
+    shown: Option<wgpu::Texture>,
+    texture: Option<egui::TextureId>,
+    rendered: Option<RenderKey>,
+    scene_generation: u64,
+    comparison_generation: u64,
+    /// A reference image is set (the error views have something to show).
+    pub has_comparison: bool,
+    /// The last frame's report.
+    pub report: FrameReport,
+    /// GPU time of each pass of the latest timed frame.
+    pub times: Option<PassTimes>,
+    /// GPU time of the last frame that drew the shadow map (and its blur).
+    pub last_shadow_ms: Option<f64>,
+    /// CPU time of the last `render` call (encoding and submitting).
+    pub render_cpu_ms: f64,
+    /// Frames rendered so far (the lab renders only on change).
+    pub renders: u64,
+    /// Until when to keep polling for the last frame's GPU times.
+    times_due: Option<Instant>,
+    /// The false-colour scale of the displayed frame, once read back.
+    pub scale: Option<f32>,
+    pending_scale: Option<PendingScale>,
+}
+
+/// A pixel of a half being read back for the probe.
+pub struct PendingProbe {
+    view: DebugView,
+    aux: PendingTexels,
+    quantity: PendingTexels,
+    aux_value: Option<[f32; 4]>,
+    quantity_value: Option<[f32; 4]>,
+}
+
+/// The whole frame of half A, read back for the error statistics.
+pub struct PendingFrame {
+    quantity: PendingTexels,
+    aux: PendingTexels,
+    quantity_value: Option<Vec<[f32; 4]>>,
+    aux_value: Option<Vec<[f32; 4]>>,
+}
+
+pub struct GpuViews {
+    render_state: egui_wgpu::RenderState,
+    halves: [Option<HalfView>; 2],
+    scene_generation: u64,
+    caps: Capabilities,
+}
+
+impl GpuViews {
+    pub fn new(render_state: egui_wgpu::RenderState, scene: &Scene) -> Self {
+        let a = HalfView::new(&render_state, scene, 0);
+        let caps = a.renderer.capabilities().clone();
+        Self {
+            render_state,
+            halves: [Some(a), None],
+            scene_generation: 0,
+            caps,
+        }
+    }
+
+    pub fn capabilities(&self) -> &Capabilities {
+        &self.caps
+    }
+
+    pub fn backend(&self) -> String {
+        format!("{:?}", self.render_state.adapter.get_info().backend)
+    }
+
+    pub fn half(&self, half: Half) -> Option<&HalfView> {
+        self.halves[half as usize].as_ref()
+    }
+
+    /// Uploads a new scene to every renderer.
+    pub fn set_scene(&mut self, scene: &Scene) {
+        self.scene_generation += 1;
+        for h in self.halves.iter_mut().flatten() {
+            h.renderer.set_scene(scene);
+            h.scene_generation = self.scene_generation;
+        }
+    }
+
+    /// Creates the B renderer when the split view is on, drops it when off
+    /// (its shadow map can be large).
+    pub fn set_split(&mut self, on: bool, scene: &Scene) {
+        let b = &mut self.halves[Half::B as usize];
+        match (on, b.is_some()) {
+            (true, false) => *b = Some(HalfView::new(&self.render_state, scene, self.scene_generation)),
+            (false, true) => {
+                if let Some(view) = b.take()
+                    && let Some(id) = view.texture
+                {
+                    self.render_state.renderer.write().free_texture(&id);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// The reference image a half compares with; `generation` changes with it.
+    pub fn set_comparison(&mut self, half: Half, image: Option<&Arc<ComparisonImage>>, generation: u64) {
+        if let Some(h) = &mut self.halves[half as usize]
+            && h.comparison_generation != generation
+        {
+            h.renderer.set_comparison(image.map(|i| (**i).clone()));
+            h.comparison_generation = generation;
+            h.has_comparison = image.is_some();
+        }
+    }
+
+    /// Renders a half if what it shows changed; true when it did.
+    pub fn prepare(&mut self, half: Half, settings: &Settings, size: (u32, u32)) -> bool {
+        let Some(h) = &mut self.halves[half as usize] else {
+            return false;
+        };
+        let key = RenderKey {
+            settings: settings.clone(),
+            size,
+            scene_generation: h.scene_generation,
+            comparison_generation: h.comparison_generation,
+        };
+        if h.rendered.as_ref() == Some(&key) {
+            return false;
+        }
+        let start = Instant::now();
+        h.report = h.renderer.render(settings, size);
+        h.render_cpu_ms = start.elapsed().as_secs_f64() * 1e3;
+        h.renders += 1;
+        if self.caps.timestamps {
+            h.times_due = Some(Instant::now() + Duration::from_secs(1));
+        }
+        h.rendered = Some(key);
+        h.scale = None;
+        h.pending_scale = None;
+        if super::legend::for_view(settings.view.mode, Some(1.0)).is_some() {
+            h.pending_scale = Some(h.renderer.request_scale());
+        }
+        h.show_texture(&self.render_state);
+        true
+    }
+
+    /// The texture showing a half's last frame.
+    pub fn texture(&self, half: Half) -> Option<egui::TextureId> {
+        self.halves[half as usize].as_ref().and_then(|h| h.texture)
+    }
+
+    /// Collects timings and scales without blocking; true while some are still on their way.
+    pub fn poll(&mut self) -> bool {
+        let mut waiting = false;
+        for h in self.halves.iter_mut().flatten() {
+            if let Some(t) = h.renderer.poll_timings() {
+                if let Some(shadow) = t.shadow_ms {
+                    h.last_shadow_ms = Some(shadow + t.blur_ms.unwrap_or(0.0));
+                }
+                h.times = Some(t);
+                h.times_due = None;
+            }
+            if h.times_due.is_some_and(|due| Instant::now() > due) {
+                h.times_due = None;
+            }
+            waiting |= h.times_due.is_some();
+            if let Some(pending) = &h.pending_scale {
+                match pending.poll() {
+                    ReadState::Waiting => waiting = true,
+                    ReadState::Ready(s) => {
+                        h.scale = Some(s);
+                        h.pending_scale = None;
+                    }
+                    ReadState::Failed => h.pending_scale = None,
+                }
+            }
+        }
+        waiting
+    }
+
+    /// Starts reading pixel `pixel` of a half's last frame for the probe.
+    pub fn request_probe(&self, half: Half, pixel: (u32, u32)) -> Option<PendingProbe> {
+        let h = self.half(half)?;
+        let view = h.rendered.as_ref()?.settings.view.mode;
+        Some(PendingProbe {
+            view,
+            aux: h.renderer.request_texels(FloatTarget::Aux, pixel, (1, 1))?,
+            quantity: h.renderer.request_texels(FloatTarget::Quantity, pixel, (1, 1))?,
+            aux_value: None,
+            quantity_value: None,
+        })
+    }
+
+    /// Starts reading half A's whole frame (quantity and aux).
+    pub fn request_frame(&self) -> Option<PendingFrame> {
+        let h = self.half(Half::A)?;
+        let size = h.rendered.as_ref()?.size;
+        Some(PendingFrame {
+            quantity: h.renderer.request_texels(FloatTarget::Quantity, (0, 0), size)?,
+            aux: h.renderer.request_texels(FloatTarget::Aux, (0, 0), size)?,
+            quantity_value: None,
+            aux_value: None,
+        })
+    }
+
+    /// Frames rendered by a half so far.
+    pub fn renders(&self, half: Half) -> u64 {
+        self.half(half).map_or(0, |h| h.renders)
+    }
+
+    /// A half's renderer (exports read from A).
+    pub fn renderer(&self, half: Half) -> Option<&Renderer> {
+        self.half(half).map(|h| &h.renderer)
+    }
+}
+
+impl HalfView {
+    pub fn renderer(&self) -> &Renderer {
+        &self.renderer
+    }
+
+    fn new(render_state: &egui_wgpu::RenderState, scene: &Scene, scene_generation: u64) -> Self {
+        Self {
+            renderer: Renderer::new(
+                &render_state.adapter,
+                &render_state.device,
+                &render_state.queue,
+                scene,
+            ),
+            shown: None,
+            texture: None,
+            rendered: None,
+            scene_generation,
+            comparison_generation: 0,
+            has_comparison: false,
+            report: FrameReport::default(),
+            times: None,
+            last_shadow_ms: None,
+            render_cpu_ms: 0.0,
+            renders: 0,
+            times_due: None,
+            scale: None,
+            pending_scale: None,
+        }
+    }
+
+    /// Copies the renderer's display texture into the one egui shows, and
+    /// points egui at it (a new texture whenever the size changed).
+    fn show_texture(&mut self, render_state: &egui_wgpu::RenderState) {
+        let Some(display) = self.renderer.display_texture() else {
+            return;
+        };
+        let device = &render_state.device;
+        let size = display.size();
+        let recreate = self.shown.as_ref().is_none_or(|t| t.size() != size);
+        if recreate {
+            self.shown = Some(device.create_texture(&wgpu::TextureDescriptor {
+                label: Some("lumlab display (egui)"),
+                size,
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba8Unorm,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            }));
+        }
+        let Some(shown) = &self.shown else { return };
+        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+            label: Some("lumlab display copy"),
+        });
+        // Same bytes, formats that differ only in their sRGB flag: a plain copy.
+        encoder.copy_texture_to_texture(display.as_image_copy(), shown.as_image_copy(), size);
+        render_state.queue.submit([encoder.finish()]);
+        if !recreate && self.texture.is_some() {
+            return;
+        }
+        let view = shown.create_view(&wgpu::TextureViewDescriptor::default());
+        let mut renderer = render_state.renderer.write();
+        // Nearest: the image is rendered at the viewport's pixel size, one texel per pixel.
+        let filter = wgpu::FilterMode::Nearest;
+        match self.texture {
+            Some(id) => renderer.update_egui_texture_from_wgpu_texture(device, &view, filter, id),
+            None => self.texture = Some(renderer.register_native_texture(device, &view, filter)),
+        }
+    }
+}
+
+impl PendingProbe {
+    /// The GPU's values at the pixel once both reads are back.
+    pub fn poll(&mut self) -> ReadState<GpuSample> {
+        for (pending, slot) in [
+            (&self.aux, &mut self.aux_value),
+            (&self.quantity, &mut self.quantity_value),
+        ] {
+            if slot.is_none() {
+                match pending.poll() {
+                    ReadState::Waiting => {}
+                    ReadState::Ready(texels) => *slot = Some(texels.first().copied().unwrap_or_default()),
+                    ReadState::Failed => return ReadState::Failed,
+                }
+            }
+        }
+        match (self.aux_value, self.quantity_value) {
+            (Some(aux), Some(quantity)) => ReadState::Ready(GpuSample {
+                visibility: aux[0],
+                texel_density: aux[1],
+                radiance: quantity_is_radiance(self.view).then_some([quantity[0], quantity[1], quantity[2]]),
+            }),
+            _ => ReadState::Waiting,
+        }
+    }
+}
+
+/// Half A's quantity and aux targets, row-major from the top.
+pub struct FrameTexels {
+    pub quantity: Vec<[f32; 4]>,
+    pub aux: Vec<[f32; 4]>,
+}
+
+impl PendingFrame {
+    /// Both targets once they are back.
+    pub fn poll(&mut self) -> ReadState<FrameTexels> {
+        for (pending, slot) in [
+            (&self.quantity, &mut self.quantity_value),
+            (&self.aux, &mut self.aux_value),
+        ] {
+            if slot.is_none() {
+                match pending.poll() {
+                    ReadState::Waiting => {}
+                    ReadState::Ready(texels) => *slot = Some(texels),
+                    ReadState::Failed => return ReadState::Failed,
+                }
+            }
+        }
+        match (self.quantity_value.take(), self.aux_value.take()) {
+            (Some(quantity), Some(aux)) => ReadState::Ready(FrameTexels { quantity, aux }),
+            (quantity, aux) => {
+                self.quantity_value = quantity;
+                self.aux_value = aux;
+                ReadState::Waiting
+            }
+        }
+    }
+}

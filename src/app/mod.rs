@@ -1,0 +1,180 @@
+//! The lab's window: an eframe app on the wgpu renderer, with our own device
+//! (the adapter's real limits and timestamp queries). The only module that
+//! knows egui and eframe.
+//!
+//! Layout: the settings panels on the left (one file each: `light`,
+//! `material`, `shadow`, `view`, plus presets and `files`), the analysis on
+//! the right (`probe`, `energy`, `reference`, `timings`), the renderer's
+//! image in the middle (`viewport`, drawn by `gpu_view`). What is persisted
+//! (`state`) is kept apart from every GPU object.
+
+mod camera_control;
+mod energy;
+mod files;
+mod gpu_view;
+mod help;
+mod lab;
+mod legend;
+mod light;
+mod material;
+mod probe;
+mod raycast;
+mod reference;
+mod shadow;
+mod state;
+mod timings;
+mod undo;
+mod view;
+mod viewport;
+mod widgets;
+
+pub use lab::LabApp;
+pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
+pub use reference::{ErrorStats, JobControl, ReferenceFn};
+pub use state::State;
+
+use crate::scene::Scene;
+use crate::settings::Settings;
+use anyhow::Context;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
+
+/// A panel: draws itself into a `Ui`, changing what it borrows.
+pub trait View {
+    fn ui(&mut self, ui: &mut egui::Ui);
+}
+
+/// What the command line asks of the window.
+#[derive(Clone, Debug, Default)]
+pub struct LaunchOptions {
+    /// `--settings FILE`: start from these settings instead of the stored ones.
+    pub settings: Option<PathBuf>,
+    /// `--scene FILE`: open this glTF/GLB.
+    pub scene: Option<PathBuf>,
+    /// `--screenshot FILE.png`: save a screenshot of the window, then quit.
+    pub screenshot: Option<PathBuf>,
+    /// `--quit-after-frames N`: quit (or take the screenshot) after N frames.
+    pub quit_after_frames: Option<u32>,
+}
+
+impl LaunchOptions {
+    /// Frames before a scripted screenshot when `--quit-after-frames` is not given.
+    pub const DEFAULT_SCREENSHOT_FRAMES: u32 = 3;
+
+    /// A scripted run (screenshot or a frame count) neither reads nor
+    /// writes the stored state, so that it is reproducible.
+    pub fn is_scripted(&self) -> bool {
+        self.screenshot.is_some() || self.quit_after_frames.is_some()
+    }
+}
+
+/// What the flags name, loaded before any window opens so that a bad file
+/// is a one-line error.
+pub struct Preloaded {
+    pub settings: Option<Settings>,
+    pub scene: Option<(PathBuf, Scene)>,
+}
+
+/// Reads the settings and scene files the options name.
+pub fn preload(options: &LaunchOptions) -> anyhow::Result<Preloaded> {
+    let mut settings = match &options.settings {
+        Some(path) => Some(Settings::load(path)?),
+        None => None,
+    };
+    let scene_path = options
+        .scene
+        .clone()
+        .or_else(|| settings.as_ref().and_then(|s| s.scene.clone()));
+    let scene = match scene_path {
+        Some(path) => {
+            let scene = crate::scene::load(&path)?;
+            if let Some(s) = &mut settings {
+                s.scene = Some(path.clone());
+            }
+            Some((path, scene))
+        }
+        None => None,
+    };
+    if let Some(path) = &options.screenshot {
+        match crate::image_io::ImageFormat::of_path(path)? {
+            crate::image_io::ImageFormat::Png => {}
+            crate::image_io::ImageFormat::Exr => {
+                anyhow::bail!("--screenshot '{}' must end in .png", path.display())
+            }
+        }
+    }
+    Ok(Preloaded { settings, scene })
+}
+
+/// Hint appended to the errors that keep the window from opening.
+const HEADLESS_HINT: &str = "for images without a window use 'lumlab render --out FILE.png'";
+
+/// Fails early, with one clear line, when there is no display to open a window on.
+fn check_display() -> anyhow::Result<()> {
+    if cfg!(target_os = "linux") {
+        let set = |name: &str| std::env::var_os(name).is_some_and(|v| !v.is_empty());
+        if !set("DISPLAY") && !set("WAYLAND_DISPLAY") {
+            anyhow::bail!("no display (DISPLAY and WAYLAND_DISPLAY are unset); {HEADLESS_HINT}");
+        }
+    }
+    Ok(())
+}
+
+/// Opens the lab and runs until its window closes.
+pub fn run(options: LaunchOptions) -> anyhow::Result<()> {
+    let preloaded = preload(&options)?;
+    check_display()?;
+    // No adapter: say so (and what to install) before eframe tries.
+    crate::gpu::context::pick_adapter(&crate::gpu::context::instance())
+        .map_err(|e| anyhow::anyhow!("{e}; {HEADLESS_HINT}"))?;
+
+    let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
+    setup.instance_descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+    setup.device_descriptor = Arc::new(crate::gpu::context::device_descriptor);
+    let scripted = options.is_scripted();
+    let native = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title("lumlab — lighting lab")
+            .with_inner_size([1280.0, 800.0])
+            .with_min_inner_size([480.0, 320.0])
+            .with_drag_and_drop(true),
+        wgpu_options: egui_wgpu::WgpuConfiguration {
+            wgpu_setup: egui_wgpu::WgpuSetup::CreateNew(setup),
+            ..Default::default()
+        },
+        persist_window: !scripted,
+        ..Default::default()
+    };
+    let outcome: Arc<Mutex<Option<String>>> = Arc::default();
+    let app_outcome = Arc::clone(&outcome);
+    eframe::run_native(
+        "lumlab",
+        native,
+        Box::new(move |cc| {
+            let app = LabApp::new(
+                cc.wgpu_render_state.clone(),
+                cc.storage,
+                &options,
+                preloaded,
+                app_outcome,
+            )
+            .map_err(|e| -> Box<dyn std::error::Error + Send + Sync> { e.into() })?;
+            Ok(Box::new(app))
+        }),
+    )
+    .map_err(|e| {
+        anyhow::anyhow!(
+            "cannot open the lab window: {}; {HEADLESS_HINT}",
+            one_line(&e.to_string())
+        )
+    })?;
+    let failure = outcome.lock().ok().and_then(|mut o| o.take());
+    match failure {
+        Some(message) => Err(anyhow::anyhow!(message)).context("scripted run"),
+        None => Ok(()),
+    }
+}
+
+fn one_line(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}

@@ -1,0 +1,380 @@
+//! The pixel probe: click a pixel and see every term of L = f_r · E · V there,
+//! with units and formulas. The geometry comes from casting the pixel's ray
+//! on the CPU; the terms from `physics` in f64; V from the renderer's aux
+//! target (read back without blocking) and, when computed, from the CPU
+//! reference.
+
+use super::raycast::{self, Hit};
+use super::widgets::{number, quantity, rgb, value_row, vector};
+use crate::gpu::ComparisonImage;
+use crate::physics::{BrdfParams, Normalization, brdf, radiometry};
+use crate::presets::Half;
+use crate::scene::{Camera, Scene};
+use crate::settings::{DebugView, Settings};
+use glam::DVec3;
+
+/// A probed pixel of one half of the image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProbePixel {
+    pub half: Half,
+    /// Pixel (i, j), row 0 at the top.
+    pub pixel: (u32, u32),
+    /// The image size it belongs to (pixels).
+    pub size: (u32, u32),
+}
+
+/// Every term of the rendering equation at the probed point (c = the
+/// material's colour; all in f64 through `physics`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProbeTerms {
+    pub object: String,
+    pub material: String,
+    pub hit: Hit,
+    /// Shading normal, turned to the viewer on double-sided materials.
+    pub n: DVec3,
+    /// Unit direction to the light, l = (q − p) / r.
+    pub l: DVec3,
+    /// Unit direction to the eye.
+    pub o: DVec3,
+    /// Half vector, None when l + o = 0.
+    pub h: Option<DVec3>,
+    /// Distance to the light's centre (m).
+    pub r_m: f64,
+    /// n·l, signed.
+    pub cos_theta: f64,
+    /// I = Φ / 4π (W/sr).
+    pub intensity_w_sr: f64,
+    /// E (W/m²), the sphere light's closed form (the point light's when R = 0).
+    pub irradiance_w_m2: f64,
+    pub k: f64,
+    pub m: f64,
+    pub norm: Normalization,
+    /// f_r / c split into k/π and (1 − k) N(m) cos^m θ_h (1/sr).
+    pub brdf: brdf::BrdfTerms<f64>,
+    /// The BRDF colour c (linear RGB).
+    pub color: DVec3,
+    /// The base colour is multiplied by a texture the probe does not sample.
+    pub textured: bool,
+    /// The light's colour (linear RGB factors of Φ).
+    pub light_color: DVec3,
+}
+
+impl ProbeTerms {
+    /// L / V = c · colour · E · (f_d + f_s) (W/m²/sr): the radiance if fully lit.
+    pub fn unshadowed_radiance(&self) -> DVec3 {
+        self.color * self.light_color * (self.irradiance_w_m2 * self.brdf.total())
+    }
+}
+
+/// The terms at pixel (i, j) of an image of `size` pixels rendered with
+/// `settings`, or None where the pixel's ray misses the scene.
+pub fn evaluate(
+    scene: &Scene,
+    settings: &Settings,
+    pixel: (u32, u32),
+    size: (u32, u32),
+) -> Option<ProbeTerms> {
+    let camera = Camera {
+        eye: settings.camera.eye,
+        target: settings.camera.target,
+        fovy_deg: settings.camera.fovy_deg,
+    };
+    let eye = camera.eye.as_dvec3();
+    let dir = camera.ray_direction(pixel.0 as f64 + 0.5, pixel.1 as f64 + 0.5, size.0, size.1);
+    let hit = raycast::cast(scene, eye, dir)?;
+    let object = scene.objects.get(hit.object)?;
+    let material = scene.material_of(object);
+    let o = (eye - hit.position).normalize_or(-dir);
+    let mut n = hit.normal;
+    if material.double_sided && n.dot(o) < 0.0 {
+        n = -n;
+    }
+    let q = settings.light.position.as_dvec3();
+    let incidence = radiometry::incidence(hit.position, n, q);
+    let power = settings.light.power_w as f64;
+    let m_settings = &settings.material;
+    let own = m_settings.use_scene_materials;
+    let k = material.k.filter(|_| own).unwrap_or(m_settings.k) as f64;
+    let m = material.m.filter(|_| own).unwrap_or(m_settings.m) as f64;
+    let params = BrdfParams {
+        k,
+        m,
+        norm: m_settings.norm,
+    };
+    let sum = incidence.l + o;
+    Some(ProbeTerms {
+        object: object.name.clone(),
+        material: material.name.clone(),
+        hit,
+        n,
+        l: incidence.l,
+        o,
+        h: (sum.length_squared() > 0.0).then(|| sum.normalize()),
+        r_m: incidence.r,
+        cos_theta: incidence.cos_theta,
+        intensity_w_sr: radiometry::intensity(power),
+        irradiance_w_m2: radiometry::sphere_irradiance(
+            power,
+            settings.light.radius_m as f64,
+            incidence.cos_theta,
+            incidence.r,
+        ),
+        k,
+        m,
+        norm: m_settings.norm,
+        brdf: brdf::blinn_phong(n, incidence.l, o, &params),
+        color: m_settings
+            .color_override
+            .unwrap_or_else(|| material.base_color.truncate())
+            .as_dvec3(),
+        textured: material.base_color_texture.is_some() && m_settings.color_override.is_none(),
+        light_color: settings.light.color.as_dvec3(),
+    })
+}
+
+/// What the GPU says at the probed pixel (from its aux and quantity targets).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GpuSample {
+    /// V from the shadow map.
+    pub visibility: f32,
+    /// Shadow-map texels per pixel.
+    pub texel_density: f32,
+    /// The GPU's L (W/m²/sr), when the view's quantity is the radiance.
+    pub radiance: Option<[f32; 3]>,
+}
+
+/// The reference's values at the probed pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ReferenceSample {
+    pub visibility: f32,
+    pub radiance: [f32; 3],
+    /// The reference was computed for other settings.
+    pub stale: bool,
+}
+
+impl ReferenceSample {
+    pub fn at(image: &ComparisonImage, pixel: (u32, u32), stale: bool) -> Option<Self> {
+        if pixel.0 >= image.width || pixel.1 >= image.height {
+            return None;
+        }
+        let t = image.texels.get((pixel.1 * image.width + pixel.0) as usize)?;
+        Some(Self {
+            visibility: t[3],
+            radiance: [t[0], t[1], t[2]],
+            stale,
+        })
+    }
+}
+
+/// Views whose quantity target holds the radiance L.
+pub fn quantity_is_radiance(view: DebugView) -> bool {
+    matches!(
+        view,
+        DebugView::Shaded | DebugView::Frustum | DebugView::RefVisibility | DebugView::Error
+    )
+}
+
+/// The probe's state: the pixel, its terms and the values read back.
+#[derive(Default)]
+pub struct Probe {
+    pub pixel: Option<ProbePixel>,
+    pub terms: Option<ProbeTerms>,
+    pub gpu: Option<GpuSample>,
+    pub reference: Option<ReferenceSample>,
+}
+
+impl Probe {
+    pub fn ui(&self, ui: &mut egui::Ui) {
+        let Some(pixel) = self.pixel else {
+            ui.label("Click a pixel of the image to see every term of L = f_r · E · V there.");
+            return;
+        };
+        let half = match pixel.half {
+            Half::A => "A",
+            Half::B => "B",
+        };
+        ui.label(format!(
+            "pixel ({}, {}) of {}×{}, half {half}",
+            pixel.pixel.0, pixel.pixel.1, pixel.size.0, pixel.size.1
+        ));
+        let Some(t) = &self.terms else {
+            ui.label("background: the pixel's ray meets no surface");
+            return;
+        };
+        ui.label(format!("{} — material {}", t.object, t.material));
+        egui::Grid::new("probe grid")
+            .num_columns(2)
+            .striped(true)
+            .show(ui, |ui| {
+                for (symbol, value, formula) in self.rows(t) {
+                    value_row(ui, symbol, &value, formula);
+                }
+            });
+    }
+
+    /// The probe's read-out: (symbol, value with unit, formula) per row.
+    pub fn rows(&self, t: &ProbeTerms) -> Vec<(&'static str, String, &'static str)> {
+        let theta_deg = t.cos_theta.clamp(-1.0, 1.0).acos().to_degrees();
+        let times_c = |x: f64| quantity(x, "1/sr  × c");
+        let mut rows = vec![
+            (
+                "p",
+                vector(t.hit.position, "m"),
+                "Where the pixel's ray meets the surface (m)",
+            ),
+            (
+                "n",
+                vector(t.n, ""),
+                "Unit shading normal (interpolated vertex normals)",
+            ),
+            (
+                "l",
+                vector(t.l, ""),
+                "l = (q − p) / r, unit direction to the light",
+            ),
+            ("o", vector(t.o, ""), "Unit direction to the eye"),
+            (
+                "r",
+                quantity(t.r_m, "m"),
+                "r = |q − p|, distance to the light's centre (m)",
+            ),
+            (
+                "cos θ",
+                format!("{}  (θ = {}°)", number(t.cos_theta), number(theta_deg)),
+                "cos θ = n·l; negative: the light is below the horizon",
+            ),
+            ("I", quantity(t.intensity_w_sr, "W/sr"), "I = Φ / 4π (W/sr)"),
+            (
+                "E",
+                quantity(t.irradiance_w_m2, "W/m²"),
+                "E = I · max(0, cos θ) / r² (W/m²); a sphere light straddling the horizon uses its closed form",
+            ),
+        ];
+        if let Some(h) = t.h {
+            rows.push((
+                "cos θ_h",
+                number(t.n.dot(h).max(0.0)),
+                "cos θ_h = max(0, n·h), h = normalize(l + o)",
+            ));
+        }
+        let texture_note = if t.textured {
+            "  × texture (not sampled)"
+        } else {
+            ""
+        };
+        rows.extend([
+            (
+                "k, m, N(m)",
+                format!(
+                    "{}, {}, {} ({})",
+                    number(t.k),
+                    number(t.m),
+                    number(t.norm.factor(t.m)),
+                    t.norm
+                ),
+                t.norm.formula(),
+            ),
+            ("f_d", times_c(t.brdf.diffuse), "f_d = c · k / π (1/sr)"),
+            (
+                "f_s",
+                times_c(t.brdf.specular),
+                "f_s = c · (1 − k) · N(m) · cos^m θ_h (1/sr)",
+            ),
+            ("f_r", times_c(t.brdf.total()), super::material::BRDF),
+            (
+                "c",
+                format!("{}{texture_note}", rgb(t.color, "")),
+                "The BRDF colour c (linear RGB)",
+            ),
+        ]);
+        match &self.gpu {
+            Some(g) => {
+                let l = t.unshadowed_radiance() * g.visibility as f64;
+                rows.extend([
+                    (
+                        "V (shadow map)",
+                        number(g.visibility as f64),
+                        "Visibility from the shadow map with the current filter and bias, V ∈ [0, 1]",
+                    ),
+                    (
+                        "texels/pixel",
+                        number(g.texel_density as f64),
+                        "Shadow-map texels per screen pixel: below 1 the map is magnified (aliasing)",
+                    ),
+                    (
+                        "L",
+                        rgb(l, "W/m²/sr"),
+                        "L = f_r · E · V · light colour (W/m²/sr), in f64 with the GPU's V",
+                    ),
+                ]);
+                if let Some(gpu_l) = g.radiance {
+                    let v = DVec3::from_array(gpu_l.map(f64::from));
+                    rows.push((
+                        "L (GPU)",
+                        rgb(v, "W/m²/sr"),
+                        "The renderer's radiance at this pixel (f32)",
+                    ));
+                }
+            }
+            None => rows.extend([
+                ("V (shadow map)", "…".into(), "Reading the renderer's aux target"),
+                (
+                    "L / V",
+                    rgb(t.unshadowed_radiance(), "W/m²/sr"),
+                    "L / V = f_r · E · light colour",
+                ),
+            ]),
+        }
+        match &self.reference {
+            Some(r) => {
+                let stale = if r.stale { "  (stale)" } else { "" };
+                let v = DVec3::from_array(r.radiance.map(f64::from));
+                rows.extend([
+                    (
+                        "V (reference)",
+                        format!("{}{stale}", number(r.visibility as f64)),
+                        "Visibility of the light from p, ray traced on the CPU (f64)",
+                    ),
+                    (
+                        "L (reference)",
+                        format!("{}{stale}", rgb(v, "W/m²/sr")),
+                        "The CPU reference's radiance",
+                    ),
+                ]);
+            }
+            None => rows.push((
+                "V (reference)",
+                "not computed".into(),
+                "Compute it in the Reference panel (F5)",
+            )),
+        }
+        rows
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ground_pixel_terms_match_the_formulas() {
+        let scene = crate::scene::default_scene();
+        let settings = Settings::default();
+        let size = (320, 200);
+        let t = evaluate(&scene, &settings, (40, 190), size).unwrap();
+        assert_eq!(t.object, "ground");
+        let q = settings.light.position.as_dvec3();
+        let r = (q - t.hit.position).length();
+        assert!((t.r_m - r).abs() < 1e-12);
+        let cos = (q - t.hit.position).normalize().y;
+        let e = settings.light.power_w as f64 / (4.0 * std::f64::consts::PI) * cos / (r * r);
+        assert!((t.irradiance_w_m2 / e - 1.0).abs() < 1e-12);
+        assert!((t.brdf.diffuse - t.k / std::f64::consts::PI).abs() < 1e-15);
+    }
+
+    #[test]
+    fn sky_pixels_have_no_terms() {
+        let scene = crate::scene::default_scene();
+        assert!(evaluate(&scene, &Settings::default(), (5, 2), (320, 200)).is_none());
+    }
+}

@@ -1,0 +1,136 @@
+//! What the app remembers between runs (eframe storage), apart from every
+//! GPU object: the settings, the split comparison, panel visibility and
+//! the paths last used. Unknown or invalid stored state falls back to the
+//! defaults.
+
+use crate::presets::Comparison;
+use crate::settings::Settings;
+use serde::{Deserialize, Serialize};
+
+/// The key under which the state is stored.
+pub const STORAGE_KEY: &str = "lumlab.state";
+
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct State {
+    pub settings: Settings,
+    pub split: SplitState,
+    pub panels: PanelState,
+    pub paths: Paths,
+}
+
+/// The split view: B differs from A by the comparison's setting.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct SplitState {
+    pub enabled: bool,
+    pub comparison: Comparison,
+    /// Where A ends and B begins, as a fraction of the image width.
+    pub wipe: f32,
+}
+
+impl Default for SplitState {
+    fn default() -> Self {
+        Self {
+            enabled: false,
+            comparison: Comparison::default(),
+            wipe: 0.5,
+        }
+    }
+}
+
+/// Which panels are shown.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct PanelState {
+    /// The settings panel on the left.
+    pub settings: bool,
+    /// The analysis panel on the right (probe, energy, reference, timings).
+    pub analysis: bool,
+}
+
+impl Default for PanelState {
+    fn default() -> Self {
+        Self {
+            settings: true,
+            analysis: true,
+        }
+    }
+}
+
+/// File paths typed or picked last, so they survive a restart.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Paths {
+    pub settings_file: String,
+    pub scene_file: String,
+    pub screenshot_file: String,
+    pub exr_file: String,
+}
+
+impl Default for Paths {
+    fn default() -> Self {
+        Self {
+            settings_file: "lumlab-settings.toml".into(),
+            scene_file: String::new(),
+            screenshot_file: "lumlab-screenshot.png".into(),
+            exr_file: "lumlab-radiance.exr".into(),
+        }
+    }
+}
+
+impl State {
+    /// The stored state, when it parses and its settings are valid.
+    pub fn restore(storage: Option<&dyn eframe::Storage>) -> Option<Self> {
+        let state: Self = eframe::get_value(storage?, STORAGE_KEY)?;
+        state.settings.validate().ok()?;
+        Some(state)
+    }
+
+    pub fn store(&self, storage: &mut dyn eframe::Storage) {
+        eframe::set_value(storage, STORAGE_KEY, self);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn state_round_trips() {
+        let mut state = State::default();
+        state.settings.light.power_w = 42.0;
+        state.split.enabled = true;
+        let text = serde_json::to_string(&state).unwrap();
+        let back: State = serde_json::from_str(&text).unwrap();
+        assert_eq!(back, state);
+    }
+
+    #[test]
+    fn invalid_stored_settings_are_dropped() {
+        use eframe::Storage;
+        struct Mem(std::collections::HashMap<String, String>);
+        impl eframe::Storage for Mem {
+            fn get_string(&self, key: &str) -> Option<String> {
+                self.0.get(key).cloned()
+            }
+            fn set_string(&mut self, key: &str, value: String) {
+                self.0.insert(key.into(), value);
+            }
+            fn remove_string(&mut self, key: &str) {
+                self.0.remove(key);
+            }
+            fn flush(&mut self) {}
+        }
+        let mut mem = Mem(Default::default());
+        let mut state = State::default();
+        state.settings.light.power_w = 7.0;
+        state.store(&mut mem);
+        assert_eq!(State::restore(Some(&mem)).unwrap().settings.light.power_w, 7.0);
+        state.settings.material.k = 3.0;
+        state.store(&mut mem);
+        assert!(State::restore(Some(&mem)).is_none());
+        mem.set_string(STORAGE_KEY, "garbage".into());
+        assert!(State::restore(Some(&mem)).is_none());
+    }
+}

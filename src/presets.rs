@@ -1,0 +1,319 @@
+//! The lecture's experiments as one-click presets, and the comparisons the
+//! split view offers. No GUI here: the app, the tests and a future command
+//! line all apply the same values.
+//!
+//! A preset starts from the default settings, keeping the scene, the image
+//! size and (unless it names one) the camera, then sets the values listed in
+//! its doc comment. Light positions and cameras are tuned for the built-in
+//! scene (a 12 m ground, a 1 m box at the origin, a sphere of radius 0.5 m).
+
+use crate::physics::Normalization;
+use crate::settings::{BiasMode, DebugView, Filter, Settings};
+use glam::Vec3;
+
+named_enum! {
+    /// An experiment of the lecture.
+    pub enum Preset {
+        /// Shadow acne: no bias at all (`constant:0`), no filter, 1024².
+        /// The surface shadows itself in stripes: depth quantization.
+        ShadowAcne = "shadow-acne",
+        /// Peter-panning: `constant:0.5` (far too much bias), PCF 3×3, light at
+        /// (3.5, 3, 3), camera at (1.8, 1.6, −3.2) looking at (−0.6, 0.1, −0.6):
+        /// the box's shadow comes loose from its base.
+        PeterPanning = "peter-panning",
+        /// Aliasing: a 256² map, no filter, automatic bias: stair steps
+        /// along every shadow edge (one texel covers many pixels).
+        Aliasing = "aliasing",
+        /// PCF smoothing: the same 256² map with a 7×7 PCF kernel: the steps
+        /// blur into a soft (but not physical) edge.
+        PcfSmoothing = "pcf-smoothing",
+        /// Penumbra: a sphere light of radius R = 0.4 m at (2.5, 4, 2), PCSS
+        /// with 32 blocker and 32 filter samples, 2048²: soft edges that widen
+        /// away from the contact point.
+        Penumbra = "penumbra",
+        /// Energy gain: no normalization (N = 1) at m = 1 with k = 0 on every
+        /// object: a(0°) ≈ 2.86, the surfaces reflect more than they receive.
+        EnergyGain = "energy-gain",
+        /// Grazing incidence: the light low at (6, 0.8, 0), 2000 W, shown as
+        /// n·l: cos θ, and so E, falls to zero at the horizon.
+        Grazing = "grazing",
+    }
+}
+
+impl Preset {
+    /// A short title for a button.
+    pub fn title(self) -> &'static str {
+        match self {
+            Self::ShadowAcne => "Shadow acne",
+            Self::PeterPanning => "Peter-panning",
+            Self::Aliasing => "Aliasing",
+            Self::PcfSmoothing => "PCF smoothing",
+            Self::Penumbra => "Penumbra (sphere light)",
+            Self::EnergyGain => "Energy gain (no normalization)",
+            Self::Grazing => "Grazing incidence",
+        }
+    }
+
+    /// What the preset shows and which values it sets, for a tooltip.
+    pub fn description(self) -> &'static str {
+        match self {
+            Self::ShadowAcne => {
+                "No depth bias (constant, D = 0 m), no filter, 1024² map. Every lit surface \
+                 compares its depth with its own quantized copy and shadows itself in stripes."
+            }
+            Self::PeterPanning => {
+                "Constant bias D = 0.5 m, PCF 3×3, light at (3.5, 3, 3), a camera near the box's \
+                 base. Too much bias: the shadow detaches from the object that casts it."
+            }
+            Self::Aliasing => {
+                "256² shadow map, no filter, automatic bias: one shadow-map texel covers many \
+                 pixels, so shadow edges show stair steps."
+            }
+            Self::PcfSmoothing => {
+                "The same 256² map with 7×7 percentage-closer filtering: the average of 49 depth \
+                 tests turns the steps into a soft edge."
+            }
+            Self::Penumbra => {
+                "Sphere light R = 0.4 m at (2.5, 4, 2), PCSS with 32 blocker-search and 32 filter \
+                 samples, 2048² map: the penumbra widens with the distance to the occluder."
+            }
+            Self::EnergyGain => {
+                "N(m) = 1 at m = 1, k = 0 on every object: a(0°) ≈ 2.86 > 1, the BRDF creates \
+                 energy. Compare with the approx or exact normalization."
+            }
+            Self::Grazing => {
+                "Light low at (6, 0.8, 0), 2000 W, view n·l: E = I cos θ / r² falls to zero as \
+                 the light reaches the horizon."
+            }
+        }
+    }
+
+    /// Sets the preset's values (see each variant's documentation).
+    pub fn apply(self, settings: &mut Settings) {
+        let kept = Settings {
+            scene: settings.scene.clone(),
+            camera: settings.camera,
+            image: settings.image,
+            ..Settings::default()
+        };
+        *settings = kept;
+        let s = settings;
+        match self {
+            Self::ShadowAcne => {
+                s.shadow.bias.mode = BiasMode::Constant;
+                s.shadow.bias.depth_m = 0.0;
+                s.shadow.filter = Filter::None;
+                s.shadow.resolution = 1024;
+            }
+            Self::PeterPanning => {
+                s.shadow.bias.mode = BiasMode::Constant;
+                s.shadow.bias.depth_m = 0.5;
+                s.shadow.filter = Filter::Pcf;
+                s.shadow.pcf_size = 3;
+                s.light.position = Vec3::new(3.5, 3.0, 3.0);
+                s.camera.eye = Vec3::new(1.8, 1.6, -3.2);
+                s.camera.target = Vec3::new(-0.6, 0.1, -0.6);
+                s.camera.fovy_deg = 45.0;
+            }
+            Self::Aliasing => {
+                s.shadow.resolution = 256;
+                s.shadow.filter = Filter::None;
+                s.shadow.bias.mode = BiasMode::Auto;
+            }
+            Self::PcfSmoothing => {
+                s.shadow.resolution = 256;
+                s.shadow.filter = Filter::Pcf;
+                s.shadow.pcf_size = 7;
+                s.shadow.bias.mode = BiasMode::Auto;
+            }
+            Self::Penumbra => {
+                s.light.radius_m = 0.4;
+                s.light.position = Vec3::new(2.5, 4.0, 2.0);
+                s.shadow.filter = Filter::Pcss;
+                s.shadow.pcss_blocker_samples = 32;
+                s.shadow.poisson_samples = 32;
+                s.shadow.resolution = 2048;
+            }
+            Self::EnergyGain => {
+                s.material.norm = Normalization::None;
+                s.material.m = 1.0;
+                s.material.k = 0.0;
+                s.material.use_scene_materials = false;
+            }
+            Self::Grazing => {
+                s.light.position = Vec3::new(6.0, 0.8, 0.0);
+                s.light.power_w = 2000.0;
+                s.view.mode = DebugView::Ndotl;
+            }
+        }
+    }
+}
+
+named_enum! {
+    /// The setting in which the B half of the split view differs from A.
+    pub enum ComparisonAxis {
+        /// The lobe's normalization N(m).
+        Normalization = "normalization",
+        /// The shadow filter.
+        Filter = "filter",
+        /// The shadow-map resolution.
+        Resolution = "resolution",
+        /// The bias mode.
+        Bias = "bias",
+    }
+}
+
+/// A split-view comparison: both halves show the current settings, each
+/// with its own value of one setting.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct Comparison {
+    pub axis: ComparisonAxis,
+    pub norm: [Normalization; 2],
+    pub filter: [Filter; 2],
+    pub resolution: [u32; 2],
+    pub bias: [BiasMode; 2],
+}
+
+impl Default for Comparison {
+    /// The lecture's figure: without normalization | with the approximate one.
+    fn default() -> Self {
+        Self {
+            axis: ComparisonAxis::Normalization,
+            norm: [Normalization::None, Normalization::Approx],
+            filter: [Filter::None, Filter::Pcf],
+            resolution: [256, 2048],
+            bias: [BiasMode::Constant, BiasMode::Auto],
+        }
+    }
+}
+
+/// Which half of the split view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Half {
+    A = 0,
+    B = 1,
+}
+
+impl Comparison {
+    /// The named comparisons offered as one-click choices.
+    pub fn presets() -> [(&'static str, Comparison); 4] {
+        let base = Comparison::default();
+        [
+            ("norm none | approx", base),
+            (
+                "filter none | PCF",
+                Comparison {
+                    axis: ComparisonAxis::Filter,
+                    ..base
+                },
+            ),
+            (
+                "filter PCF | PCSS",
+                Comparison {
+                    axis: ComparisonAxis::Filter,
+                    filter: [Filter::Pcf, Filter::Pcss],
+                    ..base
+                },
+            ),
+            (
+                "resolution 256² | 2048²",
+                Comparison {
+                    axis: ComparisonAxis::Resolution,
+                    ..base
+                },
+            ),
+        ]
+    }
+
+    /// The settings one half shows: `base` with this half's value.
+    pub fn settings_for(&self, half: Half, base: &Settings) -> Settings {
+        let mut s = base.clone();
+        let i = half as usize;
+        match self.axis {
+            ComparisonAxis::Normalization => s.material.norm = self.norm[i],
+            ComparisonAxis::Filter => s.shadow.filter = self.filter[i],
+            ComparisonAxis::Resolution => s.shadow.resolution = self.resolution[i],
+            ComparisonAxis::Bias => s.shadow.bias.mode = self.bias[i],
+        }
+        s
+    }
+
+    /// "norm none", "filter pcf", "2048²": the label of one half.
+    pub fn label(&self, half: Half) -> String {
+        let i = half as usize;
+        match self.axis {
+            ComparisonAxis::Normalization => format!("norm {}", self.norm[i]),
+            ComparisonAxis::Filter => format!("filter {}", self.filter[i]),
+            ComparisonAxis::Resolution => format!("shadow map {}²", self.resolution[i]),
+            ComparisonAxis::Bias => format!("bias {}", self.bias[i]),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_gives_valid_settings() {
+        for &p in Preset::ALL {
+            let mut s = Settings::default();
+            p.apply(&mut s);
+            s.validate().unwrap_or_else(|e| panic!("{p}: {e}"));
+            assert!(!p.description().is_empty() && !p.title().is_empty());
+        }
+    }
+
+    #[test]
+    fn acne_preset_has_no_bias_and_no_filter() {
+        let mut s = Settings::default();
+        Preset::ShadowAcne.apply(&mut s);
+        assert_eq!(s.shadow.bias.describe(), "constant:0");
+        assert_eq!(s.shadow.filter, Filter::None);
+    }
+
+    #[test]
+    fn presets_keep_the_scene_and_image() {
+        let mut s = Settings {
+            scene: Some("x.glb".into()),
+            ..Settings::default()
+        };
+        s.image.width = 123;
+        s.material.k = 0.9;
+        Preset::Aliasing.apply(&mut s);
+        assert_eq!(s.scene.as_deref(), Some(std::path::Path::new("x.glb")));
+        assert_eq!(s.image.width, 123);
+        assert_eq!(s.material.k, Settings::default().material.k);
+    }
+
+    #[test]
+    fn energy_gain_preset_gains_energy() {
+        let mut s = Settings::default();
+        Preset::EnergyGain.apply(&mut s);
+        let params = crate::physics::BrdfParams {
+            k: s.material.k as f64,
+            m: s.material.m as f64,
+            norm: s.material.norm,
+        };
+        let a = crate::physics::energy::directional_albedo(0.0, &params).value;
+        assert!((a - 2.86).abs() < 0.01, "{a}");
+    }
+
+    #[test]
+    fn default_comparison_is_the_lectures_figure() {
+        let c = Comparison::default();
+        let base = Settings::default();
+        assert_eq!(c.settings_for(Half::A, &base).material.norm, Normalization::None);
+        assert_eq!(
+            c.settings_for(Half::B, &base).material.norm,
+            Normalization::Approx
+        );
+        assert_eq!(c.label(Half::A), "norm none");
+        for (_, c) in Comparison::presets() {
+            for half in [Half::A, Half::B] {
+                c.settings_for(half, &base).validate().unwrap();
+            }
+        }
+    }
+}

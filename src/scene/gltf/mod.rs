@@ -1,0 +1,730 @@
+//! glTF 2.0 loading (`.gltf` with external files or data URIs, and `.glb`):
+//! the file's default scene (or scene 0) flattened into world-space
+//! [`Object`]s, one per primitive instance.
+//!
+//! The JSON is deserialized by the `gltf` crate's `json` types; everything
+//! after that (indices, offsets, lengths, node links) is checked here, so a
+//! malformed file gives a one-line [`LoadProblem`] and what can be repaired
+//! (degenerate triangles, bad normals, NaN positions) is, with a warning.
+//! As a last line of defence a panic anywhere in the parse is caught and
+//! turned into an error.
+
+mod accessor;
+mod container;
+mod primitive;
+mod resources;
+pub mod write;
+
+pub use resources::MAX_IMAGE_SIDE;
+pub use write::to_glb;
+
+use super::{
+    Aabb, Camera, LoadProblem, Material, Object, Scene, SceneCamera, SceneError, SourceInfo, Texture,
+};
+use accessor::Data;
+use glam::{DMat4, DQuat, DVec3, Vec4};
+use gltf::json::Root;
+use gltf::json::camera::Type as CameraType;
+use gltf::json::mesh::Semantic;
+use gltf::json::validation::Checked;
+use primitive::{LocalPrimitive, Topology};
+use std::collections::HashMap;
+use std::path::Path;
+
+/// Extensions a file may require. Quantized attributes are read like any
+/// other accessor; emission is not part of the lab's BRDF, so its strength
+/// changes nothing that is drawn.
+pub const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] =
+    &["KHR_mesh_quantization", "KHR_materials_emissive_strength"];
+
+/// Most triangles a scene may place, all instances counted: beyond this the
+/// flattened scene would not fit in memory (about 100 bytes a triangle).
+pub const MAX_TRIANGLES: usize = 1 << 25;
+
+/// Field of view given to an orthographic camera when the scene gives no
+/// distance to match its magnification with (degrees).
+const FALLBACK_FOVY_DEG: f64 = 45.0;
+/// The lab's field-of-view range (degrees), as the command line accepts it.
+const FOVY_RANGE_DEG: (f64, f64) = (1.0, 179.0);
+
+/// Loads a `.gltf` or `.glb` file; relative URIs resolve beside it.
+pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    let bytes = std::fs::read(path).map_err(|source| SceneError::Read {
+        path: path.to_owned(),
+        source,
+    })?;
+    load_slice(&bytes, path, path.parent())
+}
+
+/// Loads glTF or GLB bytes. `name` names the scene in messages; relative
+/// URIs resolve in `base_dir` (none: only embedded data may be used).
+pub fn load_slice(bytes: &[u8], name: &Path, base_dir: Option<&Path>) -> Result<Scene, SceneError> {
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| read_scene(bytes, base_dir)));
+    let problem = match outcome {
+        Ok(Ok(scene)) => return Ok(scene),
+        Ok(Err(problem)) => problem,
+        Err(payload) => LoadProblem::Internal(panic_message(payload.as_ref())),
+    };
+    Err(SceneError::Load {
+        path: name.to_owned(),
+        problem,
+    })
+}
+
+fn panic_message(payload: &(dyn std::any::Any + Send)) -> String {
+    let text = payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "panic".into());
+    text.replace('\n', " ")
+}
+
+fn read_scene(bytes: &[u8], base_dir: Option<&Path>) -> Result<Scene, LoadProblem> {
+    let container::Container { root, bin } = container::parse(bytes)?;
+    if let Some(ext) = root
+        .extensions_required
+        .iter()
+        .find(|e| !SUPPORTED_REQUIRED_EXTENSIONS.contains(&e.as_str()))
+    {
+        return Err(LoadProblem::UnsupportedExtension(ext.clone()));
+    }
+    let buffers = resources::load_buffers(&root, bin, base_dir)?;
+    let data = Data {
+        root: &root,
+        buffers: &buffers,
+    };
+    Loader {
+        data: &data,
+        root: &root,
+        base_dir,
+        warnings: Vec::new(),
+    }
+    .run()
+}
+
+/// A mesh placed by a node.
+struct MeshInstance {
+    node: usize,
+    mesh: usize,
+    world: DMat4,
+}
+
+/// A camera placed by a node.
+struct CameraInstance {
+    node: usize,
+    camera: usize,
+    world: DMat4,
+}
+
+/// What the node hierarchy places.
+#[derive(Default)]
+struct Placements {
+    meshes: Vec<MeshInstance>,
+    cameras: Vec<CameraInstance>,
+}
+
+/// Repairs counted over the whole scene, reported as one warning each.
+#[derive(Default)]
+struct Tally {
+    degenerate: usize,
+    non_finite: usize,
+    non_finite_vertices: usize,
+    normals_repaired: usize,
+    points_or_lines: usize,
+    without_positions: usize,
+    singular: usize,
+    attributes_ignored: Vec<String>,
+}
+
+struct Loader<'d, 'r, 'b> {
+    data: &'d Data<'r, 'b>,
+    root: &'r Root,
+    base_dir: Option<&'d Path>,
+    warnings: Vec<String>,
+}
+
+impl Loader<'_, '_, '_> {
+    fn warn(&mut self, message: String) {
+        self.warnings.push(message);
+    }
+
+    fn run(mut self) -> Result<Scene, LoadProblem> {
+        let root = self.root;
+        let (scene_index, roots) = self.roots()?;
+        if root.meshes.is_empty() {
+            return Err(LoadProblem::NoMesh("it defines no mesh".into()));
+        }
+        let placed = self.walk(&roots)?;
+        if placed.meshes.is_empty() {
+            return Err(LoadProblem::NoMesh(match scene_index {
+                Some(i) => format!("scene {i} places no mesh"),
+                None => "no node places a mesh".into(),
+            }));
+        }
+        let (mut materials, textures) = self.materials();
+        let locals = self.primitives(&placed)?;
+        let planned: usize = placed
+            .meshes
+            .iter()
+            .flat_map(|m| locals[&m.mesh].iter().flatten())
+            .map(|p| p.mesh.triangle_count())
+            .sum();
+        if planned > MAX_TRIANGLES {
+            return Err(LoadProblem::TooLarge(format!(
+                "the scene places {planned} triangles; the lab draws at most {MAX_TRIANGLES}"
+            )));
+        }
+        let default_material = materials.len();
+        let mut tally = Tally::default();
+        let mut undrawn_bounds = Aabb::EMPTY;
+        let mut objects = Vec::new();
+        let mut triangles_defined = 0;
+        for instance in &placed.meshes {
+            let mesh_json = &root.meshes[instance.mesh];
+            let node_json = &root.nodes[instance.node];
+            let world = instance.world.as_mat4();
+            let (casts, receives) = shadow_flags(&node_json.extras);
+            for (p, local) in locals[&instance.mesh].iter().enumerate() {
+                let Some(local) = local else {
+                    tally.without_positions += 1;
+                    continue;
+                };
+                let singular = !world.determinant().is_normal();
+                if local.topology == Topology::PointsOrLines {
+                    tally.points_or_lines += 1;
+                } else {
+                    triangles_defined += local.triangles_defined;
+                    tally.degenerate += local.degenerate;
+                    tally.non_finite += local.non_finite;
+                    if singular {
+                        tally.singular += 1;
+                        tally.degenerate += local.mesh.triangle_count();
+                    }
+                }
+                let mut mesh = None;
+                if local.topology == Topology::Triangles && !singular {
+                    let mut placed = local.mesh.transformed(world);
+                    let (non_finite, degenerate) = primitive::repair_placed(&mut placed);
+                    tally.non_finite += non_finite;
+                    tally.degenerate += degenerate;
+                    mesh = Some(placed).filter(|m| !m.indices.is_empty());
+                }
+                let Some(mesh) = mesh else {
+                    let points = local
+                        .mesh
+                        .positions
+                        .iter()
+                        .map(|&q| world.transform_point3(q))
+                        .filter(|q| q.is_finite());
+                    undrawn_bounds = undrawn_bounds.union(&Aabb::from_points(points));
+                    continue;
+                };
+                let material = match mesh_json.primitives[p].material {
+                    Some(m) => m.value(),
+                    None => default_material,
+                };
+                let mut object =
+                    Object::new(object_name(root, instance.node, instance.mesh, p), mesh, material);
+                object.casts_shadows = casts;
+                object.receives_shadows = receives;
+                objects.push(object);
+            }
+        }
+        for local in locals.values().flatten().flatten() {
+            tally.normals_repaired += local.normals_repaired;
+            tally.non_finite_vertices += local.non_finite_vertices;
+            tally
+                .attributes_ignored
+                .extend(local.attributes_ignored.iter().cloned());
+        }
+        if objects.is_empty() && triangles_defined > 0 {
+            return Err(LoadProblem::NothingToDraw(format!(
+                "all {triangles_defined} triangles are degenerate or have NaN or infinite corners"
+            )));
+        }
+        if objects.is_empty() && tally.points_or_lines == 0 {
+            return Err(LoadProblem::NothingToDraw("no primitive has positions".into()));
+        }
+        if objects.iter().any(|o| o.material == default_material) {
+            materials.push(Material::default());
+        }
+        self.report(&tally);
+        let bounds = objects
+            .iter()
+            .fold(undrawn_bounds, |b, o: &Object| b.union(&o.bounds));
+        let cameras = self.cameras(&placed.cameras, &bounds);
+        let source = SourceInfo {
+            meshes: root.meshes.len(),
+            primitives: root.meshes.iter().map(|m| m.primitives.len()).sum(),
+            primitives_with_normals: root
+                .meshes
+                .iter()
+                .flat_map(|m| &m.primitives)
+                .filter(|p| p.attributes.contains_key(&Checked::Valid(Semantic::Normals)))
+                .count(),
+            nodes: root.nodes.len(),
+            scenes: root.scenes.len(),
+            scene: scene_index,
+            undrawn_bounds,
+        };
+        Ok(Scene {
+            objects,
+            materials,
+            textures,
+            cameras,
+            warnings: self.warnings,
+            source: Some(source),
+        })
+    }
+
+    /// The scene drawn and its root nodes: the file's default scene, else
+    /// scene 0, else (a file without scenes) every node that is no child.
+    fn roots(&mut self) -> Result<(Option<usize>, Vec<usize>), LoadProblem> {
+        let root = self.root;
+        let chosen = root
+            .scene
+            .map(|s| s.value())
+            .or((!root.scenes.is_empty()).then_some(0));
+        if let Some(i) = chosen {
+            let scene = root.scenes.get(i).ok_or_else(|| LoadProblem::OutOfRange {
+                what: "scene".into(),
+                detail: format!(
+                    "the default scene {i} does not exist (the file has {})",
+                    root.scenes.len()
+                ),
+            })?;
+            return Ok((Some(i), scene.nodes.iter().map(|n| n.value()).collect()));
+        }
+        if root.nodes.is_empty() {
+            return Err(LoadProblem::NoScene);
+        }
+        let mut is_child = vec![false; root.nodes.len()];
+        for child in root.nodes.iter().flat_map(|n| n.children.iter().flatten()) {
+            if let Some(flag) = is_child.get_mut(child.value()) {
+                *flag = true;
+            }
+        }
+        let roots: Vec<usize> = (0..root.nodes.len()).filter(|&i| !is_child[i]).collect();
+        self.warn(format!(
+            "the file defines no scene: its {} root nodes are drawn",
+            roots.len()
+        ));
+        Ok((None, roots))
+    }
+
+    /// Walks the node hierarchy from `roots`, composing transforms. A node
+    /// is placed once: a second reference (a cycle, or a node with two
+    /// parents, both invalid glTF) is skipped, so the walk always ends.
+    fn walk(&mut self, roots: &[usize]) -> Result<Placements, LoadProblem> {
+        let root = self.root;
+        let mut placed = Placements::default();
+        let mut visited = vec![false; root.nodes.len()];
+        let (mut repeated, mut bad_transforms, mut skinned, mut morphed) = (0, 0, 0, 0);
+        let mut stack: Vec<(usize, DMat4, Option<usize>)> =
+            roots.iter().rev().map(|&n| (n, DMat4::IDENTITY, None)).collect();
+        while let Some((index, parent_world, parent)) = stack.pop() {
+            let node = root.nodes.get(index).ok_or_else(|| LoadProblem::OutOfRange {
+                what: match parent {
+                    Some(p) => format!("node {p}"),
+                    None => "scene".into(),
+                },
+                detail: format!(
+                    "names node {index}, which does not exist (the file has {})",
+                    root.nodes.len()
+                ),
+            })?;
+            if std::mem::replace(&mut visited[index], true) {
+                repeated += 1;
+                continue;
+            }
+            let Some(world) = local_matrix(node)
+                .map(|m| parent_world * m)
+                .filter(|m| m.is_finite())
+            else {
+                bad_transforms += 1;
+                continue;
+            };
+            if let Some(mesh) = node.mesh {
+                let mesh = mesh.value();
+                let json = root
+                    .meshes
+                    .get(mesh)
+                    .ok_or_else(|| out_of_range("node", index, "mesh", mesh, root.meshes.len()))?;
+                skinned += usize::from(node.skin.is_some());
+                morphed += usize::from(json.primitives.iter().any(|p| p.targets.is_some()));
+                placed.meshes.push(MeshInstance {
+                    node: index,
+                    mesh,
+                    world,
+                });
+            }
+            if let Some(camera) = node.camera {
+                let camera = camera.value();
+                if camera >= root.cameras.len() {
+                    return Err(out_of_range("node", index, "camera", camera, root.cameras.len()));
+                }
+                placed.cameras.push(CameraInstance {
+                    node: index,
+                    camera,
+                    world,
+                });
+            }
+            for child in node.children.iter().flatten().rev() {
+                stack.push((child.value(), world, Some(index)));
+            }
+        }
+        if repeated > 0 {
+            self.warn(format!(
+                "{repeated} node references repeat a node already placed (a cycle or a second parent): skipped"
+            ));
+        }
+        if bad_transforms > 0 {
+            self.warn(format!(
+                "{bad_transforms} nodes have a NaN or infinite transform: skipped with their children"
+            ));
+        }
+        if skinned > 0 {
+            self.warn(format!(
+                "{skinned} skinned meshes are drawn unskinned (skins are ignored)"
+            ));
+        }
+        if morphed > 0 {
+            self.warn(format!("{morphed} meshes have morph targets, which are ignored"));
+        }
+        Ok(placed)
+    }
+
+    /// Every primitive of every placed mesh, read once however many nodes
+    /// place it; `None` for a primitive without positions.
+    fn primitives(
+        &self,
+        placed: &Placements,
+    ) -> Result<HashMap<usize, Vec<Option<LocalPrimitive>>>, LoadProblem> {
+        let root = self.root;
+        let mut locals = HashMap::new();
+        for instance in &placed.meshes {
+            if locals.contains_key(&instance.mesh) {
+                continue;
+            }
+            let mut built = Vec::new();
+            for (p, json) in root.meshes[instance.mesh].primitives.iter().enumerate() {
+                let uv_set = match json.material {
+                    Some(m) => {
+                        let material = root.materials.get(m.value()).ok_or_else(|| {
+                            out_of_range(
+                                &format!("mesh {} primitive", instance.mesh),
+                                p,
+                                "material",
+                                m.value(),
+                                root.materials.len(),
+                            )
+                        })?;
+                        material
+                            .pbr_metallic_roughness
+                            .base_color_texture
+                            .as_ref()
+                            .map_or(0, |t| t.tex_coord)
+                    }
+                    None => 0,
+                };
+                let what = format!("mesh {} primitive {p}", instance.mesh);
+                built.push(primitive::build(self.data, json, &what, uv_set)?);
+            }
+            locals.insert(instance.mesh, built);
+        }
+        Ok(locals)
+    }
+
+    /// Every material of the file, with the base-colour images they use.
+    fn materials(&mut self) -> (Vec<Material>, Vec<Texture>) {
+        let root = self.root;
+        let mut textures = Vec::new();
+        let mut by_image: HashMap<usize, Option<usize>> = HashMap::new();
+        let mut unreadable: Vec<String> = Vec::new();
+        let mut materials = Vec::with_capacity(root.materials.len());
+        for (i, json) in root.materials.iter().enumerate() {
+            let name = json.name.clone().unwrap_or_else(|| format!("material {i}"));
+            let pbr = &json.pbr_metallic_roughness;
+            let factor = Vec4::from_array(pbr.base_color_factor.0);
+            let base_color = if factor.is_finite() {
+                factor.clamp(Vec4::ZERO, Vec4::ONE)
+            } else {
+                self.warn(format!(
+                    "material '{name}': baseColorFactor is not finite; grey used"
+                ));
+                Material::default().base_color
+            };
+            let base_color_texture = pbr.base_color_texture.as_ref().and_then(|info| {
+                let texture = info.index.value();
+                let Some(image) = root.textures.get(texture).map(|t| t.source.value()) else {
+                    unreadable.push(format!("texture {texture} does not exist"));
+                    return None;
+                };
+                *by_image.entry(image).or_insert_with(|| match self.image(image) {
+                    Ok(t) => {
+                        textures.push(t);
+                        Some(textures.len() - 1)
+                    }
+                    Err(reason) => {
+                        unreadable.push(reason);
+                        None
+                    }
+                })
+            });
+            let (k, m) = self.lab_parameters(&name, &json.extras);
+            materials.push(Material {
+                name,
+                base_color,
+                base_color_texture,
+                k,
+                m,
+                double_sided: json.double_sided,
+            });
+        }
+        if let Some(first) = unreadable.first() {
+            self.warn(format!(
+                "{} base-colour textures cannot be used (first: {first}); their base colour factor alone is drawn",
+                unreadable.len()
+            ));
+        }
+        (materials, textures)
+    }
+
+    /// Decodes image `index` (from a URI or a buffer view).
+    fn image(&self, index: usize) -> Result<Texture, String> {
+        let Some(image) = self.root.images.get(index) else {
+            return Err(format!("image {index} does not exist"));
+        };
+        let what = resources::describe("image", index, image.uri.as_deref());
+        let bytes = match (&image.uri, image.buffer_view) {
+            (Some(uri), _) => std::borrow::Cow::Owned(resources::read_uri(uri, self.base_dir)?),
+            (None, Some(view)) => {
+                std::borrow::Cow::Borrowed(self.data.view(view.value()).map_err(|e| e.to_string())?.0)
+            }
+            (None, None) => return Err(format!("{what} has neither uri nor bufferView")),
+        };
+        resources::decode_image(&bytes).map_err(|e| format!("{what}: {e}"))
+    }
+
+    /// The lab's own k and m from a material's extras,
+    /// `{"lumlab": {"k": 0.3, "m": 64}}`, clamped to their ranges.
+    fn lab_parameters(&mut self, name: &str, extras: &gltf::json::Extras) -> (Option<f32>, Option<f32>) {
+        let Some(lab) = lab_extras(extras) else {
+            return (None, None);
+        };
+        let mut read = |key: &str, (lo, hi): (f64, f64)| -> Option<f32> {
+            let value = lab.get(key)?;
+            match value.as_f64().filter(|v| v.is_finite()) {
+                Some(v) if (lo..=hi).contains(&v) => Some(v as f32),
+                Some(v) => {
+                    self.warnings.push(format!(
+                        "material '{name}': lumlab {key} = {v} is outside {lo} … {hi}; clamped"
+                    ));
+                    Some(v.clamp(lo, hi) as f32)
+                }
+                None => {
+                    self.warnings.push(format!(
+                        "material '{name}': lumlab {key} = {value} is not a number; ignored"
+                    ));
+                    None
+                }
+            }
+        };
+        (read("k", (0.0, 1.0)), read("m", (0.0, 1e6)))
+    }
+
+    /// One warning per kind of repair, with its count.
+    fn report(&mut self, t: &Tally) {
+        let lines = [
+            (
+                t.degenerate,
+                format!(
+                    "dropped {} degenerate triangles (repeated corners or zero area)",
+                    t.degenerate
+                ),
+            ),
+            (
+                t.non_finite,
+                format!(
+                    "dropped {} triangles with NaN or infinite corners ({} such vertices in the file, \
+                     others made infinite by their node's transform)",
+                    t.non_finite, t.non_finite_vertices
+                ),
+            ),
+            (
+                t.normals_repaired,
+                format!(
+                    "repaired {} zero, NaN or infinite normals with generated ones",
+                    t.normals_repaired
+                ),
+            ),
+            (
+                t.points_or_lines,
+                format!(
+                    "skipped {} point or line primitive instances (only triangles are drawn)",
+                    t.points_or_lines
+                ),
+            ),
+            (
+                t.without_positions,
+                format!(
+                    "skipped {} primitive instances without POSITION",
+                    t.without_positions
+                ),
+            ),
+            (
+                t.singular,
+                format!(
+                    "{} mesh instances have a transform that flattens them (scale 0): their triangles are dropped",
+                    t.singular
+                ),
+            ),
+        ];
+        for (count, line) in lines {
+            if count > 0 {
+                self.warn(line);
+            }
+        }
+        if let Some(first) = t.attributes_ignored.first() {
+            self.warn(format!(
+                "ignored {} attributes with the wrong count (first: {first})",
+                t.attributes_ignored.len()
+            ));
+        }
+    }
+
+    /// The placed cameras in file order, reduced to eye, target (along the
+    /// node's −Z, one metre away unless the node's extras say
+    /// `{"lumlab": {"target_distance": 8.6}}`) and vertical field of view.
+    fn cameras(&mut self, placed: &[CameraInstance], bounds: &Aabb) -> Vec<SceneCamera> {
+        let root = self.root;
+        let mut order: Vec<&CameraInstance> = placed.iter().collect();
+        order.sort_by_key(|c| (c.camera, c.node));
+        let mut cameras = Vec::new();
+        for instance in order {
+            let json = &root.cameras[instance.camera];
+            let name = json
+                .name
+                .clone()
+                .or_else(|| root.nodes[instance.node].name.clone())
+                .unwrap_or_else(|| format!("camera {}", instance.camera));
+            let eye = instance.world.transform_point3(DVec3::ZERO);
+            let Some(forward) = instance.world.transform_vector3(DVec3::NEG_Z).try_normalize() else {
+                self.warn(format!(
+                    "camera '{name}': its node's transform has no direction; skipped"
+                ));
+                continue;
+            };
+            let fovy_deg = match (json.type_, &json.perspective, &json.orthographic) {
+                (Checked::Valid(CameraType::Perspective), Some(p), _) => {
+                    let deg = (p.yfov as f64).to_degrees();
+                    if deg.is_finite() && deg > 0.0 && deg < 180.0 {
+                        deg
+                    } else {
+                        self.warn(format!(
+                            "camera '{name}': yfov {} is not an angle in (0, π); 45° used",
+                            p.yfov
+                        ));
+                        FALLBACK_FOVY_DEG
+                    }
+                }
+                (Checked::Valid(CameraType::Orthographic), _, Some(o)) => {
+                    // The perspective view that shows the orthographic height
+                    // 2·ymag at the distance of the scene's centre.
+                    let distance = (bounds.center().as_dvec3() - eye).dot(forward);
+                    let ymag = (o.ymag as f64).abs();
+                    let deg = if !bounds.is_empty() && distance > 1e-6 && ymag > 0.0 && ymag.is_finite() {
+                        2.0 * (ymag / distance).atan().to_degrees()
+                    } else {
+                        FALLBACK_FOVY_DEG
+                    };
+                    self.warn(format!(
+                        "camera '{name}' is orthographic: shown in perspective with a {deg:.1}° field of view"
+                    ));
+                    deg
+                }
+                _ => {
+                    self.warn(format!("camera '{name}' has no usable projection; skipped"));
+                    continue;
+                }
+            };
+            let fovy_deg = fovy_deg.clamp(FOVY_RANGE_DEG.0, FOVY_RANGE_DEG.1);
+            let distance_m = target_distance(&root.nodes[instance.node].extras).unwrap_or(1.0);
+            cameras.push(SceneCamera {
+                name,
+                camera: Camera {
+                    eye: eye.as_vec3(),
+                    target: (eye + forward * distance_m).as_vec3(),
+                    fovy_deg: fovy_deg as f32,
+                },
+            });
+        }
+        cameras
+    }
+}
+
+fn out_of_range(owner: &str, owner_index: usize, kind: &str, index: usize, available: usize) -> LoadProblem {
+    LoadProblem::OutOfRange {
+        what: format!("{owner} {owner_index}"),
+        detail: format!("names {kind} {index}, which does not exist (the file has {available})"),
+    }
+}
+
+/// The node's own transform: its matrix, or translation × rotation × scale
+/// with the rotation normalized (files often store it to a few digits).
+/// `None` when it is not finite.
+fn local_matrix(node: &gltf::json::Node) -> Option<DMat4> {
+    let matrix = match node.matrix {
+        Some(m) => DMat4::from_cols_array(&m.map(f64::from)),
+        None => {
+            let t = DVec3::from_array(node.translation.unwrap_or([0.0; 3]).map(f64::from));
+            let s = DVec3::from_array(node.scale.unwrap_or([1.0; 3]).map(f64::from));
+            let q = DQuat::from_array(node.rotation.map_or([0.0, 0.0, 0.0, 1.0], |r| r.0).map(f64::from));
+            let length = q.length();
+            if !(length.is_finite() && length > 0.0) {
+                return None;
+            }
+            DMat4::from_scale_rotation_translation(s, q / length, t)
+        }
+    };
+    matrix.is_finite().then_some(matrix)
+}
+
+/// "node name", else "mesh name", else "node 3"; with "#p" when the mesh
+/// has several primitives.
+fn object_name(root: &Root, node: usize, mesh: usize, primitive: usize) -> String {
+    let base = root.nodes[node]
+        .name
+        .clone()
+        .or_else(|| root.meshes[mesh].name.clone())
+        .unwrap_or_else(|| format!("node {node}"));
+    if root.meshes[mesh].primitives.len() > 1 {
+        format!("{base}#{primitive}")
+    } else {
+        base
+    }
+}
+
+/// The `"lumlab"` object of some extras, if any.
+fn lab_extras(extras: &gltf::json::Extras) -> Option<serde_json::Map<String, serde_json::Value>> {
+    let raw = extras.as_ref()?;
+    let value: serde_json::Value = serde_json::from_str(raw.get()).ok()?;
+    value.get("lumlab")?.as_object().cloned()
+}
+
+/// A camera node's `{"lumlab": {"target_distance": D}}` (m), when positive.
+fn target_distance(extras: &gltf::json::Extras) -> Option<f64> {
+    lab_extras(extras)?
+        .get("target_distance")?
+        .as_f64()
+        .filter(|d| d.is_finite() && *d > 0.0)
+}
+
+/// A node's `{"lumlab": {"casts_shadows": false, "receives_shadows": false}}`;
+/// both default to true.
+fn shadow_flags(extras: &gltf::json::Extras) -> (bool, bool) {
+    let lab = lab_extras(extras).unwrap_or_default();
+    let flag = |key: &str| lab.get(key).and_then(serde_json::Value::as_bool).unwrap_or(true);
+    (flag("casts_shadows"), flag("receives_shadows"))
+}

@@ -1,0 +1,201 @@
+//! The command-line contract of DESIGN.md: outputs, exit codes, one-line
+//! errors, and no partial files.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn lumlab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lumlab"))
+        .args(args)
+        .output()
+        .expect("the lumlab binary runs")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// A fresh empty directory for one test's files.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("lumlab-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn assert_fails(args: &[&str], code: i32, mentions: &str) {
+    let out = lumlab(args);
+    assert_eq!(out.status.code(), Some(code), "{args:?}: {}", stderr(&out));
+    let err = stderr(&out);
+    let lines: Vec<&str> = err.lines().filter(|l| !l.contains("XDG_RUNTIME_DIR")).collect();
+    assert_eq!(lines.len(), 1, "{args:?}: not one line: {err}");
+    assert!(
+        lines[0].contains(mentions),
+        "{args:?}: '{}' does not mention {mentions}",
+        lines[0]
+    );
+}
+
+fn no_files_in(dir: &Path) {
+    let left: Vec<_> = std::fs::read_dir(dir).unwrap().collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}
+
+#[test]
+fn energy_csv_has_the_known_values() {
+    let out = lumlab(&[
+        "energy",
+        "--format",
+        "csv",
+        "--m",
+        "8",
+        "--norm",
+        "approx,exact",
+        "--angles",
+        "0",
+    ]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("norm,m,k,theta_deg,albedo"));
+    for line in lines {
+        let cols: Vec<&str> = line.split(',').collect();
+        let albedo: f64 = cols[4].parse().unwrap();
+        let significant = cols[4].trim_start_matches(['0', '.']).replace('.', "").len();
+        assert!(significant >= 7, "{line}");
+        match cols[0] {
+            "approx" => assert!((albedo - 1.075).abs() < 1e-3, "{line}"),
+            "exact" => assert!((albedo - 1.0).abs() < 1e-6, "{line}"),
+            other => panic!("unexpected {other}"),
+        }
+    }
+}
+
+#[test]
+fn energy_default_run_covers_the_lecture_table() {
+    let out = lumlab(&["energy", "--format", "json"]);
+    assert!(out.status.success());
+    let rows: Vec<serde_json::Value> = serde_json::from_slice(&out.stdout).unwrap();
+    // 4 normalizations × 10 exponents × 6 angles.
+    assert_eq!(rows.len(), 240);
+    for key in ["norm", "m", "k", "theta_deg", "albedo"] {
+        assert!(rows[0].get(key).is_some(), "{key}");
+    }
+    let table = String::from_utf8(lumlab(&["energy"]).stdout).unwrap();
+    assert!(table.contains("1.0750*"), "values above 1 are marked");
+}
+
+#[test]
+fn energy_rejects_bad_input_in_one_line() {
+    assert_fails(&["energy", "--m", "-3"], 2, "--m");
+    assert_fails(&["energy", "--m", "abc"], 2, "--m");
+    assert_fails(&["energy", "--angles", "95"], 2, "--angles");
+    assert_fails(&["energy", "--norm", "foo"], 2, "none|ndf|approx|exact");
+    assert_fails(
+        &["energy", "--plot", "/no/such/dir/x.png"],
+        1,
+        "/no/such/dir/x.png",
+    );
+}
+
+#[test]
+fn energy_plot_is_a_png() {
+    let dir = scratch("plot");
+    let path = dir.join("albedo.png");
+    let out = lumlab(&["energy", "--plot", path.to_str().unwrap(), "--format", "csv"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let image = image::open(&path).unwrap();
+    assert!(image.width() > 600 && image.height() > 400);
+}
+
+#[test]
+fn render_writes_png_and_exr() {
+    let dir = scratch("render");
+    let png = dir.join("shot.png");
+    let out = lumlab(&[
+        "render",
+        "--size",
+        "64x40",
+        "--out",
+        png.to_str().unwrap(),
+        "--adapter-info",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(stderr(&out).contains("adapter:"));
+    let image = image::open(&png).unwrap().to_rgba8();
+    assert_eq!(image.dimensions(), (64, 40));
+    let exr = dir.join("shot.exr");
+    let out = lumlab(&[
+        "render",
+        "--size",
+        "64x40",
+        "--view",
+        "irradiance",
+        "--out",
+        exr.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let values = image::open(&exr).unwrap().to_rgba32f();
+    let max = values.pixels().map(|p| p[0]).fold(0.0_f32, f32::max);
+    // The default light (1000 W at 6 m above the ground) gives E of order I / r² ≈ 2 W/m².
+    assert!(max > 0.5 && max < 100.0, "E max {max} W/m²");
+}
+
+#[test]
+fn render_rejects_bad_input_without_leaving_files() {
+    let dir = scratch("render-bad");
+    let out = |name: &str| dir.join(name).to_str().unwrap().to_owned();
+    assert_fails(
+        &["render", "--filter", "blur", "--out", &out("a.png")],
+        2,
+        "--filter",
+    );
+    assert_fails(&["render", "--size", "0x10", "--out", &out("a.png")], 2, "--size");
+    assert_fails(
+        &["render", "--bias", "slope:1", "--out", &out("a.png")],
+        1,
+        "bias",
+    );
+    assert_fails(
+        &["render", "--shadow-res", "100", "--out", &out("a.png")],
+        1,
+        "shadow.resolution",
+    );
+    assert_fails(
+        &["render", "--camera", "gltf:3", "--out", &out("a.png")],
+        1,
+        "camera",
+    );
+    assert_fails(&["render", "--out", &out("a.jpg")], 1, ".png or .exr");
+    assert_fails(
+        &["render", "--out", "/no/such/dir/a.png"],
+        1,
+        "/no/such/dir/a.png",
+    );
+    assert_fails(
+        &["render", "--scene", &out("missing.gltf"), "--out", &out("a.png")],
+        1,
+        "missing.gltf",
+    );
+    no_files_in(&dir);
+}
+
+#[test]
+fn settings_file_feeds_the_command_line() {
+    let dir = scratch("settings");
+    let settings = dir.join("lab.toml");
+    std::fs::write(&settings, "[light]\npower_w = 10\nbrightness = 2\n").unwrap();
+    let png = dir.join("a.png");
+    let args = [
+        "render",
+        "--settings",
+        settings.to_str().unwrap(),
+        "--out",
+        png.to_str().unwrap(),
+    ];
+    assert_fails(&args, 1, "brightness");
+    std::fs::write(&settings, "[material]\nk = 3\n").unwrap();
+    assert_fails(&args, 1, "material.k");
+    std::fs::remove_file(&settings).unwrap();
+    no_files_in(&dir);
+}

@@ -1,0 +1,290 @@
+//! The loader on mutated copies of small valid files (GLB and .gltf with a
+//! data URI), for a bounded number of cases: whatever the bytes, it returns
+//! a scene or a one-line error, never panics (not even one it would catch)
+//! and never takes long; a scene it returns is sound (finite positions,
+//! unit normals, indices in range). Inputs that once broke it live in
+//! `tests/data/fuzz/` and are replayed first.
+//!
+//! More cases: `LUMLAB_FUZZ_CASES=100000 cargo test --release --test scene_fuzz`.
+
+mod scene_support;
+
+use lumlab::scene::{LoadProblem, Scene, gltf::load_slice};
+use proptest::prelude::*;
+use proptest::sample::Index;
+use scene_support::builder::*;
+use serde_json::{Value, json};
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+/// Longest a small file may take to load (s), generous for debug builds.
+const MAX_LOAD_S: f64 = 2.0;
+
+fn cases() -> u32 {
+    std::env::var("LUMLAB_FUZZ_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(600)
+}
+
+/// A small file that uses most of what the loader reads: indices of two
+/// types, a strip, points, normals, uvs, a sparse accessor, a node
+/// hierarchy with a mirror, a camera, a material with extras and a PNG.
+fn rich_doc() -> Doc {
+    let mut doc = Doc::new();
+    let position = doc.vec3s(&SQUARE);
+    let normal = doc.vec3s(&[[0.0, 0.0, 1.0]; 4]);
+    let uv = doc.vec2s(&[[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]]);
+    let quad = doc.indices(&[0, 1, 2, 0, 2, 3], UNSIGNED_SHORT);
+    let strip = doc.indices(&[1, 0, 2, 3], UNSIGNED_BYTE);
+    let sparse_indices = doc.view(&[2], None);
+    let sparse_values = doc.view(&[2.0f32, 2.0, 0.0].map(f32::to_le_bytes).concat(), None);
+    let moved = doc.accessor(json!({
+        "bufferView": 0, "componentType": FLOAT, "count": 4, "type": "VEC3",
+        "min": [0, 0, 0], "max": [2, 2, 0],
+        "sparse": {"count": 1, "indices": {"bufferView": sparse_indices, "componentType": UNSIGNED_BYTE},
+                   "values": {"bufferView": sparse_values}},
+    }));
+    let mut png = std::io::Cursor::new(Vec::new());
+    image::DynamicImage::ImageRgba8(image::RgbaImage::new(2, 2))
+        .write_to(&mut png, image::ImageFormat::Png)
+        .unwrap();
+    let image = doc.view(&png.into_inner(), None);
+    doc.json["images"] = json!([{"bufferView": image, "mimeType": "image/png"}]);
+    doc.json["textures"] = json!([{"source": 0}]);
+    doc.material(json!({
+        "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1.0], "baseColorTexture": {"index": 0}},
+        "extras": {"lumlab": {"k": 0.5, "m": 32}},
+    }));
+    doc.mesh(vec![
+        json!({"attributes": {"POSITION": position, "NORMAL": normal, "TEXCOORD_0": uv}, "indices": quad, "material": 0}),
+        json!({"attributes": {"POSITION": moved}, "indices": strip, "mode": TRIANGLE_STRIP}),
+        json!({"attributes": {"POSITION": position}, "mode": POINTS}),
+    ]);
+    doc.json["cameras"] = json!([{"type": "perspective", "perspective": {"yfov": 0.7, "znear": 0.1}}]);
+    let child = doc.node(json!({"mesh": 0, "scale": [-1.0, 1.0, 1.0], "translation": [0.0, 0.0, 1.0]}));
+    let camera = doc.node(json!({"camera": 0, "translation": [0.0, 0.0, 5.0]}));
+    let parent =
+        doc.node(json!({"mesh": 0, "children": [child, camera], "rotation": [0.0, 0.0, 0.38, 0.92]}));
+    doc.scene(&[parent]);
+    doc
+}
+
+/// Loads `bytes` and checks everything the loader promises. A failing
+/// input is saved as `target/fuzz-failure.bin` (the last one written is
+/// the shrunk one): copy it into `tests/data/fuzz/` to keep it.
+fn check(bytes: &[u8]) -> Result<(), TestCaseError> {
+    let result = check_load(bytes);
+    if result.is_err() {
+        let _ = std::fs::write(
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("target/fuzz-failure.bin"),
+            bytes,
+        );
+    }
+    result
+}
+
+fn check_load(bytes: &[u8]) -> Result<(), TestCaseError> {
+    let start = Instant::now();
+    let result = load_slice(bytes, Path::new("fuzz.glb"), None);
+    let took = start.elapsed();
+    prop_assert!(took < Duration::from_secs_f64(MAX_LOAD_S), "took {took:?}");
+    match result {
+        Err(e) => {
+            let message = e.to_string();
+            prop_assert!(
+                !matches!(e.problem(), Some(LoadProblem::Internal(_))),
+                "{message}"
+            );
+            prop_assert!(!message.contains('\n'), "{message}");
+        }
+        Ok(scene) => check_scene(&scene)?,
+    }
+    Ok(())
+}
+
+fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
+    for o in &scene.objects {
+        let m = &o.mesh;
+        prop_assert!(m.normals.len() == m.positions.len() && m.uvs.len() == m.positions.len());
+        prop_assert!(m.indices.len() % 3 == 0 && !m.indices.is_empty());
+        prop_assert!(m.indices.iter().all(|&i| (i as usize) < m.positions.len()));
+        prop_assert!(m.positions.iter().all(|p| p.is_finite()));
+        prop_assert!(
+            m.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-3),
+            "{}",
+            o.name
+        );
+        prop_assert!(o.material < scene.materials.len());
+        prop_assert!(!o.bounds.is_empty() && o.bounds.min.is_finite() && o.bounds.max.is_finite());
+    }
+    for m in &scene.materials {
+        prop_assert!(m.base_color.is_finite());
+        prop_assert!(m.base_color_texture.is_none_or(|t| t < scene.textures.len()));
+    }
+    for t in &scene.textures {
+        prop_assert_eq!(t.rgba8.len(), 4 * t.width as usize * t.height as usize);
+    }
+    for c in &scene.cameras {
+        prop_assert!(c.camera.eye.is_finite() && c.camera.target.is_finite());
+        prop_assert!((1.0..=179.0).contains(&c.camera.fovy_deg));
+    }
+    let facts = scene.facts();
+    prop_assert_eq!(facts.triangles, scene.triangle_count());
+    Ok(())
+}
+
+/// JSON pointers to every number in a value.
+fn number_pointers(value: &Value, at: String, out: &mut Vec<String>) {
+    match value {
+        Value::Number(_) => out.push(at),
+        Value::Array(items) => {
+            for (i, v) in items.iter().enumerate() {
+                number_pointers(v, format!("{at}/{i}"), out);
+            }
+        }
+        Value::Object(map) => {
+            for (k, v) in map {
+                number_pointers(
+                    v,
+                    format!("{at}/{}", k.replace('~', "~0").replace('/', "~1")),
+                    out,
+                );
+            }
+        }
+        _ => {}
+    }
+}
+
+/// Numbers that sit on the edges of what the loader checks.
+const EDGE_NUMBERS: &[f64] = &[
+    0.0,
+    1.0,
+    2.0,
+    3.0,
+    -1.0,
+    4.0,
+    5.0,
+    7.0,
+    255.0,
+    256.0,
+    65535.0,
+    4294967295.0,
+    4294967296.0,
+    9007199254740991.0,
+    1e300,
+    -1e300,
+    0.5,
+    5120.0,
+    5121.0,
+    5122.0,
+    5123.0,
+    5125.0,
+    5126.0,
+];
+
+fn replayed_inputs() -> Vec<(String, Vec<u8>)> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/fuzz");
+    let Ok(entries) = std::fs::read_dir(&dir) else {
+        return Vec::new();
+    };
+    let mut inputs: Vec<(String, Vec<u8>)> = entries
+        .flatten()
+        .filter(|e| e.path().is_file())
+        .map(|e| {
+            (
+                e.file_name().to_string_lossy().into_owned(),
+                std::fs::read(e.path()).unwrap(),
+            )
+        })
+        .collect();
+    inputs.sort();
+    inputs
+}
+
+#[test]
+fn the_seeds_load_cleanly() {
+    let doc = rich_doc();
+    for bytes in [doc.glb(), doc.gltf_embedded()] {
+        let scene = load_slice(&bytes, Path::new("seed"), None).unwrap();
+        assert_eq!(scene.objects.len(), 4, "{:?}", scene.warnings);
+        assert_eq!((scene.cameras.len(), scene.textures.len()), (1, 1));
+        check(&bytes).unwrap();
+    }
+}
+
+#[test]
+fn inputs_that_once_broke_the_loader_load_or_fail_cleanly() {
+    for (name, bytes) in replayed_inputs() {
+        check(&bytes).unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: cases(), failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Random bytes overwritten, and the file possibly cut short.
+    #[test]
+    fn byte_mutations(
+        glb in any::<bool>(),
+        edits in prop::collection::vec((any::<Index>(), any::<u8>()), 1..12),
+        cut in prop::option::of(any::<Index>()),
+    ) {
+        let doc = rich_doc();
+        let mut bytes = if glb { doc.glb() } else { doc.gltf_embedded() };
+        for (at, value) in edits {
+            let i = at.index(bytes.len());
+            bytes[i] = value;
+        }
+        if let Some(cut) = cut {
+            bytes.truncate(cut.index(bytes.len()));
+        }
+        check(&bytes)?;
+    }
+
+    /// The binary data mutated, the JSON intact: accessors read garbage,
+    /// NaNs, huge or out-of-range indices.
+    #[test]
+    fn binary_mutations(edits in prop::collection::vec((any::<Index>(), any::<u8>()), 1..24)) {
+        let mut doc = rich_doc();
+        for (at, value) in edits {
+            let i = at.index(doc.bin.len());
+            doc.bin[i] = value;
+        }
+        check(&doc.glb())?;
+    }
+
+    /// Numbers of the JSON (indices, counts, offsets, strides, types,
+    /// transforms) replaced by edge values, keys removed, and bytes of the
+    /// binary data overwritten.
+    #[test]
+    fn json_number_mutations(
+        glb in any::<bool>(),
+        edits in prop::collection::vec((any::<Index>(), any::<Index>()), 1..6),
+        removals in prop::collection::vec(any::<Index>(), 0..3),
+        binary in prop::collection::vec((any::<Index>(), any::<u8>()), 0..4),
+    ) {
+        let mut doc = rich_doc();
+        let mut pointers = Vec::new();
+        number_pointers(&doc.json, String::new(), &mut pointers);
+        for (at, value) in edits {
+            let pointer = &pointers[at.index(pointers.len())];
+            if let Some(slot) = doc.json.pointer_mut(pointer) {
+                *slot = json!(EDGE_NUMBERS[value.index(EDGE_NUMBERS.len())]);
+            }
+        }
+        for at in removals {
+            let pointer = &pointers[at.index(pointers.len())];
+            if let Some((parent, key)) = pointer.rsplit_once('/')
+                && let Some(Value::Object(map)) = doc.json.pointer_mut(parent)
+            {
+                map.remove(key);
+            }
+        }
+        for (at, value) in binary {
+            let i = at.index(doc.bin.len());
+            doc.bin[i] = value;
+        }
+        check(&if glb { doc.glb() } else { doc.gltf_embedded() })?;
+    }
+}

@@ -1,0 +1,5 @@
+//! Helpers shared by the scene tests.
+#![allow(dead_code)]
+
+pub mod builder;
+pub mod samples;
