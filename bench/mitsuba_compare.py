@@ -179,12 +179,19 @@ def write_objs(folder):
     return files
 
 
-def render_mitsuba(folder, width, height, spp, threads, sampler="independent"):
+def start_mitsuba(threads):
+    """Mitsuba's variant and thread pool, set once per process (setting the
+    pool again between renders can leave it waiting forever)."""
     import drjit as dr
     import mitsuba as mi
 
     mi.set_variant("scalar_rgb")
     dr.set_thread_count(threads)
+
+
+def render_mitsuba(folder, width, height, spp, sampler="independent"):
+    import mitsuba as mi
+
     intensity = POWER_W / (4.0 * math.pi)
     scene = {
         "type": "scene",
@@ -286,11 +293,10 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         folder = args.keep or Path(tmp)
         folder.mkdir(parents=True, exist_ok=True)
+        start_mitsuba(args.threads)
         times = {"mts_load": [], "mts_render": [], "lum_wall": [], "lum_render": []}
         for _ in range(max(1, args.repeat)):
-            mts, mts_load_s, mts_render_s = render_mitsuba(
-                folder, width, height, args.spp, args.threads, args.mitsuba_sampler
-            )
+            mts, mts_load_s, mts_render_s = render_mitsuba(folder, width, height, args.spp, args.mitsuba_sampler)
             lum, lum_wall_s, lum_render_s, summary = render_lumlab(
                 args.lumlab, folder, width, height, args.spp, args.threads
             )
