@@ -17,6 +17,7 @@ pub mod output;
 pub mod physics;
 pub mod plot;
 pub mod presets;
+pub mod reference;
 pub mod scene;
 pub mod settings;
 pub mod stability;

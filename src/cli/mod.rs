@@ -7,6 +7,7 @@
 mod args;
 mod energy;
 mod info;
+mod reference;
 mod render;
 mod stability;
 
@@ -66,6 +67,8 @@ pub enum Command {
     Info(info::InfoArgs),
     /// Render the scene on the GPU, headless, to PNG or EXR.
     Render(render::RenderArgs),
+    /// Ray-trace the scene on the CPU (the exact reference), to PNG or EXR.
+    Reference(reference::ReferenceArgs),
     /// Hard cases (m = 1e6, 89.99°, r = 0, far/near = 1e8…) in f64, f32 and on the GPU, beside naive formulas.
     Stability(stability::StabilityArgs),
 }
@@ -80,6 +83,7 @@ pub fn main() -> ExitCode {
         Some(Command::Energy(args)) => energy::run(args),
         Some(Command::Info(args)) => info::run(args),
         Some(Command::Render(args)) => render::run(args),
+        Some(Command::Reference(args)) => reference::run(args),
         Some(Command::Stability(args)) => stability::run_command(args),
         None => crate::app::run(options),
     });

@@ -1,0 +1,139 @@
+//! `lumlab reference`: the CPU ray-traced image. PNG holds what the lab
+//! displays (exposure, then sRGB); EXR the linear radiance in W/m²/sr with the
+//! coverage in alpha.
+
+use super::args::SceneOptions;
+use crate::image_io::{ImageFormat, write_exr, write_png_rgba8};
+use crate::reference::{Reference, ReferenceImage, ReferenceOptions, RenderControl};
+use crate::settings::Settings;
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::sync::atomic::Ordering;
+use std::time::{Duration, Instant};
+
+#[derive(Debug, clap::Args)]
+pub struct ReferenceArgs {
+    #[command(flatten)]
+    pub scene: SceneOptions,
+    /// Primary samples per pixel: 1 = the pixel centre; more are stratified over the pixel (box filter).
+    #[arg(long, value_name = "N", default_value_t = ReferenceOptions::DEFAULT.spp,
+          value_parser = clap::value_parser!(u32).range(1..=65536))]
+    pub spp: u32,
+    /// Samples of the sphere light's cone per primary sample (squares stratify best).
+    #[arg(long, value_name = "N", default_value_t = ReferenceOptions::DEFAULT.light_samples,
+          value_parser = clap::value_parser!(u32).range(1..=1048576))]
+    pub light_samples: u32,
+    /// Seed of the random numbers (same seed, same image).
+    #[arg(long, value_name = "S", default_value_t = 0)]
+    pub seed: u64,
+    /// Output image: .png (displayed) or .exr (linear radiance).
+    #[arg(long, value_name = "FILE.png|FILE.exr", value_parser = output_path)]
+    pub out: PathBuf,
+}
+
+/// The output path, refused at parse time unless it ends in .png or .exr.
+fn output_path(text: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(text);
+    ImageFormat::of_path(&path).map_err(|e| e.to_string())?;
+    Ok(path)
+}
+
+pub fn run(args: &ReferenceArgs) -> anyhow::Result<()> {
+    let format = ImageFormat::of_path(&args.out)?;
+    let (settings, scene) = super::render::load(&args.scene)?;
+    let start = Instant::now();
+    let reference = Reference::new(&scene);
+    let build = start.elapsed();
+    if reference.skipped_triangles() > 0 {
+        eprintln!(
+            "lumlab: {} triangle(s) with indices outside their mesh were skipped",
+            reference.skipped_triangles()
+        );
+    }
+    let options = ReferenceOptions {
+        spp: args.spp,
+        light_samples: args.light_samples,
+        seed: args.seed,
+    };
+    let image = render_with_progress(&reference, &settings, &options)?;
+    match format {
+        ImageFormat::Png => write_png_rgba8(
+            &args.out,
+            &image.to_display_rgba8(settings.view.exposure_ev as f64),
+        )?,
+        ImageFormat::Exr => write_exr(&args.out, &image.to_linear_rgba32f())?,
+    }
+    eprintln!("{}", summary(&settings, &reference, &image, build));
+    Ok(())
+}
+
+/// Renders on this thread's pool while the main thread draws a progress bar,
+/// only when stderr is a terminal.
+fn render_with_progress(
+    reference: &Reference,
+    settings: &Settings,
+    options: &ReferenceOptions,
+) -> anyhow::Result<ReferenceImage> {
+    let control = RenderControl::default();
+    if !std::io::stderr().is_terminal() {
+        return Ok(reference.render(settings, options, &control)?);
+    }
+    let pixels = settings.image.width as u64 * settings.image.height as u64;
+    let bar = indicatif::ProgressBar::new(pixels);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "reference {bar:40} {percent:>3}%  {elapsed_precise} (about {eta} left)",
+    ) {
+        bar.set_style(style);
+    }
+    let result = std::thread::scope(|s| {
+        let worker = s.spawn(|| reference.render(settings, options, &control));
+        while !worker.is_finished() {
+            bar.set_position(control.pixels_done.load(Ordering::Relaxed) as u64);
+            std::thread::sleep(Duration::from_millis(100));
+        }
+        worker.join()
+    });
+    bar.finish_and_clear();
+    match result {
+        Ok(rendered) => Ok(rendered?),
+        Err(_) => anyhow::bail!("the reference render stopped unexpectedly"),
+    }
+}
+
+/// One line: size, light, time, rays and the noise estimate.
+fn summary(settings: &Settings, reference: &Reference, image: &ReferenceImage, build: Duration) -> String {
+    let stats = &image.stats;
+    let seconds = stats.elapsed.as_secs_f64();
+    let light = if settings.light.radius_m > 0.0 {
+        format!(
+            "sphere light R = {} m, {} light samples",
+            settings.light.radius_m, stats.light_samples
+        )
+    } else {
+        "point light".to_string()
+    };
+    let noise = image.noise_summary();
+    let noise_text = if !noise.known {
+        "noise: not estimated (one sample per pixel and one light sample)".to_string()
+    } else if noise.rms_std_error == 0.0 {
+        "noise: none (exact)".to_string()
+    } else {
+        format!(
+            "noise: RMS standard error {:.3e} W/m²/sr = {:.3} % of the mean (max {:.3e})",
+            noise.rms_std_error,
+            100.0 * noise.relative,
+            noise.max_std_error
+        )
+    };
+    format!(
+        "reference {}×{}, {} triangles, {light}, {} spp: {:.3} s (BVH {:.3} s), {:.2} M rays ({:.2} M rays/s); {noise_text}",
+        image.width,
+        image.height,
+        reference.triangle_count(),
+        stats.spp,
+        seconds,
+        build.as_secs_f64(),
+        stats.rays() as f64 * 1e-6,
+        stats.rays() as f64 * 1e-6 / seconds.max(1e-9),
+    )
+}

@@ -1,0 +1,492 @@
+//! Ray casting against every triangle of the scene: a compressed wide BVH from
+//! `obvhs`, traversed in f32, with each candidate triangle tested in f64.
+//!
+//! f32 traversal must never skip a node whose triangle the f64 ray hits. Three
+//! measures make it conservative:
+//! - the BVH lives in a normalized frame, (p − centre) / scale with scale the
+//!   scene's largest extent, so every f32 coordinate is of order 1;
+//! - each triangle's box is padded by [`PAD`] (10⁻⁵ of the scene's extent),
+//!   about 100 times the worst rounding of an f32 ray (origin, direction,
+//!   slab distances: a few units of 6·10⁻⁸ in this frame);
+//! - a ray first clipped in f64 to the padded scene box starts its f32 copy
+//!   just before the box (and before obvhs's own clamp of node entries at
+//!   10⁻⁴), so a camera kilometres away loses no precision, and the f32 far
+//!   limit is the f64 one plus a few pads.
+//!
+//! The f64 test decides every hit, so the BVH answers exactly what testing
+//! every triangle would (see `closest_hit_brute_force` and the tests).
+
+use super::intersect::{ShearedRay, TriangleHit};
+// `UVec2` is named inside obvhs's `traverse!` macro.
+use glam::{DVec3, UVec2, Vec3A};
+use obvhs::cwbvh::Traversal;
+use obvhs::cwbvh::node::CwBvhNode;
+use obvhs::ray::Ray;
+use obvhs::{Boundable, BvhBuildParams, aabb::Aabb, cwbvh::CwBvh};
+
+/// Padding of every triangle's box in the normalized frame (scene extent = 1).
+pub const PAD: f64 = 1e-5;
+/// How far (in the f32 ray's parameter s) its copy begins before the
+/// segment: obvhs's node test only counts a node entered at s ≥ 10⁻⁴, and
+/// this is also more than two pads of frame distance.
+const EARLY_START: f64 = 2e-4;
+/// How far (in s) beyond the segment's end the f32 copy reaches: four pads
+/// of frame distance at least (its direction is at least 1 long).
+const PAD_S: f64 = 4.0 * PAD;
+
+/// A triangle to cast rays against.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BvhTriangle {
+    pub corners: [DVec3; 3],
+    /// Blocks shadow rays (the object casts shadows).
+    pub occludes: bool,
+}
+
+/// The closest hit of a ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Index of the triangle in the list given to [`TriangleBvh::new`].
+    pub triangle: usize,
+    /// Distance along the ray (its direction's units) and barycentrics.
+    pub at: TriangleHit,
+}
+
+/// Whether hit `a` on triangle `ta` wins over `b`: nearer, or as near with a
+/// lower index (so that every way of casting agrees on shared edges).
+pub fn closer(a: TriangleHit, ta: usize, b: Hit) -> bool {
+    a.t < b.at.t || (a.t == b.at.t && ta < b.triangle)
+}
+
+/// The padded box of one triangle in the normalized frame.
+struct PaddedBox(Aabb);
+
+impl Boundable for PaddedBox {
+    fn aabb(&self) -> Aabb {
+        self.0
+    }
+}
+
+pub struct TriangleBvh {
+    /// None when there is nothing to hit.
+    bvh: Option<CwBvh>,
+    /// Corners, in the BVH's leaf order so that a leaf slot indexes them directly.
+    corners: Vec<[DVec3; 3]>,
+    occludes: Vec<bool>,
+    /// Leaf slot → index in the caller's list.
+    original: Vec<usize>,
+    centre: DVec3,
+    /// Units of the normalized frame per world metre.
+    per_scale: f64,
+    /// The padded scene box (world, f64).
+    min: DVec3,
+    max: DVec3,
+}
+
+impl TriangleBvh {
+    /// Builds the BVH. Triangles with a non-finite corner or zero area can
+    /// never be hit and are left out.
+    pub fn new(triangles: &[BvhTriangle]) -> Self {
+        let usable: Vec<usize> = (0..triangles.len())
+            .filter(|&i| {
+                let [a, b, c] = triangles[i].corners;
+                a.is_finite() && b.is_finite() && c.is_finite() && (b - a).cross(c - a).length_squared() > 0.0
+            })
+            .collect();
+        let (mut min, mut max) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for &i in &usable {
+            for p in triangles[i].corners {
+                min = min.min(p);
+                max = max.max(p);
+            }
+        }
+        if usable.is_empty() {
+            return Self {
+                bvh: None,
+                corners: Vec::new(),
+                occludes: Vec::new(),
+                original: Vec::new(),
+                centre: DVec3::ZERO,
+                per_scale: 1.0,
+                min: DVec3::ZERO,
+                max: DVec3::ZERO,
+            };
+        }
+        let centre = 0.5 * (min + max);
+        let scale = (max - min).max_element().max(f64::MIN_POSITIVE);
+        let to_frame = |p: DVec3| (p - centre) / scale;
+        let boxes: Vec<PaddedBox> = usable
+            .iter()
+            .map(|&i| {
+                let [a, b, c] = triangles[i].corners.map(to_frame);
+                let lo = a.min(b).min(c) - DVec3::splat(PAD);
+                let hi = a.max(b).max(c) + DVec3::splat(PAD);
+                PaddedBox(Aabb::new(lo.as_vec3a(), hi.as_vec3a()))
+            })
+            .collect();
+        let bvh = obvhs::cwbvh::builder::build_cwbvh(
+            &boxes,
+            BvhBuildParams::medium_build(),
+            &mut std::time::Duration::default(),
+        );
+        let original: Vec<usize> = bvh
+            .primitive_indices
+            .iter()
+            .map(|&slot| usable[slot as usize])
+            .collect();
+        let pad_world = DVec3::splat(PAD * scale);
+        Self {
+            corners: original.iter().map(|&i| triangles[i].corners).collect(),
+            occludes: original.iter().map(|&i| triangles[i].occludes).collect(),
+            original,
+            bvh: Some(bvh),
+            centre,
+            per_scale: 1.0 / scale,
+            min: min - pad_world,
+            max: max + pad_world,
+        }
+    }
+
+    /// Triangles that can be hit.
+    pub fn len(&self) -> usize {
+        self.corners.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.corners.is_empty()
+    }
+
+    /// The ray prepared for traversal: clipped in f64 to the padded scene
+    /// box within (t_min, t_max) by the slab test when it starts outside
+    /// the box; its f32 copy in the frame, with the same parameter t, begins
+    /// a little before the clipped start and reaches a few pads beyond its
+    /// end; None when it misses the box.
+    #[inline(always)]
+    fn query(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> Option<Query> {
+        let inside = origin.cmpge(self.min).all() && origin.cmple(self.max).all();
+        let (t0, t1) = if inside {
+            // Shadow rays: the segment as given (beyond the box is empty).
+            (t_min, t_max)
+        } else {
+            // A zero component gives ±∞ and, on a slab face, NaN, which
+            // min/max skip: a ray in a face's plane misses (no triangle lies
+            // on the padded box's faces).
+            let inv = direction.recip();
+            let a = (self.min - origin) * inv;
+            let b = (self.max - origin) * inv;
+            (
+                a.min(b).max_element().max(t_min),
+                a.max(b).min_element().min(t_max),
+            )
+        };
+        let meets_box = t0 <= t1;
+        if !meets_box {
+            return None;
+        }
+        // The f32 ray's direction is d in frame units scaled so that its
+        // largest component is 1 (so obvhs's clamp of 1 / d_i at ±1/ε only
+        // touches near-parallel axes, as for unit vectors); its parameter is
+        // s = (t − t_start) · s_per_t, and |direction| ∈ [1, √3] makes a
+        // frame distance D between D / √3 and D in s.
+        let d_frame = direction * self.per_scale;
+        let s_per_t = d_frame.abs().max_element();
+        let t_per_s = 1.0 / s_per_t;
+        let unit = (d_frame * t_per_s).as_vec3a();
+        let limit = Vec3A::splat(1.0 / f32::EPSILON);
+        // obvhs only enters nodes at s ≥ 10⁻⁴: begin well before that, and
+        // before the box's padded face.
+        let t_start = t0 - EARLY_START * t_per_s;
+        let far = if t1.is_finite() {
+            ((t1 - t_start) * s_per_t + PAD_S) as f32
+        } else {
+            f32::INFINITY
+        };
+        let ray = Ray {
+            origin: ((origin - self.centre + direction * t_start) * self.per_scale).as_vec3a(),
+            direction: unit,
+            inv_direction: unit.recip().clamp(-limit, limit),
+            tmin: 0.0,
+            tmax: far,
+        };
+        Some(Query {
+            ray,
+            t_start,
+            s_per_t,
+            sheared: ShearedRay::new(origin, direction),
+        })
+    }
+
+    /// The closest hit with t ∈ (t_min, t_max) (units of `direction`).
+    pub fn closest_hit(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
+        let bvh = self.bvh.as_ref()?;
+        let query = self.query(origin, direction, t_min, t_max)?;
+        let mut best: Option<Hit> = None;
+        let mut limit = t_max;
+        let mut ray = query.ray;
+        TRAVERSAL.with_borrow_mut(|state| {
+            state.reinit(ray.direction);
+            let mut node;
+            obvhs::traverse!(bvh, node, state, node.intersect_ray(&ray, state.oct_inv4), {
+                let slot = state.primitive_id as usize;
+                if let Some(at) = query.sheared.intersect(&self.corners[slot], t_min, limit) {
+                    let triangle = self.original[slot];
+                    if best.is_none_or(|b| closer(at, triangle, b)) {
+                        best = Some(Hit { triangle, at });
+                        // Equal distances stay candidates (lowest index wins).
+                        limit = at.t.next_up();
+                        // Keep every node up to the new best (plus a few pads).
+                        ray.tmax = ((at.t - query.t_start) * query.s_per_t + PAD_S) as f32;
+                    }
+                }
+            });
+        });
+        best
+    }
+
+    /// Whether an occluding triangle lies at t ∈ (t_min, t_max) along the ray.
+    pub fn occluded(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> bool {
+        let Some(bvh) = self.bvh.as_ref() else {
+            return false;
+        };
+        let Some(query) = self.query(origin, direction, t_min, t_max) else {
+            return false;
+        };
+        let ray = query.ray;
+        let mut blocked = false;
+        TRAVERSAL.with_borrow_mut(|state| {
+            state.reinit(ray.direction);
+            let mut node;
+            obvhs::traverse!(bvh, node, state, node.intersect_ray(&ray, state.oct_inv4), {
+                let slot = state.primitive_id as usize;
+                if self.occludes[slot] && query.sheared.hits(&self.corners[slot], t_min, t_max) {
+                    blocked = true;
+                    break;
+                }
+            });
+        });
+        blocked
+    }
+
+    /// The occluders that may block a segment from `from` to any point of
+    /// the ball (`centre`, `radius`), e.g. every shadow ray of a sphere light
+    /// from one shading point: into `out`, as indices for [`Self::blocked_by`].
+    /// Such segments lie in the capsule of that radius around the segment
+    /// from `from` to `centre`; a BVH node is kept when its bounding sphere
+    /// (padded) reaches the capsule. False, with `out` unfinished, when more
+    /// than `limit` are found: cast each ray through the BVH instead.
+    pub fn gather_near_ball(
+        &self,
+        from: DVec3,
+        centre: DVec3,
+        radius: f64,
+        limit: usize,
+        out: &mut Vec<u32>,
+    ) -> bool {
+        out.clear();
+        let Some(bvh) = self.bvh.as_ref() else {
+            return true;
+        };
+        let to_frame = |p: DVec3| (p - self.centre) * self.per_scale;
+        let (a, b) = (to_frame(from), to_frame(centre));
+        let reach = radius * self.per_scale + 4.0 * PAD;
+        let mut fits = true;
+        TRAVERSAL.with_borrow_mut(|state| {
+            state.reinit((b - a).as_vec3a());
+            let mut node;
+            obvhs::traverse!(
+                bvh,
+                node,
+                state,
+                near_capsule(node, a, b, reach, state.oct_inv4),
+                {
+                    let slot = state.primitive_id;
+                    if self.occludes[slot as usize] {
+                        if out.len() == limit {
+                            fits = false;
+                            break;
+                        }
+                        out.push(slot);
+                    }
+                }
+            );
+        });
+        fits
+    }
+
+    /// Whether one of the gathered occluders (see [`Self::gather_near_ball`])
+    /// lies at t ∈ (0, t_max) along the ray.
+    pub fn blocked_by(&self, candidates: &[u32], origin: DVec3, direction: DVec3, t_max: f64) -> bool {
+        let sheared = ShearedRay::new(origin, direction);
+        candidates
+            .iter()
+            .any(|&slot| sheared.hits(&self.corners[slot as usize], 0.0, t_max))
+    }
+}
+
+/// The hit mask (obvhs's layout) of the children of `node` whose boxes'
+/// bounding spheres come within `reach` of the segment a–b (frame units).
+#[inline(always)]
+fn near_capsule(node: &CwBvhNode, a: DVec3, b: DVec3, reach: f64, oct_inv4: u32) -> u32 {
+    let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
+    let ab = b - a;
+    let length2 = ab.length_squared();
+    let mut hit_mask = 0;
+    for child in 0..8 {
+        let child_box = node.child_aabb(child);
+        let (lo, hi) = (child_box.min.as_dvec3(), child_box.max.as_dvec3());
+        let c = 0.5 * (lo + hi);
+        let r = 0.5 * (hi - lo).length();
+        // The point of a–b nearest to the box's centre.
+        let s = if length2 > 0.0 {
+            ((c - a).dot(ab) / length2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let gap = (a + ab * s - c).length();
+        if gap <= r + reach {
+            hit_mask |= obvhs::cwbvh::node::extract_byte64(child_bits8, child)
+                << obvhs::cwbvh::node::extract_byte64(bit_index8, child);
+        }
+    }
+    hit_mask
+}
+
+thread_local! {
+    /// Each thread's traversal state (a 32-entry stack), reused from ray to
+    /// ray instead of being built and zeroed for every one.
+    static TRAVERSAL: std::cell::RefCell<Traversal> = std::cell::RefCell::new(Traversal::default());
+}
+
+/// A ray ready for traversal (see [`TriangleBvh::query`]).
+struct Query {
+    /// The f32 copy in the normalized frame, parameter s = (t − t_start) · s_per_t.
+    ray: Ray,
+    /// The f64 parameter where the f32 copy begins.
+    t_start: f64,
+    s_per_t: f64,
+    sheared: ShearedRay,
+}
+
+/// The closest hit by testing every triangle: what the BVH must reproduce.
+pub fn closest_hit_brute_force(
+    triangles: &[BvhTriangle],
+    origin: DVec3,
+    direction: DVec3,
+    t_min: f64,
+    t_max: f64,
+) -> Option<Hit> {
+    let sheared = ShearedRay::new(origin, direction);
+    let mut best: Option<Hit> = None;
+    for (i, tri) in triangles.iter().enumerate() {
+        let limit = best.map_or(t_max, |b| b.at.t.next_up());
+        if let Some(at) = sheared.intersect(&tri.corners, t_min, limit)
+            && best.is_none_or(|b| closer(at, i, b))
+        {
+            best = Some(Hit { triangle: i, at });
+        }
+    }
+    best
+}
+
+/// Whether any occluding triangle blocks the segment, by testing every one.
+pub fn occluded_brute_force(
+    triangles: &[BvhTriangle],
+    origin: DVec3,
+    direction: DVec3,
+    t_min: f64,
+    t_max: f64,
+) -> bool {
+    let sheared = ShearedRay::new(origin, direction);
+    triangles
+        .iter()
+        .any(|tri| tri.occludes && sheared.hits(&tri.corners, t_min, t_max))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quad(y: f64, half: f64, occludes: bool) -> [BvhTriangle; 2] {
+        let c = [
+            DVec3::new(-half, y, half),
+            DVec3::new(half, y, half),
+            DVec3::new(half, y, -half),
+            DVec3::new(-half, y, -half),
+        ];
+        [
+            BvhTriangle {
+                corners: [c[0], c[1], c[2]],
+                occludes,
+            },
+            BvhTriangle {
+                corners: [c[0], c[2], c[3]],
+                occludes,
+            },
+        ]
+    }
+
+    #[test]
+    fn closest_of_two_planes_is_found() {
+        let mut tris = quad(0.0, 5.0, true).to_vec();
+        tris.extend(quad(1.0, 0.5, true));
+        let bvh = TriangleBvh::new(&tris);
+        let down = DVec3::NEG_Y;
+        let hit = bvh
+            .closest_hit(DVec3::new(0.1, 3.0, 0.2), down, 0.0, f64::INFINITY)
+            .unwrap();
+        assert_eq!(hit.at.t, 2.0);
+        assert!(hit.triangle >= 2);
+        let hit = bvh
+            .closest_hit(DVec3::new(2.0, 3.0, 0.2), down, 0.0, f64::INFINITY)
+            .unwrap();
+        assert_eq!(hit.at.t, 3.0);
+        assert!(
+            bvh.closest_hit(DVec3::new(9.0, 3.0, 0.0), down, 0.0, f64::INFINITY)
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn only_occluders_block_and_only_inside_the_segment() {
+        let mut tris = quad(0.0, 5.0, true).to_vec();
+        tris.extend(quad(1.0, 0.5, false));
+        let bvh = TriangleBvh::new(&tris);
+        let o = DVec3::new(0.0, 3.0, 0.0);
+        assert!(bvh.occluded(o, DVec3::NEG_Y, 0.0, 3.5));
+        assert!(
+            !bvh.occluded(o, DVec3::NEG_Y, 0.0, 2.5),
+            "the upper quad casts no shadow"
+        );
+        assert!(
+            !bvh.occluded(o, DVec3::NEG_Y, 0.0, 3.0),
+            "the segment ends at the plane"
+        );
+    }
+
+    #[test]
+    fn a_far_away_camera_keeps_exact_hits() {
+        let tris = quad(0.0, 1.0, true);
+        let bvh = TriangleBvh::new(&tris);
+        let o = DVec3::new(0.3e6, 1.0e6, -0.2e6);
+        let target = DVec3::new(0.999_999, 0.0, 0.5);
+        let d = (target - o).normalize();
+        let hit = bvh.closest_hit(o, d, 0.0, f64::INFINITY).unwrap();
+        assert!((o + d * hit.at.t - target).length() < 1e-9);
+    }
+
+    #[test]
+    fn nothing_to_hit_is_fine() {
+        let degenerate = [BvhTriangle {
+            corners: [DVec3::ZERO, DVec3::X, DVec3::X * 2.0],
+            occludes: true,
+        }];
+        for tris in [&degenerate[..], &[]] {
+            let bvh = TriangleBvh::new(tris);
+            assert!(bvh.is_empty());
+            assert!(
+                bvh.closest_hit(DVec3::Y, DVec3::NEG_Y, 0.0, f64::INFINITY)
+                    .is_none()
+            );
+            assert!(!bvh.occluded(DVec3::Y, DVec3::NEG_Y, 0.0, 2.0));
+        }
+    }
+}

@@ -1,0 +1,193 @@
+//! The ray–triangle test, in f64: the watertight algorithm of Woop, Benthin
+//! & Wald (JCGT 2013). The ray is sheared so that it runs along +z through the
+//! origin; the triangle's 2D edge functions U, V, W then decide the hit by their
+//! signs alone, so a ray through an edge or a vertex shared by two triangles
+//! hits at least one of them: no cracks, whatever the rounding.
+
+use glam::DVec3;
+
+/// A ray prepared for many triangle tests: its dominant axis and the shear.
+#[derive(Clone, Copy, Debug)]
+pub struct ShearedRay {
+    pub origin: DVec3,
+    pub direction: DVec3,
+    /// The axes permuted so that kz is the largest |d| component (and the
+    /// winding is kept when d_kz < 0).
+    kx: usize,
+    ky: usize,
+    kz: usize,
+    /// Shear constants: d_kx / d_kz, d_ky / d_kz, 1 / d_kz.
+    sx: f64,
+    sy: f64,
+    sz: f64,
+}
+
+/// Where a ray meets a triangle.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TriangleHit {
+    /// Distance along the ray in units of its direction's length.
+    pub t: f64,
+    /// Barycentric weights of the corners a, b, c (sum 1).
+    pub barycentric: [f64; 3],
+}
+
+impl ShearedRay {
+    /// `direction` need not be normalized but must not be zero.
+    pub fn new(origin: DVec3, direction: DVec3) -> Self {
+        let a = direction.abs();
+        let kz = if a.x >= a.y && a.x >= a.z {
+            0
+        } else if a.y >= a.z {
+            1
+        } else {
+            2
+        };
+        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
+        if direction[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        let sz = 1.0 / direction[kz];
+        Self {
+            origin,
+            direction,
+            kx,
+            ky,
+            kz,
+            sx: direction[kx] * sz,
+            sy: direction[ky] * sz,
+            sz,
+        }
+    }
+
+    /// The hit with t ∈ (t_min, t_max), both faces counted; None for a miss
+    /// or a degenerate (zero-area in projection) triangle.
+    #[inline]
+    pub fn intersect(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> Option<TriangleHit> {
+        let e = self.edges(corners)?;
+        // A division-free test a little wider than the range first; then the
+        // range on the computed t itself, so that the closest of several
+        // hits is decided by their computed distances alone, in any order.
+        let slack = 1.0 + 4.0 * f64::EPSILON;
+        if !(e.t_scaled * slack > t_min * e.det && e.t_scaled < t_max * e.det * slack) {
+            return None;
+        }
+        // One division serves the distance and the barycentrics.
+        let inv = 1.0 / e.det;
+        let t = e.t_scaled * inv;
+        (t > t_min && t < t_max).then_some(TriangleHit {
+            t,
+            barycentric: [e.u * inv, e.v * inv, e.w * inv],
+        })
+    }
+
+    /// Whether the ray meets the triangle at t ∈ (t_min, t_max), without
+    /// any division (t = t_scaled / det compared as in Woop et al.).
+    #[inline]
+    pub fn hits(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> bool {
+        self.edges(corners)
+            .is_some_and(|e| e.t_scaled > t_min * e.det && e.t_scaled < t_max * e.det)
+    }
+
+    /// The edge functions and the scaled distance, with signs normalized so
+    /// that det > 0; None when the ray misses the triangle's interior.
+    #[inline(always)]
+    fn edges(&self, [a, b, c]: &[DVec3; 3]) -> Option<Edges> {
+        let (kx, ky, kz) = (self.kx, self.ky, self.kz);
+        let a = (*a - self.origin).to_array();
+        let b = (*b - self.origin).to_array();
+        let c = (*c - self.origin).to_array();
+        let (ax, ay) = (a[kx] - self.sx * a[kz], a[ky] - self.sy * a[kz]);
+        let (bx, by) = (b[kx] - self.sx * b[kz], b[ky] - self.sy * b[kz]);
+        let (cx, cy) = (c[kx] - self.sx * c[kz], c[ky] - self.sy * c[kz]);
+        // Twice the signed areas of the sub-triangles opposite a, b and c.
+        let u = cx * by - cy * bx;
+        let v = ax * cy - ay * cx;
+        let w = bx * ay - by * ax;
+        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+            return None;
+        }
+        let det = u + v + w;
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        let t_scaled = u * self.sz * a[kz] + v * self.sz * b[kz] + w * self.sz * c[kz];
+        let sign = det.signum();
+        Some(Edges {
+            u: sign * u,
+            v: sign * v,
+            w: sign * w,
+            det: sign * det,
+            t_scaled: sign * t_scaled,
+        })
+    }
+}
+
+/// The unnormalized result of the test: t = t_scaled / det, barycentrics
+/// (u, v, w) / det.
+struct Edges {
+    u: f64,
+    v: f64,
+    w: f64,
+    det: f64,
+    t_scaled: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TRI: [DVec3; 3] = [
+        DVec3::new(0.0, 0.0, 0.0),
+        DVec3::new(1.0, 0.0, 0.0),
+        DVec3::new(0.0, 1.0, 0.0),
+    ];
+
+    #[test]
+    fn hit_distance_and_barycentrics_reproduce_the_point() {
+        let o = DVec3::new(0.2, 0.3, 2.0);
+        for d in [
+            DVec3::NEG_Z,
+            DVec3::new(0.1, -0.05, -1.0),
+            DVec3::new(0.0, 0.0, -3.0),
+        ] {
+            let hit = ShearedRay::new(o, d).intersect(&TRI, 0.0, f64::INFINITY).unwrap();
+            let p = o + d * hit.t;
+            let q = TRI[0] * hit.barycentric[0] + TRI[1] * hit.barycentric[1] + TRI[2] * hit.barycentric[2];
+            assert!((p - q).length() < 1e-15, "{p} vs {q}");
+            assert!((hit.barycentric.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+        }
+    }
+
+    #[test]
+    fn both_faces_hit_and_the_range_is_open() {
+        let up = ShearedRay::new(DVec3::new(0.25, 0.25, -1.0), DVec3::Z);
+        assert_eq!(up.intersect(&TRI, 0.0, 2.0).map(|h| h.t), Some(1.0));
+        assert!(up.intersect(&TRI, 1.0, 2.0).is_none());
+        assert!(up.intersect(&TRI, 0.0, 1.0).is_none());
+        let miss = ShearedRay::new(DVec3::new(0.75, 0.75, -1.0), DVec3::Z);
+        assert!(miss.intersect(&TRI, 0.0, 2.0).is_none());
+    }
+
+    #[test]
+    fn a_ray_through_a_shared_edge_hits_a_side() {
+        // Two triangles sharing the diagonal of the unit square; rays exactly
+        // on the diagonal must hit at least one of them.
+        let other = [TRI[1], DVec3::new(1.0, 1.0, 0.0), TRI[2]];
+        for i in 1..100 {
+            let x = i as f64 / 100.0;
+            let ray = ShearedRay::new(DVec3::new(x, 1.0 - x, 1.0), DVec3::new(0.0, 0.0, -1.0));
+            let hits = [&TRI, &other]
+                .iter()
+                .filter(|t| ray.intersect(t, 0.0, 10.0).is_some())
+                .count();
+            assert!(hits >= 1, "x = {x}");
+        }
+    }
+
+    #[test]
+    fn degenerate_triangles_are_missed() {
+        let line = [DVec3::ZERO, DVec3::X, DVec3::X * 2.0];
+        let ray = ShearedRay::new(DVec3::new(0.5, 0.0, 1.0), DVec3::NEG_Z);
+        assert!(ray.intersect(&line, 0.0, 10.0).is_none());
+    }
+}

@@ -1,0 +1,564 @@
+//! The CPU reference: a ray tracer that renders the same scene, camera, light
+//! and BRDF as the GPU path, in f64 through `physics`, exactly where it can be
+//! (point light: one shadow ray gives V ∈ {0, 1}) and by stratified Monte Carlo
+//! with a noise estimate where it cannot (the sphere light's penumbra).
+//!
+//! It shares no code with `gpu`: it judges the renderer. Per pixel, the primary
+//! ray comes from [`Camera::ray_direction`](crate::scene::Camera::ray_direction)
+//! through the pixel centre (one sample per pixel) or through jittered strata
+//! of the pixel square (more samples, box filter). See `shading` for the
+//! radiance and the shadow-ray epsilon, `bvh` for exact ray casting (an f32
+//! BVH that never misses, an f64 watertight triangle test that decides),
+//! `grid` for the faster exact path of rays from the eye and to a point
+//! light, `sampling` for strata and the noise estimate.
+//!
+//! ```no_run
+//! # use lumlab::{reference::*, scene, settings::Settings};
+//! let settings = Settings::default();
+//! let reference = Reference::new(&scene::default_scene());
+//! let image = reference.render(&settings, &ReferenceOptions::default(), &RenderControl::default())?;
+//! let png = image.to_display_rgba8(settings.view.exposure_ev as f64);
+//! # Ok::<(), ReferenceError>(())
+//! ```
+
+pub mod bvh;
+pub mod grid;
+mod image;
+pub mod intersect;
+pub mod sampling;
+mod shading;
+mod texture;
+
+pub use image::{LUMINANCE, NoiseSummary, ReferenceImage, RenderStats, luminance};
+pub use shading::{SHADOW_OFFSET_REL, STOP_SHORT_REL, ShadingSample};
+
+use crate::scene::{Material, Scene};
+use crate::settings::{Settings, SettingsError};
+use bvh::{BvhTriangle, TriangleBvh};
+use glam::{DVec2, DVec3};
+use grid::DirectionGrid;
+use rayon::prelude::*;
+use sampling::{Rng, Strata, collapsed_strata_variance};
+use shading::{Scratch, Setup};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::Instant;
+use texture::LinearTexture;
+
+/// How much work the reference does per pixel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ReferenceOptions {
+    /// Primary samples per pixel: 1 is the pixel centre; more are jittered
+    /// over a grid of strata of the pixel square (box filter).
+    pub spp: u32,
+    /// Strata N of the sphere light's cone per primary sample (ignored for a
+    /// point light). Squares (16, 64, 256) stratify best.
+    pub light_samples: u32,
+    /// Seed of every random number: same seed, same image.
+    pub seed: u64,
+}
+
+impl ReferenceOptions {
+    /// The pixel centre, 64 light samples (8 × 8 strata), seed 0.
+    pub const DEFAULT: Self = Self {
+        spp: 1,
+        light_samples: 64,
+        seed: 0,
+    };
+}
+
+impl Default for ReferenceOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// Progress and cancellation, shared with the thread that watches a render.
+#[derive(Debug, Default)]
+pub struct RenderControl {
+    /// Pixels finished so far (of width × height).
+    pub pixels_done: AtomicUsize,
+    /// Set to stop the render; it then returns [`ReferenceError::Cancelled`].
+    pub cancel: AtomicBool,
+}
+
+impl RenderControl {
+    pub fn cancel(&self) {
+        self.cancel.store(true, Ordering::Relaxed);
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.load(Ordering::Relaxed)
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum ReferenceError {
+    #[error("the reference render was cancelled")]
+    Cancelled,
+    #[error(transparent)]
+    Settings(#[from] SettingsError),
+}
+
+/// One triangle's shading data, in the scene's order.
+#[derive(Clone, Debug)]
+struct TriangleInfo {
+    object: usize,
+    /// Index within the object's mesh.
+    index: usize,
+    corners: [DVec3; 3],
+    /// The unit normal of the face (counter-clockwise winding).
+    face_normal: DVec3,
+    /// The normalized vertex normal when all three are equal (a flat
+    /// facet): interpolating and normalizing would give it again.
+    flat_normal: Option<DVec3>,
+    /// How far shadow rays start off this triangle (m): SHADOW_OFFSET_REL ×
+    /// its largest |coordinate|.
+    shadow_offset_m: f64,
+    normals: [DVec3; 3],
+    uvs: [DVec2; 3],
+}
+
+#[derive(Clone, Debug)]
+struct ObjectInfo {
+    /// Index into `Reference::materials` (always valid).
+    material: usize,
+    /// The scene's material index, None when it was out of range.
+    material_index: Option<usize>,
+    receives_shadows: bool,
+}
+
+/// A scene prepared for ray tracing: build once, render many settings.
+pub struct Reference {
+    bvh: TriangleBvh,
+    /// The BVH's triangles, in the order of `triangles`: what the direction
+    /// grids are built from.
+    bvh_triangles: Vec<BvhTriangle>,
+    triangles: Vec<TriangleInfo>,
+    objects: Vec<ObjectInfo>,
+    /// The scene's materials, then the default one for invalid indices.
+    materials: Vec<Material>,
+    textures: Vec<Option<LinearTexture>>,
+    /// Triangles left out: indices out of range.
+    skipped_triangles: usize,
+}
+
+/// Edge length of the square tiles the image is split into for the threads.
+const TILE: u32 = 16;
+
+impl Reference {
+    /// Flattens the scene's triangles and builds the BVH. Triangles whose
+    /// indices point outside their mesh are skipped (counted).
+    pub fn new(scene: &Scene) -> Self {
+        let mut materials = scene.materials.clone();
+        let fallback = materials.len();
+        materials.push(Material::default());
+        let mut objects = Vec::with_capacity(scene.objects.len());
+        let mut triangles = Vec::with_capacity(scene.triangle_count());
+        let mut bvh_triangles = Vec::with_capacity(scene.triangle_count());
+        let mut skipped_triangles = 0;
+        for (object_id, object) in scene.objects.iter().enumerate() {
+            let material_index = (object.material < fallback).then_some(object.material);
+            objects.push(ObjectInfo {
+                material: material_index.unwrap_or(fallback),
+                material_index,
+                receives_shadows: object.receives_shadows,
+            });
+            let mesh = &object.mesh;
+            for (index, ids) in mesh.indices.chunks_exact(3).enumerate() {
+                let ids = [ids[0] as usize, ids[1] as usize, ids[2] as usize];
+                let Some(corners) = corner_values(&mesh.positions, ids) else {
+                    skipped_triangles += 1;
+                    continue;
+                };
+                let corners = corners.map(|p| p.as_dvec3());
+                let face = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+                // Missing normals: the face's own; missing uvs: zero.
+                let normals =
+                    corner_values(&mesh.normals, ids).map_or([face; 3], |n| n.map(|n| n.as_dvec3()));
+                let uvs = corner_values(&mesh.uvs, ids).map_or([DVec2::ZERO; 3], |t| t.map(|t| t.as_dvec2()));
+                bvh_triangles.push(BvhTriangle {
+                    corners,
+                    occludes: object.casts_shadows,
+                });
+                let largest = corners.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+                triangles.push(TriangleInfo {
+                    object: object_id,
+                    index,
+                    corners,
+                    face_normal: face.normalize_or_zero(),
+                    flat_normal: (normals[0] == normals[1] && normals[0] == normals[2])
+                        .then(|| normals[0].normalize_or(face.normalize_or_zero())),
+                    shadow_offset_m: SHADOW_OFFSET_REL * largest,
+                    normals,
+                    uvs,
+                });
+            }
+        }
+        Self {
+            bvh: TriangleBvh::new(&bvh_triangles),
+            bvh_triangles,
+            triangles,
+            objects,
+            materials,
+            textures: scene.textures.iter().map(LinearTexture::new).collect(),
+            skipped_triangles,
+        }
+    }
+
+    /// Triangles that rays can hit (degenerate ones left out).
+    pub fn triangle_count(&self) -> usize {
+        self.bvh.len()
+    }
+
+    /// Triangles left out because their indices point outside their mesh.
+    pub fn skipped_triangles(&self) -> usize {
+        self.skipped_triangles
+    }
+
+    /// Everything about the primary sample through image point (x, y) of
+    /// the settings' image (pixels; the centre of pixel (i, j) is
+    /// (i + 0.5, j + 0.5)); None on background. At a pixel centre with one
+    /// sample per pixel this is exactly the sample `render` took there.
+    pub fn trace_pixel(
+        &self,
+        settings: &Settings,
+        options: &ReferenceOptions,
+        x: f64,
+        y: f64,
+    ) -> Option<ShadingSample> {
+        let setup = Setup::new(settings, options.light_samples, options.seed);
+        let pixel = pixel_index(&setup, x.floor(), y.floor());
+        let mut rng = Rng::new(options.seed, pixel, 0);
+        self.probe(&setup, x, y, &mut rng)
+    }
+
+    /// Renders the image, in parallel over tiles, reporting progress and
+    /// stopping early when cancelled through `control`.
+    pub fn render(
+        &self,
+        settings: &Settings,
+        options: &ReferenceOptions,
+        control: &RenderControl,
+    ) -> Result<ReferenceImage, ReferenceError> {
+        settings.validate()?;
+        let start = Instant::now();
+        let mut setup = Setup::new(settings, options.light_samples, options.seed);
+        // Every primary ray leaves the eye and every point-light shadow ray
+        // ends at the light: both are cast through direction grids there.
+        setup.eye_grid = Some(DirectionGrid::new(setup.rays.eye, &self.bvh_triangles, |_| true));
+        if setup.shadows && !setup.is_sphere_light() {
+            let light = setup.light_position;
+            setup.light_grid = Some(DirectionGrid::new(light, &self.bvh_triangles, |t| t.occludes));
+        }
+        let setup = setup;
+        let (width, height) = (setup.width, setup.height);
+        let tiles: Vec<(u32, u32)> = (0..height.div_ceil(TILE))
+            .flat_map(|ty| (0..width.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
+            .collect();
+        let spp = Strata::new(options.spp);
+        let rendered: Vec<Option<Tile>> = tiles
+            .par_iter()
+            .map(|&(x0, y0)| self.render_tile(&setup, spp, x0, y0, control))
+            .collect();
+        if control.cancelled() {
+            return Err(ReferenceError::Cancelled);
+        }
+        let pixels = width as usize * height as usize;
+        let mut image = ReferenceImage {
+            width,
+            height,
+            radiance: vec![[0.0; 3]; pixels],
+            visibility: vec![0.0; pixels],
+            coverage: vec![0.0; pixels],
+            noise: vec![0.0; pixels],
+            noise_known: true,
+            stats: RenderStats {
+                spp: spp.count(),
+                light_samples: if setup.is_sphere_light() {
+                    setup.light_strata.count()
+                } else {
+                    0
+                },
+                ..RenderStats::default()
+            },
+        };
+        for tile in rendered.into_iter().flatten() {
+            image.stats.primary_rays += tile.primary_rays;
+            image.stats.shadow_rays += tile.shadow_rays;
+            image.noise_known &= tile.noise_known;
+            for (k, px) in tile.pixels.iter().enumerate() {
+                let (i, j) = (tile.x0 + k as u32 % tile.width, tile.y0 + k as u32 / tile.width);
+                let at = image.index(i, j);
+                image.radiance[at] = px.radiance;
+                image.visibility[at] = px.visibility;
+                image.coverage[at] = px.coverage;
+                image.noise[at] = px.noise;
+            }
+        }
+        image.stats.elapsed = start.elapsed();
+        Ok(image)
+    }
+
+    /// One tile, or None when cancelled.
+    fn render_tile(
+        &self,
+        setup: &Setup,
+        spp: Strata,
+        x0: u32,
+        y0: u32,
+        control: &RenderControl,
+    ) -> Option<Tile> {
+        let (x1, y1) = ((x0 + TILE).min(setup.width), (y0 + TILE).min(setup.height));
+        let mut tile = Tile {
+            x0,
+            y0,
+            width: x1 - x0,
+            pixels: Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize),
+            primary_rays: 0,
+            shadow_rays: 0,
+            noise_known: true,
+        };
+        let n = spp.count();
+        let mut scratch = Scratch::default();
+        let mut sample_luminance = Vec::with_capacity(n as usize);
+        for j in y0..y1 {
+            if control.cancelled() {
+                return None;
+            }
+            for i in x0..x1 {
+                let pixel = pixel_index(setup, i as f64, j as f64);
+                let mut sum = [0.0; 3];
+                let (mut hits, mut visibility) = (0u32, 0.0);
+                let mut variance = 0.0;
+                sample_luminance.clear();
+                for s in 0..n {
+                    let mut rng = Rng::new(setup.seed, pixel, s as u64);
+                    // DESIGN.md: one sample per pixel is the pixel centre.
+                    let (dx, dy) = if n == 1 {
+                        (0.5, 0.5)
+                    } else {
+                        spp.jittered(s, &mut rng)
+                    };
+                    tile.primary_rays += 1;
+                    let Some(surface) = self.surface(setup, i as f64 + dx, j as f64 + dy) else {
+                        sample_luminance.push(0.0);
+                        continue;
+                    };
+                    let light = self.light(setup, &surface, &mut rng, &mut scratch);
+                    tile.shadow_rays += light.shadow_rays as u64;
+                    hits += 1;
+                    visibility += light.visibility;
+                    let l = (surface.tint * light.scaled_radiance).to_array();
+                    for c in 0..3 {
+                        sum[c] += l[c];
+                    }
+                    sample_luminance.push(luminance(l));
+                    let tint_y = luminance(surface.tint.to_array());
+                    match light.std_error {
+                        Some(se) => variance += (tint_y * se).powi(2),
+                        None => tile.noise_known &= n > 1,
+                    }
+                }
+                // One sample: its own light-sampling error; more: the spread
+                // between the pixel's strata, which includes it.
+                let noise = if n == 1 {
+                    variance.sqrt()
+                } else {
+                    collapsed_strata_variance(&sample_luminance).map_or(0.0, f64::sqrt)
+                };
+                tile.pixels.push(Pixel {
+                    radiance: sum.map(|c| c / n as f64),
+                    visibility: if hits > 0 {
+                        (visibility / hits as f64) as f32
+                    } else {
+                        0.0
+                    },
+                    coverage: hits as f32 / n as f32,
+                    noise: noise as f32,
+                });
+            }
+            control
+                .pixels_done
+                .fetch_add((x1 - x0) as usize, Ordering::Relaxed);
+        }
+        Some(tile)
+    }
+}
+
+/// The values of `values` at the three indices, None when one is out of range.
+fn corner_values<T: Copy>(values: &[T], ids: [usize; 3]) -> Option<[T; 3]> {
+    Some([*values.get(ids[0])?, *values.get(ids[1])?, *values.get(ids[2])?])
+}
+
+/// The pixel's number for seeding its random streams (clamped into the image).
+fn pixel_index(setup: &Setup, i: f64, j: f64) -> u64 {
+    let i = i.clamp(0.0, setup.width.saturating_sub(1) as f64) as u64;
+    let j = j.clamp(0.0, setup.height.saturating_sub(1) as f64) as u64;
+    j * setup.width as u64 + i
+}
+
+struct Pixel {
+    radiance: [f64; 3],
+    visibility: f32,
+    coverage: f32,
+    noise: f32,
+}
+
+struct Tile {
+    x0: u32,
+    y0: u32,
+    width: u32,
+    pixels: Vec<Pixel>,
+    primary_rays: u64,
+    shadow_rays: u64,
+    noise_known: bool,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::display::srgb_decode;
+    use crate::scene::{Object, Texture, shapes};
+    use glam::{Vec3, Vec4};
+
+    /// A 4 m ground facing +Y with one material (and its texture, if any).
+    fn ground_scene(material: Material, texture: Option<Texture>) -> Scene {
+        Scene {
+            objects: vec![Object::new("ground", shapes::ground(Vec3::ZERO, 4.0), 0)],
+            materials: vec![material],
+            textures: texture.into_iter().collect(),
+            ..Scene::default()
+        }
+    }
+
+    /// Looking down at the ground from `eye_y` (negative: from below), the
+    /// light on the same side.
+    fn settings(eye_y: f32) -> Settings {
+        let mut s = Settings::default();
+        s.camera.eye = Vec3::new(0.0, eye_y, 0.5 * eye_y);
+        s.camera.target = Vec3::ZERO;
+        s.light.position = Vec3::new(0.3, eye_y, 0.2);
+        (s.image.width, s.image.height) = (16, 12);
+        s
+    }
+
+    fn centre(reference: &Reference, s: &Settings) -> Option<ShadingSample> {
+        reference.trace_pixel(s, &ReferenceOptions::default(), 8.0, 6.0)
+    }
+
+    #[test]
+    fn own_k_and_m_win_only_when_scene_materials_are_used() {
+        let material = Material {
+            k: Some(0.2),
+            m: Some(5.0),
+            ..Material::default()
+        };
+        let reference = Reference::new(&ground_scene(material, None));
+        let mut s = settings(3.0);
+        let sample = centre(&reference, &s).unwrap();
+        assert_eq!((sample.k, sample.m), (0.2_f32 as f64, 5.0));
+        s.material.use_scene_materials = false;
+        let sample = centre(&reference, &s).unwrap();
+        assert_eq!((sample.k, sample.m), (s.material.k as f64, s.material.m as f64));
+    }
+
+    #[test]
+    fn colour_is_base_times_decoded_texture_unless_overridden() {
+        let material = Material {
+            base_color: Vec4::new(0.5, 1.0, 0.25, 1.0),
+            base_color_texture: Some(0),
+            ..Material::default()
+        };
+        let texture = Texture {
+            width: 1,
+            height: 1,
+            rgba8: vec![128, 64, 255, 255],
+        };
+        let reference = Reference::new(&ground_scene(material, Some(texture)));
+        let mut s = settings(3.0);
+        let c = centre(&reference, &s).unwrap().color;
+        let decoded = |b: u8| srgb_decode(b as f64 / 255.0);
+        let expected = DVec3::new(0.5 * decoded(128), decoded(64), 0.25);
+        assert!((c - expected).abs().max_element() < 1e-15, "{c} vs {expected}");
+        s.material.color_override = Some(Vec3::new(0.1, 0.2, 0.3));
+        let c = centre(&reference, &s).unwrap().color;
+        assert_eq!(c, Vec3::new(0.1, 0.2, 0.3).as_dvec3());
+    }
+
+    #[test]
+    fn only_double_sided_materials_reflect_from_their_back() {
+        let below = settings(-3.0);
+        for double_sided in [false, true] {
+            let material = Material {
+                double_sided,
+                ..Material::default()
+            };
+            let reference = Reference::new(&ground_scene(material, None));
+            let sample = centre(&reference, &below).unwrap();
+            if double_sided {
+                assert_eq!(sample.normal.y, -1.0);
+                assert!(sample.radiance.x > 0.0 && sample.visibility == 1.0);
+            } else {
+                assert_eq!(sample.radiance, DVec3::ZERO);
+            }
+        }
+    }
+
+    #[test]
+    fn background_has_no_sample_and_no_coverage() {
+        let reference = Reference::new(&ground_scene(Material::default(), None));
+        let mut s = settings(3.0);
+        s.camera.target = Vec3::new(0.0, 6.0, 0.0);
+        assert!(centre(&reference, &s).is_none());
+        let image = reference
+            .render(&s, &ReferenceOptions::default(), &RenderControl::default())
+            .unwrap();
+        assert!(image.coverage.iter().all(|&c| c == 0.0));
+        assert!(image.radiance.iter().all(|l| *l == [0.0; 3]));
+    }
+
+    #[test]
+    fn a_silhouette_is_partly_covered_with_several_samples_per_pixel() {
+        let reference = Reference::new(&ground_scene(Material::default(), None));
+        let mut s = settings(3.0);
+        // Far enough that the ground's edge crosses the image.
+        s.camera.eye = Vec3::new(0.0, 3.0, 9.0);
+        let options = ReferenceOptions {
+            spp: 16,
+            ..ReferenceOptions::default()
+        };
+        let image = reference.render(&s, &options, &RenderControl::default()).unwrap();
+        assert!(image.coverage.iter().any(|&c| c > 0.0 && c < 1.0));
+        assert_eq!(image.stats.primary_rays, 16 * 16 * 12);
+    }
+
+    #[test]
+    fn progress_counts_every_pixel_and_cancel_stops() {
+        let reference = Reference::new(&ground_scene(Material::default(), None));
+        let s = settings(3.0);
+        let control = RenderControl::default();
+        reference
+            .render(&s, &ReferenceOptions::default(), &control)
+            .unwrap();
+        assert_eq!(control.pixels_done.load(Ordering::Relaxed), 16 * 12);
+        let control = RenderControl::default();
+        control.cancel();
+        let result = reference.render(&s, &ReferenceOptions::default(), &control);
+        assert!(matches!(result, Err(ReferenceError::Cancelled)));
+    }
+
+    #[test]
+    fn the_same_seed_gives_the_same_image_whatever_the_threads() {
+        let reference = Reference::new(&ground_scene(Material::default(), None));
+        let mut s = settings(3.0);
+        s.light.radius_m = 0.5;
+        let render = || {
+            reference
+                .render(&s, &ReferenceOptions::default(), &RenderControl::default())
+                .unwrap()
+                .radiance
+        };
+        let single = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        assert_eq!(render(), single.install(render));
+    }
+}

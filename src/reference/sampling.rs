@@ -1,0 +1,237 @@
+//! Random numbers, stratification and the noise estimate of a stratified mean.
+//!
+//! Every random number is a pure function of (seed, pixel, sample), so an image
+//! is the same whatever the number of threads or the order of the tiles, and
+//! one pixel traced alone (the probe) gives the value the full render gave it.
+
+use glam::DVec3;
+use std::f64::consts::TAU;
+
+/// SplitMix64 (Steele, Lea & Flood 2014): a tiny generator whose outputs pass
+/// BigCrush; here seeded per pixel sample by hashing its coordinates.
+#[derive(Clone, Debug)]
+pub struct Rng(u64);
+
+impl Rng {
+    /// The stream of one sample of one pixel.
+    pub fn new(seed: u64, pixel: u64, sample: u64) -> Self {
+        let mut rng = Rng(seed ^ 0x5851_f42d_4c95_7f2d);
+        let a = rng.next_u64() ^ pixel.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        let mut rng = Rng(a);
+        let b = rng.next_u64() ^ sample.wrapping_mul(0xc2b2_ae3d_27d4_eb4f);
+        Rng(b)
+    }
+
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1): the top 53 bits as the mantissa.
+    pub fn next_f64(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+}
+
+/// The strata of `n` samples over the unit square: a grid of nx × ny = n cells,
+/// the factor pair of n closest to a square (8 × 8 for 64, 4 × 8 for 32; a
+/// prime n gives 1 × n strips). Square counts stratify best.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Strata {
+    pub nx: u32,
+    pub ny: u32,
+}
+
+impl Strata {
+    pub fn new(n: u32) -> Self {
+        let n = n.max(1);
+        let mut nx = (n as f64).sqrt().floor() as u32;
+        while nx > 1 && !n.is_multiple_of(nx) {
+            nx -= 1;
+        }
+        let nx = nx.max(1);
+        Self { nx, ny: n / nx }
+    }
+
+    pub fn count(self) -> u32 {
+        self.nx * self.ny
+    }
+
+    /// A point jittered uniformly inside cell `i` (row-major, x fastest, so
+    /// that cells 2j and 2j + 1 are neighbours whenever nx is even).
+    pub fn jittered(self, i: u32, rng: &mut Rng) -> (f64, f64) {
+        let (ix, iy) = (i % self.nx, i / self.nx);
+        (
+            (ix as f64 + rng.next_f64()) / self.nx as f64,
+            (iy as f64 + rng.next_f64()) / self.ny as f64,
+        )
+    }
+}
+
+/// Directions uniform in solid angle inside the cone of half-angle α around
+/// the unit axis `w`: cos θ = 1 − u (1 − cos α), φ = 2π v. The map is area
+/// preserving, so equal strata of (u, v) are equal solid angles.
+#[derive(Clone, Copy, Debug)]
+pub struct Cone {
+    w: DVec3,
+    t1: DVec3,
+    t2: DVec3,
+    /// 1 − cos α, kept apart so that tiny cones keep their precision.
+    one_minus_cos: f64,
+}
+
+impl Cone {
+    /// The cone with sin²α = `sin2_alpha` ∈ [0, 1]; 1 − cos α is computed as
+    /// sin²α / (1 + cos α) so that distant lights do not round to an empty cone.
+    pub fn new(w: DVec3, sin2_alpha: f64) -> Self {
+        let sin2 = sin2_alpha.clamp(0.0, 1.0);
+        let cos = (1.0 - sin2).sqrt();
+        Self::with_gap(w, sin2 / (1.0 + cos))
+    }
+
+    /// The hemisphere around `w` (a point inside a sphere light sees it everywhere).
+    pub fn hemisphere(w: DVec3) -> Self {
+        Self::with_gap(w, 1.0)
+    }
+
+    fn with_gap(w: DVec3, one_minus_cos: f64) -> Self {
+        let (t1, t2) = w.any_orthonormal_pair();
+        Self {
+            w,
+            t1,
+            t2,
+            one_minus_cos,
+        }
+    }
+
+    /// Ω = 2π (1 − cos α) (sr).
+    pub fn solid_angle(&self) -> f64 {
+        TAU * self.one_minus_cos
+    }
+
+    /// The direction for (u, v) ∈ [0, 1)².
+    pub fn direction(&self, (u, v): (f64, f64)) -> ConeSample {
+        let gap = u * self.one_minus_cos;
+        let cos_theta = 1.0 - gap;
+        // sin²θ = 1 − cos²θ = gap (2 − gap), exact for small gaps.
+        let sin2_theta = (gap * (2.0 - gap)).max(0.0);
+        let (s, c) = (TAU * v).sin_cos();
+        ConeSample {
+            direction: self.w * cos_theta + (self.t1 * c + self.t2 * s) * sin2_theta.sqrt(),
+            cos_theta,
+            sin2_theta,
+        }
+    }
+}
+
+/// A direction in a cone and its angle θ to the axis.
+#[derive(Clone, Copy, Debug)]
+pub struct ConeSample {
+    /// Unit direction.
+    pub direction: DVec3,
+    pub cos_theta: f64,
+    /// sin²θ, accurate even when θ is tiny.
+    pub sin2_theta: f64,
+}
+
+/// The variance of the mean of stratified samples `y` (one per equal-weight
+/// stratum) by the collapsed-strata estimator: neighbouring strata are grouped
+/// in pairs (a last triple when the count is odd) and each group of g values
+/// contributes g/(g − 1) Σ (y − ȳ_group)², the unbiased variance of its sum
+/// had its strata been merged; the total divided by n² is the variance of the
+/// mean. It errs on the safe side: differences between neighbouring strata
+/// count as noise. None when fewer than two samples leave nothing to compare.
+pub fn collapsed_strata_variance(y: &[f64]) -> Option<f64> {
+    let n = y.len();
+    if n < 2 {
+        return None;
+    }
+    let mut sum = 0.0;
+    let mut start = 0;
+    while start < n {
+        let g = if n - start == 3 { 3 } else { 2 };
+        let group = &y[start..start + g];
+        let mean = group.iter().sum::<f64>() / g as f64;
+        let squares: f64 = group.iter().map(|v| (v - mean) * (v - mean)).sum();
+        sum += g as f64 / (g as f64 - 1.0) * squares;
+        start += g;
+    }
+    Some(sum / (n * n) as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strata_are_the_squarest_factor_pair() {
+        assert_eq!(Strata::new(64), Strata { nx: 8, ny: 8 });
+        assert_eq!(Strata::new(32), Strata { nx: 4, ny: 8 });
+        assert_eq!(Strata::new(7), Strata { nx: 1, ny: 7 });
+        assert_eq!(Strata::new(1), Strata { nx: 1, ny: 1 });
+        assert_eq!(Strata::new(0).count(), 1);
+    }
+
+    #[test]
+    fn jittered_points_stay_in_their_cell() {
+        let strata = Strata::new(12);
+        let mut rng = Rng::new(3, 4, 5);
+        for i in 0..12 {
+            let (u, v) = strata.jittered(i, &mut rng);
+            let (ix, iy) = ((u * strata.nx as f64) as u32, (v * strata.ny as f64) as u32);
+            assert_eq!(iy * strata.nx + ix, i);
+        }
+    }
+
+    #[test]
+    fn random_numbers_are_uniform_and_reproducible() {
+        let mut a = Rng::new(1, 2, 3);
+        let mut b = Rng::new(1, 2, 3);
+        let n = 100_000;
+        let mut sum = 0.0;
+        for _ in 0..n {
+            let x = a.next_f64();
+            assert_eq!(x, b.next_f64());
+            assert!((0.0..1.0).contains(&x));
+            sum += x;
+        }
+        // The mean of n uniforms has standard deviation 1/√(12 n).
+        assert!((sum / n as f64 - 0.5).abs() < 5.0 / (12.0 * n as f64).sqrt());
+        assert_ne!(Rng::new(1, 2, 3).next_u64(), Rng::new(1, 2, 4).next_u64());
+        assert_ne!(Rng::new(1, 2, 3).next_u64(), Rng::new(1, 3, 3).next_u64());
+    }
+
+    #[test]
+    fn cone_directions_stay_inside_the_cone_and_cover_its_solid_angle() {
+        let w = DVec3::new(1.0, 2.0, -0.5).normalize();
+        let sin2: f64 = 0.09;
+        let cone = Cone::new(w, sin2);
+        let cos_alpha = (1.0 - sin2).sqrt();
+        assert!((cone.solid_angle() - TAU * (1.0 - cos_alpha)).abs() < 1e-15);
+        let mut rng = Rng::new(0, 0, 0);
+        for _ in 0..1000 {
+            let s = cone.direction((rng.next_f64(), rng.next_f64()));
+            assert!((s.direction.length() - 1.0).abs() < 1e-12);
+            assert!((s.direction.dot(w) - s.cos_theta).abs() < 1e-12 && s.cos_theta >= cos_alpha - 1e-12);
+            assert!((s.sin2_theta + s.cos_theta * s.cos_theta - 1.0).abs() < 1e-12);
+        }
+        // A light 10^9 radii away still has a cone (Ω ≈ π sin²α).
+        let tiny = Cone::new(w, 1e-18);
+        assert!((tiny.solid_angle() / (std::f64::consts::PI * 1e-18) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn collapsed_strata_variance_matches_the_pair_formula() {
+        assert_eq!(collapsed_strata_variance(&[1.0]), None);
+        assert_eq!(collapsed_strata_variance(&[2.0, 2.0, 2.0, 2.0]), Some(0.0));
+        // Pairs (1, 3) and (0, 4): ((1 − 3)² + (0 − 4)²) / 4².
+        let v = collapsed_strata_variance(&[1.0, 3.0, 0.0, 4.0]).unwrap();
+        assert!((v - 20.0 / 16.0).abs() < 1e-15);
+        // A triple (0, 3, 6): 3/2 · 18 over 3².
+        let v = collapsed_strata_variance(&[0.0, 3.0, 6.0]).unwrap();
+        assert!((v - 27.0 / 9.0).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,485 @@
+//! One primary sample: the camera ray, its closest hit, and the reflected
+//! radiance there, L = c · light colour · ∫ f_r L_e V cos⁺θ dω.
+//!
+//! Point light (R = 0): L = c · colour · (f_d + f_s)(l) · E · V with
+//! E = I cos⁺θ / r², I = Φ / 4π, and V ∈ {0, 1} from one shadow ray.
+//!
+//! Sphere light (R > 0): the cone the sphere subtends from p (sin α = R / d) is
+//! sampled uniformly in solid angle over N strata; with Ω = 2π (1 − cos α) and
+//! L_e = Φ / (4π² R²), L = c · colour · (Ω / N) Σ (f_d + f_s)(l_i) L_e V_i cos⁺θ_i.
+//! It converges to the penumbra as N grows; unoccluded and above the horizon
+//! its E-part equals `sphere_irradiance` (the point light's E).
+//!
+//! Shadow rays: from p moved off the surface by ε = [`SHADOW_OFFSET_REL`] ×
+//! the largest |coordinate| of the hit triangle, along the geometric normal on
+//! the viewer's side, to the light (its centre, or the sample's point on the
+//! sphere), stopping [`STOP_SHORT_REL`] of the way short of it. The hit point
+//! is interpolated from the corners, so it lies on the triangle's plane to a
+//! few ulps of those coordinates (~10⁻¹⁶ relative); 10⁻⁹ is 10⁷ times that, so
+//! the ray can never re-hit its own plane (no acne at any angle: the self-hit
+//! distance stays negative whatever cos θ divides both by), while at 1 m
+//! from the origin it is 1 nm: no occluder closer than that exists in a scene.
+
+use super::Reference;
+use super::grid::{Answer, DirectionGrid};
+use super::image::luminance;
+use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
+use crate::physics::brdf::blinn_phong;
+use crate::physics::radiometry::{
+    incidence, intensity, point_irradiance, sphere_irradiance, sphere_radiance,
+};
+use crate::physics::{BrdfParams, BrdfTerms, Normalization};
+use crate::scene::Camera;
+use crate::scene::camera::Frame;
+use crate::settings::Settings;
+use glam::{DVec2, DVec3};
+
+/// Shadow-ray origin offset, relative to the hit triangle's coordinates.
+pub const SHADOW_OFFSET_REL: f64 = 1e-9;
+/// Shadow rays end this fraction of their length before the light.
+pub const STOP_SHORT_REL: f64 = 1e-9;
+
+/// [`Camera::ray_direction`] with the camera's frame and tan(fovy / 2)
+/// computed once per image instead of once per ray: the same expression,
+/// term for term and in the same order, so the same bits (tested).
+#[derive(Clone, Debug)]
+pub(super) struct PixelRays {
+    pub eye: DVec3,
+    frame: Frame,
+    tan_half_fovy: f64,
+    aspect: f64,
+    width: f64,
+    height: f64,
+}
+
+impl PixelRays {
+    pub fn new(camera: &Camera, width: u32, height: u32) -> Self {
+        Self {
+            eye: camera.eye.as_dvec3(),
+            frame: camera.frame(),
+            tan_half_fovy: camera.tan_half_fovy(),
+            aspect: width as f64 / height as f64,
+            width: width as f64,
+            height: height as f64,
+        }
+    }
+
+    /// The unit direction through image point (x, y) (pixels).
+    pub fn direction(&self, x: f64, y: f64) -> DVec3 {
+        let (f, t) = (&self.frame, self.tan_half_fovy);
+        let sx = (2.0 * x / self.width - 1.0) * t * self.aspect;
+        let sy = (1.0 - 2.0 * y / self.height) * t;
+        (f.forward + f.right * sx + f.up * sy).normalize()
+    }
+}
+
+/// Everything a sample needs from the settings, in f64.
+#[derive(Clone, Debug)]
+pub(super) struct Setup {
+    pub rays: PixelRays,
+    pub width: u32,
+    pub height: u32,
+    pub light_position: DVec3,
+    pub power_w: f64,
+    pub radius_m: f64,
+    pub light_color: DVec3,
+    pub k: f64,
+    pub m: f64,
+    pub norm: Normalization,
+    pub use_scene_materials: bool,
+    pub color_override: Option<DVec3>,
+    pub shadows: bool,
+    pub light_strata: Strata,
+    pub seed: u64,
+    /// Primary rays through a grid around the eye, and point-light shadow
+    /// rays through one around the light (none: the BVH alone).
+    pub eye_grid: Option<DirectionGrid>,
+    pub light_grid: Option<DirectionGrid>,
+}
+
+impl Setup {
+    pub fn new(settings: &Settings, light_samples: u32, seed: u64) -> Self {
+        let (c, l, m) = (&settings.camera, &settings.light, &settings.material);
+        let camera = Camera {
+            eye: c.eye,
+            target: c.target,
+            fovy_deg: c.fovy_deg,
+        };
+        Self {
+            rays: PixelRays::new(&camera, settings.image.width, settings.image.height),
+            width: settings.image.width,
+            height: settings.image.height,
+            light_position: l.position.as_dvec3(),
+            power_w: l.power_w as f64,
+            radius_m: l.radius_m as f64,
+            light_color: l.color.as_dvec3(),
+            k: m.k as f64,
+            m: m.m as f64,
+            norm: m.norm,
+            use_scene_materials: m.use_scene_materials,
+            color_override: m.color_override.map(|c| c.as_dvec3()),
+            shadows: settings.shadow.enabled,
+            light_strata: Strata::new(light_samples),
+            seed,
+            eye_grid: None,
+            light_grid: None,
+        }
+    }
+
+    pub fn is_sphere_light(&self) -> bool {
+        self.radius_m > 0.0
+    }
+}
+
+/// Everything known about one primary sample: what the pixel probe shows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShadingSample {
+    /// Index into `Scene::objects`.
+    pub object: usize,
+    /// Triangle within that object's mesh.
+    pub triangle: usize,
+    /// Index into `Scene::materials` (None: the object's index was invalid
+    /// and the default material was used).
+    pub material: Option<usize>,
+    /// Distance from the eye (m).
+    pub distance_m: f64,
+    pub position: DVec3,
+    /// The interpolated vertex normal, normalized, turned towards the viewer
+    /// on double-sided materials.
+    pub normal: DVec3,
+    /// The triangle's own normal, on the viewer's side.
+    pub geometric_normal: DVec3,
+    pub uv: DVec2,
+    /// The BRDF colour c (linear RGB): base colour × texture, or the override.
+    pub color: DVec3,
+    pub k: f64,
+    pub m: f64,
+    /// Unit direction to the light's centre, its distance (m) and n·l.
+    pub to_light: DVec3,
+    pub light_distance_m: f64,
+    pub cos_theta: f64,
+    /// Unoccluded irradiance E (W/m²) from `physics::radiometry`.
+    pub irradiance: f64,
+    /// f_r / c towards the light's centre (1/sr).
+    pub brdf: BrdfTerms<f64>,
+    /// Visibility V ∈ [0, 1] (see `ReferenceImage::visibility`).
+    pub visibility: f64,
+    /// Reflected radiance L (W/m²/sr).
+    pub radiance: DVec3,
+    /// Standard error of L's luminance (W/m²/sr): 0 for a point light; None
+    /// with a single light sample.
+    pub std_error: Option<f64>,
+    pub shadow_rays: u32,
+}
+
+/// Buffers reused from sample to sample by one thread.
+#[derive(Debug, Default)]
+pub(super) struct Scratch {
+    /// The light samples' terms, for the mean and the noise estimate.
+    y: Vec<f64>,
+    /// Occluders near the shadow rays of one shading point.
+    candidates: Vec<u32>,
+}
+
+/// Gathered occluders beyond this many: each shadow ray goes through the BVH.
+const MAX_CANDIDATES: usize = 24;
+
+/// The light's contribution at a shading point: L / (c · colour) and V.
+pub(super) struct LightEstimate {
+    /// ∫ (f_d + f_s) L_e V cos⁺θ dω, or its estimate (W/m²/sr per unit c).
+    pub scaled_radiance: f64,
+    pub visibility: f64,
+    /// Standard error of `scaled_radiance`.
+    pub std_error: Option<f64>,
+    pub shadow_rays: u32,
+}
+
+/// Where a primary ray lands, and the surface there as the light sees it.
+pub(super) struct Surface {
+    /// Index into `Reference::triangles`.
+    triangle: usize,
+    distance_m: f64,
+    p: DVec3,
+    /// The shading normal (towards the viewer on double-sided materials).
+    n: DVec3,
+    /// The face's normal on the viewer's side.
+    geometric_normal: DVec3,
+    /// Unit direction to the eye.
+    o: DVec3,
+    uv: DVec2,
+    color: DVec3,
+    /// c · light colour: L = tint · LightEstimate::scaled_radiance.
+    pub tint: DVec3,
+    brdf: BrdfParams<f64>,
+    /// p lifted off the surface for shadow rays.
+    shadow_origin: DVec3,
+    /// Shadow rays are cast (shadows on and the object receives them).
+    shadowed: bool,
+}
+
+impl Reference {
+    /// The surface seen through image point (x, y) (pixels, centres at
+    /// i + 0.5); None on background.
+    #[inline]
+    pub(super) fn surface(&self, setup: &Setup, x: f64, y: f64) -> Option<Surface> {
+        let dir = setup.rays.direction(x, y);
+        let grid = setup.eye_grid.as_ref();
+        let hit = match grid.map(|g| g.closest_from_centre(&self.bvh_triangles, dir)) {
+            Some(Answer::Known(hit)) => hit?,
+            _ => self.bvh.closest_hit(setup.rays.eye, dir, 0.0, f64::INFINITY)?,
+        };
+        let tri = &self.triangles[hit.triangle];
+        let object = &self.objects[tri.object];
+        let material = &self.materials[object.material];
+        let [b0, b1, b2] = hit.at.barycentric;
+        let [a, b, c] = tri.corners;
+        let p = a * b0 + b * b1 + c * b2;
+        let o = -dir;
+        let face = tri.face_normal;
+        let geometric_normal = if face.dot(o) < 0.0 { -face } else { face };
+        let mut n = tri.flat_normal.unwrap_or_else(|| {
+            (tri.normals[0] * b0 + tri.normals[1] * b1 + tri.normals[2] * b2).normalize_or(face)
+        });
+        if material.double_sided && n.dot(o) < 0.0 {
+            n = -n;
+        }
+        let uv = tri.uvs[0] * b0 + tri.uvs[1] * b1 + tri.uvs[2] * b2;
+        let color = match setup.color_override {
+            Some(c) => c,
+            None => {
+                let base = material.base_color.truncate().as_dvec3();
+                match material
+                    .base_color_texture
+                    .and_then(|t| self.textures.get(t)?.as_ref())
+                {
+                    Some(texture) => base * texture.sample(uv),
+                    None => base,
+                }
+            }
+        };
+        let own = |value: Option<f32>, default: f64| match value {
+            Some(v) if setup.use_scene_materials => v as f64,
+            _ => default,
+        };
+        Some(Surface {
+            triangle: hit.triangle,
+            distance_m: hit.at.t,
+            p,
+            n,
+            geometric_normal,
+            o,
+            uv,
+            color,
+            tint: color * setup.light_color,
+            brdf: BrdfParams {
+                k: own(material.k, setup.k),
+                m: own(material.m, setup.m),
+                norm: setup.norm,
+            },
+            shadow_origin: p + geometric_normal * tri.shadow_offset_m,
+            shadowed: setup.shadows && object.receives_shadows,
+        })
+    }
+
+    /// Everything about the primary sample through (x, y): the pixel probe.
+    pub(super) fn probe(&self, setup: &Setup, x: f64, y: f64, rng: &mut Rng) -> Option<ShadingSample> {
+        let s = self.surface(setup, x, y)?;
+        let estimate = self.light(setup, &s, rng, &mut Scratch::default());
+        let tri = &self.triangles[s.triangle];
+        let inc = incidence(s.p, s.n, setup.light_position);
+        Some(ShadingSample {
+            object: tri.object,
+            triangle: tri.index,
+            material: self.objects[tri.object].material_index,
+            distance_m: s.distance_m,
+            position: s.p,
+            normal: s.n,
+            geometric_normal: s.geometric_normal,
+            uv: s.uv,
+            color: s.color,
+            k: s.brdf.k,
+            m: s.brdf.m,
+            to_light: inc.l,
+            light_distance_m: inc.r,
+            cos_theta: inc.cos_theta,
+            irradiance: sphere_irradiance(setup.power_w, setup.radius_m, inc.cos_theta, inc.r),
+            brdf: blinn_phong(s.n, inc.l, s.o, &s.brdf),
+            visibility: estimate.visibility,
+            radiance: s.tint * estimate.scaled_radiance,
+            std_error: estimate.std_error.map(|se| luminance(s.tint.to_array()) * se),
+            shadow_rays: estimate.shadow_rays,
+        })
+    }
+
+    /// Whether the segment from the shadow origin to the point light is
+    /// blocked, through the light's grid when there is one.
+    fn blocked_from_light(&self, setup: &Setup, s: &Surface) -> bool {
+        let t_max = 1.0 - STOP_SHORT_REL;
+        match setup
+            .light_grid
+            .as_ref()
+            .map(|g| g.blocked_towards_centre(&self.bvh_triangles, s.shadow_origin, t_max))
+        {
+            Some(Answer::Known(blocked)) => blocked,
+            _ => self.blocked(s, setup.light_position),
+        }
+    }
+
+    /// Whether the segment from the shadow origin to `target` is blocked,
+    /// stopping short of the target.
+    fn blocked(&self, surface: &Surface, target: DVec3) -> bool {
+        let d = target - surface.shadow_origin;
+        self.bvh
+            .occluded(surface.shadow_origin, d, 0.0, 1.0 - STOP_SHORT_REL)
+    }
+
+    /// L / (c · colour) = (f_d + f_s)(l) · E · V, with V from one shadow ray;
+    /// the BRDF is evaluated only where light arrives.
+    fn point_light(&self, setup: &Setup, s: &Surface) -> LightEstimate {
+        let q = setup.light_position;
+        let inc = incidence(s.p, s.n, q);
+        let (visibility, shadow_rays) = if !s.shadowed {
+            (1.0, 0)
+        } else if inc.cos_theta <= 0.0 {
+            // Attached shadow: the light is below the surface's horizon.
+            (0.0, 0)
+        } else if self.blocked_from_light(setup, s) {
+            (0.0, 1)
+        } else {
+            (1.0, 1)
+        };
+        let scaled_radiance = if visibility > 0.0 && inc.cos_theta > 0.0 {
+            let e = point_irradiance(intensity(setup.power_w), inc.cos_theta, inc.r);
+            blinn_phong(s.n, inc.l, s.o, &s.brdf).total() * e
+        } else {
+            0.0
+        };
+        LightEstimate {
+            scaled_radiance,
+            visibility,
+            std_error: Some(0.0),
+            shadow_rays,
+        }
+    }
+
+    /// The light's contribution at the surface: the point light's in
+    /// closed form, the sphere light's estimated with the light-sample
+    /// stream `rng`.
+    pub(super) fn light(
+        &self,
+        setup: &Setup,
+        s: &Surface,
+        rng: &mut Rng,
+        scratch: &mut Scratch,
+    ) -> LightEstimate {
+        if !setup.is_sphere_light() {
+            return self.point_light(setup, s);
+        }
+        let (q, radius) = (setup.light_position, setup.radius_m);
+        // Every shadow ray of this point runs from its shadow origin to the
+        // sphere: gather the occluders near that path once, then test each
+        // ray against those few (or, when there are many, through the BVH).
+        let Scratch { y, candidates } = scratch;
+        let gathered = s.shadowed
+            && self
+                .bvh
+                .gather_near_ball(s.shadow_origin, q, radius, MAX_CANDIDATES, candidates);
+        let le = sphere_radiance(setup.power_w, radius);
+        let to_centre = q - s.p;
+        let d2 = to_centre.length_squared();
+        let d = d2.sqrt();
+        let inside = d <= radius;
+        let cone = if inside {
+            // Inside the light: emission from every direction of the hemisphere.
+            Cone::hemisphere(s.n)
+        } else {
+            Cone::new(to_centre / d, radius * radius / d2)
+        };
+        let strata = setup.light_strata;
+        let weight = cone.solid_angle() * le;
+        let (mut cos_sum, mut visible_cos_sum) = (0.0, 0.0);
+        let mut shadow_rays = 0;
+        y.clear();
+        for i in 0..strata.count() {
+            let sample = cone.direction(strata.jittered(i, rng));
+            let l = sample.direction;
+            let cos = s.n.dot(l).max(0.0);
+            let mut v = 1.0;
+            if cos > 0.0 && s.shadowed {
+                // Distance along l to the sphere: the near root outside it,
+                // the far one inside; R² − d² sin²θ is the half-chord squared.
+                let b = if inside {
+                    l.dot(to_centre)
+                } else {
+                    d * sample.cos_theta
+                };
+                let half_chord = if inside {
+                    (radius * radius - d2 + b * b).max(0.0).sqrt()
+                } else {
+                    (radius * radius - d2 * sample.sin2_theta).max(0.0).sqrt()
+                };
+                let t = if inside { b + half_chord } else { b - half_chord };
+                shadow_rays += 1;
+                let target = s.p + l * t;
+                let blocked = if gathered {
+                    let d = target - s.shadow_origin;
+                    self.bvh
+                        .blocked_by(candidates, s.shadow_origin, d, 1.0 - STOP_SHORT_REL)
+                } else {
+                    self.blocked(s, target)
+                };
+                if blocked {
+                    v = 0.0;
+                }
+            }
+            cos_sum += cos;
+            visible_cos_sum += v * cos;
+            let f = if v * cos > 0.0 {
+                blinn_phong(s.n, l, s.o, &s.brdf).total()
+            } else {
+                0.0
+            };
+            y.push(weight * f * v * cos);
+        }
+        let n = y.len() as f64;
+        let visibility = if !s.shadowed {
+            1.0
+        } else if cos_sum > 0.0 {
+            visible_cos_sum / cos_sum
+        } else {
+            0.0
+        };
+        LightEstimate {
+            scaled_radiance: y.iter().sum::<f64>() / n,
+            visibility,
+            std_error: collapsed_strata_variance(y).map(f64::sqrt),
+            shadow_rays,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn pixel_rays_are_the_cameras_rays_bit_for_bit() {
+        let camera = Camera {
+            eye: Vec3::new(1.5, 2.25, -7.0),
+            target: Vec3::new(0.1, 0.4, 0.3),
+            fovy_deg: 37.5,
+        };
+        let (w, h) = (963, 541);
+        let rays = PixelRays::new(&camera, w, h);
+        let mut rng = Rng::new(0, 0, 0);
+        for _ in 0..10_000 {
+            let (x, y) = (rng.next_f64() * w as f64, rng.next_f64() * h as f64);
+            assert_eq!(
+                rays.direction(x, y),
+                camera.ray_direction(x, y, w, h),
+                "({x}, {y})"
+            );
+        }
+    }
+}

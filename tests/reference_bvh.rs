@@ -1,0 +1,229 @@
+//! The BVH finds exactly what testing every triangle finds: the same closest
+//! hit (same distance, bit for bit) and the same shadow-ray answer, on
+//! thousands of random rays through a generated scene of spheres and boxes,
+//! including rays aimed at vertices and edges, rays from far away and rays
+//! whose direction is a micrometre long. The direction grids (rays from or to
+//! a common point) agree with brute force too.
+
+use glam::{DVec3, Vec3};
+use lumlab::reference::bvh::{BvhTriangle, TriangleBvh, closest_hit_brute_force, occluded_brute_force};
+use lumlab::reference::grid::{Answer, DirectionGrid};
+use lumlab::reference::sampling::Rng;
+use lumlab::scene::{Aabb, Mesh, shapes};
+
+/// A ground, 12 boxes and 12 spheres at random places; every other object
+/// casts no shadow so that the shadow-ray filter is exercised too.
+fn generated_scene(rng: &mut Rng) -> Vec<BvhTriangle> {
+    let mut meshes: Vec<Mesh> = vec![shapes::ground(Vec3::ZERO, 10.0)];
+    let mut random = |lo: f64, hi: f64| (lo + (hi - lo) * rng.next_f64()) as f32;
+    for _ in 0..12 {
+        let min = Vec3::new(random(-4.0, 4.0), random(0.0, 1.0), random(-4.0, 4.0));
+        let size = Vec3::new(random(0.1, 1.5), random(0.1, 1.5), random(0.1, 1.5));
+        meshes.push(shapes::cuboid(Aabb { min, max: min + size }));
+        let centre = Vec3::new(random(-4.0, 4.0), random(0.2, 2.0), random(-4.0, 4.0));
+        meshes.push(shapes::sphere(centre, random(0.1, 0.8), 24, 12));
+    }
+    let mut triangles = Vec::new();
+    for (i, mesh) in meshes.iter().enumerate() {
+        for t in 0..mesh.triangle_count() {
+            triangles.push(BvhTriangle {
+                corners: mesh.triangle(t).map(|p| p.as_dvec3()),
+                occludes: i % 2 == 0,
+            });
+        }
+    }
+    triangles
+}
+
+fn random_direction(rng: &mut Rng) -> DVec3 {
+    // Uniform on the sphere: z uniform in [−1, 1], φ uniform.
+    let z = 2.0 * rng.next_f64() - 1.0;
+    let phi = std::f64::consts::TAU * rng.next_f64();
+    let s = (1.0 - z * z).sqrt();
+    DVec3::new(s * phi.cos(), z, s * phi.sin())
+}
+
+fn random_point(rng: &mut Rng, half: f64) -> DVec3 {
+    DVec3::new(
+        (2.0 * rng.next_f64() - 1.0) * half,
+        (2.0 * rng.next_f64() - 1.0) * half + half * 0.5,
+        (2.0 * rng.next_f64() - 1.0) * half,
+    )
+}
+
+/// A point on a random triangle: a corner, a point on an edge, or inside.
+fn point_on(triangles: &[BvhTriangle], rng: &mut Rng) -> DVec3 {
+    let tri = &triangles[(rng.next_f64() * triangles.len() as f64) as usize % triangles.len()];
+    let [a, b, c] = tri.corners;
+    match (rng.next_f64() * 3.0) as u32 {
+        0 => a,
+        1 => a.lerp(b, rng.next_f64()),
+        _ => {
+            let (u, v) = (rng.next_f64(), rng.next_f64());
+            let (u, v) = if u + v > 1.0 { (1.0 - u, 1.0 - v) } else { (u, v) };
+            a + (b - a) * u + (c - a) * v
+        }
+    }
+}
+
+#[test]
+fn bvh_hits_equal_brute_force_on_random_rays() {
+    let mut rng = Rng::new(7, 0, 0);
+    let triangles = generated_scene(&mut rng);
+    assert!(triangles.len() > 5000, "{} triangles", triangles.len());
+    let bvh = TriangleBvh::new(&triangles);
+    let (mut hits, mut blocked) = (0, 0);
+    for ray in 0..8000 {
+        let (origin, direction) = match ray % 4 {
+            // From anywhere, anywhere.
+            0 => (random_point(&mut rng, 7.0), random_direction(&mut rng)),
+            // Aimed at a vertex, an edge or a face.
+            1 => {
+                let origin = random_point(&mut rng, 7.0);
+                (origin, point_on(&triangles, &mut rng) - origin)
+            }
+            // From just off a surface to another, with a direction a
+            // micrometre long (shadow rays are not normalized).
+            3 => {
+                let origin = point_on(&triangles, &mut rng) + random_direction(&mut rng) * 1e-6;
+                (origin, (point_on(&triangles, &mut rng) - origin) * 1e-6)
+            }
+            // From far away (a camera a kilometre off), at the scene.
+            _ => {
+                let origin = random_direction(&mut rng) * 1000.0;
+                (origin, point_on(&triangles, &mut rng) - origin)
+            }
+        };
+        if direction.length_squared() == 0.0 {
+            continue;
+        }
+        let expected = closest_hit_brute_force(&triangles, origin, direction, 0.0, f64::INFINITY);
+        let got = bvh.closest_hit(origin, direction, 0.0, f64::INFINITY);
+        match (expected, got) {
+            (None, None) => {}
+            (Some(e), Some(g)) => {
+                // Two triangles can share the hit (an edge): then either is right.
+                assert_eq!(e.at.t, g.at.t, "ray {ray}: {origin} → {direction}");
+                if e.triangle != g.triangle {
+                    let again = closest_hit_brute_force(
+                        &triangles[g.triangle..=g.triangle],
+                        origin,
+                        direction,
+                        0.0,
+                        f64::INFINITY,
+                    );
+                    assert_eq!(again.map(|h| h.at.t), Some(g.at.t), "ray {ray}");
+                }
+                hits += 1;
+            }
+            _ => panic!("ray {ray}: {origin} → {direction}: brute force {expected:?}, BVH {got:?}"),
+        }
+        // A shadow-ray segment along the same ray, ending at a random length.
+        let t_max = rng.next_f64() * if ray % 4 == 3 { 2e6 } else { 2.0 };
+        let expected = occluded_brute_force(&triangles, origin, direction, 0.0, t_max);
+        assert_eq!(
+            bvh.occluded(origin, direction, 0.0, t_max),
+            expected,
+            "segment {ray}"
+        );
+        blocked += expected as u32;
+    }
+    // The rays really exercised both answers.
+    assert!(
+        hits > 2000 && blocked > 300,
+        "{hits} hits, {blocked} blocked segments"
+    );
+}
+
+#[test]
+fn direction_grids_equal_brute_force_for_rays_through_their_centre() {
+    let mut rng = Rng::new(11, 0, 0);
+    let triangles = generated_scene(&mut rng);
+    let centres = [
+        // A camera outside, a light above, a point on the ground (a light
+        // lying on a surface) and a box corner.
+        DVec3::new(6.0, 4.0, 9.0),
+        DVec3::new(0.5, 5.0, -0.3),
+        DVec3::new(1.25, 0.0, -2.5),
+        triangles[2].corners[0],
+    ];
+    let (mut answered, mut deferred) = (0, 0);
+    for centre in centres {
+        let grid = DirectionGrid::new(centre, &triangles, |_| true);
+        let occluders = DirectionGrid::new(centre, &triangles, |t| t.occludes);
+        for ray in 0..3000 {
+            let target = match ray % 3 {
+                0 => point_on(&triangles, &mut rng),
+                1 => centre + random_direction(&mut rng),
+                // On the edges between cube faces: |x| = |y|.
+                _ => {
+                    let d = random_direction(&mut rng);
+                    centre
+                        + DVec3::new(
+                            d.x.abs().max(d.y.abs()) * d.x.signum(),
+                            d.x.abs().max(d.y.abs()) * d.y.signum(),
+                            d.z,
+                        )
+                }
+            };
+            let direction = target - centre;
+            if direction.length_squared() == 0.0 {
+                continue;
+            }
+            match grid.closest_from_centre(&triangles, direction) {
+                Answer::Known(hit) => {
+                    let expected = closest_hit_brute_force(&triangles, centre, direction, 0.0, f64::INFINITY);
+                    assert_eq!(hit, expected, "ray {ray} from {centre} along {direction}");
+                    answered += 1;
+                }
+                Answer::AskBvh => deferred += 1,
+            }
+            // A shadow ray from somewhere along the line towards the centre.
+            let origin = centre + direction * (0.2 + 2.0 * rng.next_f64());
+            let t_max = 1.0 - 1e-9;
+            if let Answer::Known(blocked) = occluders.blocked_towards_centre(&triangles, origin, t_max) {
+                let expected = occluded_brute_force(&triangles, origin, centre - origin, 0.0, t_max);
+                assert_eq!(blocked, expected, "shadow ray {ray} from {origin} to {centre}");
+            }
+        }
+    }
+    assert!(
+        answered > 5000,
+        "{answered} answered, {deferred} deferred to the BVH"
+    );
+}
+
+#[test]
+fn occluders_gathered_near_a_ball_block_exactly_what_brute_force_does() {
+    let mut rng = Rng::new(13, 0, 0);
+    let triangles = generated_scene(&mut rng);
+    let bvh = TriangleBvh::new(&triangles);
+    let mut candidates = Vec::new();
+    let (mut gathered, mut blocked) = (0, 0);
+    for trial in 0..400 {
+        // A shading point on the scene, a sphere light somewhere above.
+        let from = point_on(&triangles, &mut rng) + DVec3::Y * 1e-6;
+        let centre = random_point(&mut rng, 6.0) + DVec3::Y * 4.0;
+        let radius = 0.05 + rng.next_f64();
+        if !bvh.gather_near_ball(from, centre, radius, 4000, &mut candidates) {
+            continue;
+        }
+        gathered += 1;
+        for _ in 0..16 {
+            // A point in the ball: the end of one shadow ray.
+            let target = centre + random_direction(&mut rng) * radius * rng.next_f64().cbrt();
+            let d = target - from;
+            let expected = occluded_brute_force(&triangles, from, d, 0.0, 1.0 - 1e-9);
+            assert_eq!(
+                bvh.blocked_by(&candidates, from, d, 1.0 - 1e-9),
+                expected,
+                "trial {trial}: {from} → {target}"
+            );
+            blocked += expected as u32;
+        }
+    }
+    assert!(
+        gathered > 200 && blocked > 100,
+        "{gathered} gathered, {blocked} blocked"
+    );
+}
