@@ -18,6 +18,7 @@ pub mod physics;
 pub mod plot;
 pub mod presets;
 pub mod reference;
+pub mod report;
 pub mod scene;
 pub mod settings;
 pub mod stability;

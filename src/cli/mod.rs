@@ -9,6 +9,7 @@ mod energy;
 mod info;
 mod reference;
 mod render;
+mod report;
 mod stability;
 
 pub use args::SceneOptions;
@@ -69,6 +70,8 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Ray-trace the scene on the CPU (the exact reference), to PNG or EXR.
     Reference(reference::ReferenceArgs),
+    /// Speed against error: a sweep of shadow settings measured against the reference (CSV, Pareto plot, HTML).
+    Report(report::ReportArgs),
     /// Hard cases (m = 1e6, 89.99°, r = 0, far/near = 1e8…) in f64, f32 and on the GPU, beside naive formulas.
     Stability(stability::StabilityArgs),
 }
@@ -84,6 +87,7 @@ pub fn main() -> ExitCode {
         Some(Command::Info(args)) => info::run(args),
         Some(Command::Render(args)) => render::run(args),
         Some(Command::Reference(args)) => reference::run(args),
+        Some(Command::Report(args)) => report::run(args),
         Some(Command::Stability(args)) => stability::run_command(args),
         None => crate::app::run(options),
     });

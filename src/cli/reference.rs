@@ -15,6 +15,16 @@ use std::time::{Duration, Instant};
 pub struct ReferenceArgs {
     #[command(flatten)]
     pub scene: SceneOptions,
+    #[command(flatten)]
+    pub sampling: Sampling,
+    /// Output image: .png (displayed) or .exr (linear radiance).
+    #[arg(long, value_name = "FILE.png|FILE.exr", value_parser = output_path)]
+    pub out: PathBuf,
+}
+
+/// How many samples the reference takes (shared by `reference` and `report`).
+#[derive(Debug, Clone, Copy, clap::Args)]
+pub struct Sampling {
     /// Primary samples per pixel: 1 = the pixel centre; more are stratified over the pixel (box filter).
     #[arg(long, value_name = "N", default_value_t = ReferenceOptions::DEFAULT.spp,
           value_parser = clap::value_parser!(u32).range(1..=65536))]
@@ -26,9 +36,16 @@ pub struct ReferenceArgs {
     /// Seed of the random numbers (same seed, same image).
     #[arg(long, value_name = "S", default_value_t = 0)]
     pub seed: u64,
-    /// Output image: .png (displayed) or .exr (linear radiance).
-    #[arg(long, value_name = "FILE.png|FILE.exr", value_parser = output_path)]
-    pub out: PathBuf,
+}
+
+impl Sampling {
+    pub fn options(&self) -> ReferenceOptions {
+        ReferenceOptions {
+            spp: self.spp,
+            light_samples: self.light_samples,
+            seed: self.seed,
+        }
+    }
 }
 
 /// The output path, refused at parse time unless it ends in .png or .exr.
@@ -50,12 +67,7 @@ pub fn run(args: &ReferenceArgs) -> anyhow::Result<()> {
             reference.skipped_triangles()
         );
     }
-    let options = ReferenceOptions {
-        spp: args.spp,
-        light_samples: args.light_samples,
-        seed: args.seed,
-    };
-    let image = render_with_progress(&reference, &settings, &options)?;
+    let image = render_with_progress(&reference, &settings, &args.sampling.options())?;
     match format {
         ImageFormat::Png => write_png_rgba8(
             &args.out,
@@ -69,7 +81,7 @@ pub fn run(args: &ReferenceArgs) -> anyhow::Result<()> {
 
 /// Renders on this thread's pool while the main thread draws a progress bar,
 /// only when stderr is a terminal.
-fn render_with_progress(
+pub fn render_with_progress(
     reference: &Reference,
     settings: &Settings,
     options: &ReferenceOptions,

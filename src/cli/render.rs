@@ -4,8 +4,9 @@
 use super::args::SceneOptions;
 use crate::gpu::{GpuContext, Renderer};
 use crate::image_io::{ImageFormat, write_exr, write_png_rgba8};
+use crate::reference::{Reference, ReferenceOptions};
 use crate::scene::Scene;
-use crate::settings::Settings;
+use crate::settings::{DebugView, Settings};
 use anyhow::Context;
 use std::path::PathBuf;
 
@@ -48,6 +49,13 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         eprintln!("adapter: {}", gpu.describe());
     }
     let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    if matches!(settings.view.mode, DebugView::Error | DebugView::RefVisibility) {
+        // These views compare with the CPU reference of the same settings.
+        let reference = Reference::new(&scene);
+        let image =
+            super::reference::render_with_progress(&reference, &settings, &ReferenceOptions::DEFAULT)?;
+        renderer.set_comparison(Some(image.to_comparison()));
+    }
     let size = (settings.image.width, settings.image.height);
     let report = renderer.render(&settings, size);
     if let Some(note) = &report.resolution_note {

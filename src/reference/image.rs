@@ -101,6 +101,21 @@ impl ReferenceImage {
             .unwrap_or_else(|| image::Rgba32FImage::new(self.width, self.height))
     }
 
+    /// What the GPU's `error` and `ref-visibility` views compare with:
+    /// rgb = L (W/m²/sr), a = V.
+    pub fn to_comparison(&self) -> crate::gpu::ComparisonImage {
+        crate::gpu::ComparisonImage {
+            width: self.width,
+            height: self.height,
+            texels: self
+                .radiance
+                .iter()
+                .zip(&self.visibility)
+                .map(|(rgb, &v)| [rgb[0] as f32, rgb[1] as f32, rgb[2] as f32, v])
+                .collect(),
+        }
+    }
+
     pub fn noise_summary(&self) -> NoiseSummary {
         let mut covered = 0usize;
         let (mut sum_y, mut sum_var, mut max) = (0.0, 0.0, 0.0_f64);

@@ -1,0 +1,224 @@
+//! Which shadow settings the report measures: the default sweep, or a TOML
+//! file that lists configurations and/or asks for a cross-product of values
+//! (like Filament's automation specs). Every key is a field of the settings
+//! file's `[shadow]` table; `bias` also takes the command-line form.
+//!
+//! ```toml
+//! # one configuration per table
+//! [[config]]
+//! filter = "pcf"
+//! pcf_size = 5
+//! resolution = 1024
+//!
+//! # every combination of these values (in addition to the list)
+//! [cross]
+//! resolution = [512, 2048]
+//! filter = ["hw2x2", "evsm"]
+//! bias = ["auto", "slope:0.002,1.5"]
+//! ```
+
+use crate::settings::{Filter, Settings, ShadowSettings};
+use std::path::Path;
+
+/// One configuration of the sweep: the base settings' shadow section with
+/// some keys replaced.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepPoint {
+    /// A short name made of the values that matter (e.g. `pcf5 1024² auto`).
+    pub label: String,
+    pub shadow: ShadowSettings,
+}
+
+/// The default sweep: 2 resolutions × 6 filters × 2 biases = 24 points.
+pub const DEFAULT_SWEEP: &str = r#"
+[cross]
+resolution = [512, 2048]
+filter = ["none", "hw2x2", "pcf", "poisson", "vsm", "evsm"]
+bias = ["auto", "constant:0.02"]
+"#;
+
+#[derive(Debug, thiserror::Error)]
+pub enum SweepError {
+    #[error("cannot read the sweep file {path}: {source}")]
+    Read {
+        path: std::path::PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// The sweep in `text` applied to `base` (whose other sections stay).
+pub fn parse(text: &str, base: &Settings) -> Result<Vec<SweepPoint>, SweepError> {
+    let invalid = |message: String| SweepError::Invalid(message);
+    let document: toml::Table = toml::from_str(text).map_err(|e| invalid(one_line_toml(&e)))?;
+    let mut tables = Vec::new();
+    for (key, value) in &document {
+        match (key.as_str(), value) {
+            ("config", toml::Value::Array(list)) => {
+                for (i, item) in list.iter().enumerate() {
+                    let table = item
+                        .as_table()
+                        .ok_or_else(|| invalid(format!("config[{i}] must be a table of shadow settings")))?;
+                    tables.push(table.clone());
+                }
+            }
+            ("cross", toml::Value::Table(axes)) => tables.extend(cross_product(axes)?),
+            ("config" | "cross", _) => {
+                return Err(invalid(format!(
+                    "'{key}' must be {}",
+                    if key == "config" {
+                        "an array of tables ([[config]])"
+                    } else {
+                        "a table of arrays ([cross])"
+                    }
+                )));
+            }
+            _ => {
+                return Err(invalid(format!(
+                    "unknown section '{key}' (expected [[config]] or [cross])"
+                )));
+            }
+        }
+    }
+    if tables.is_empty() {
+        return Err(invalid("the sweep has no configuration".into()));
+    }
+    let points = tables
+        .iter()
+        .map(|table| point(table, &base.shadow))
+        .collect::<Result<Vec<_>, _>>()?;
+    for point in &points {
+        let mut settings = base.clone();
+        settings.shadow = point.shadow;
+        settings
+            .validate()
+            .map_err(|e| invalid(format!("configuration '{}': {e}", point.label)))?;
+    }
+    Ok(points)
+}
+
+/// Reads and parses a sweep file.
+pub fn load(path: &Path, base: &Settings) -> Result<Vec<SweepPoint>, SweepError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SweepError::Read {
+        path: path.to_owned(),
+        source,
+    })?;
+    parse(&text, base).map_err(|e| match e {
+        SweepError::Invalid(message) => SweepError::Invalid(format!("{}: {message}", path.display())),
+        other => other,
+    })
+}
+
+/// Every combination of the axes' values, the first axis varying slowest.
+fn cross_product(axes: &toml::Table) -> Result<Vec<toml::Table>, SweepError> {
+    let mut tables = vec![toml::Table::new()];
+    for (key, values) in axes {
+        let values = match values {
+            toml::Value::Array(values) if !values.is_empty() => values.clone(),
+            toml::Value::Array(_) => {
+                return Err(SweepError::Invalid(format!("cross.{key} has no values")));
+            }
+            single => vec![single.clone()],
+        };
+        tables = tables
+            .into_iter()
+            .flat_map(|table| {
+                values.iter().map(move |value| {
+                    let mut table = table.clone();
+                    table.insert(key.clone(), value.clone());
+                    table
+                })
+            })
+            .collect();
+    }
+    Ok(tables)
+}
+
+/// The base shadow settings with the table's keys replaced.
+fn point(table: &toml::Table, base: &ShadowSettings) -> Result<SweepPoint, SweepError> {
+    let mut merged = toml::Table::try_from(base).map_err(|e| SweepError::Invalid(e.to_string()))?;
+    let mut bias_text = None;
+    for (key, value) in table {
+        match (key.as_str(), value) {
+            ("bias", toml::Value::String(text)) => bias_text = Some(text.clone()),
+            _ => {
+                merged.insert(key.clone(), value.clone());
+            }
+        }
+    }
+    let mut shadow: ShadowSettings = merged.try_into().map_err(|e: toml::de::Error| {
+        SweepError::Invalid(format!("shadow settings: {}", one_line_toml(&e)))
+    })?;
+    if let Some(text) = bias_text {
+        shadow.bias = shadow
+            .bias
+            .parse_onto(&text)
+            .map_err(|e| SweepError::Invalid(format!("bias: {e}")))?;
+    }
+    Ok(SweepPoint {
+        label: label(&shadow),
+        shadow,
+    })
+}
+
+/// `filter resolution² bias`, with the filter's size where it has one.
+pub fn label(shadow: &ShadowSettings) -> String {
+    let filter = match shadow.filter {
+        Filter::Pcf => format!("pcf{}", shadow.pcf_size),
+        Filter::Poisson => format!("poisson{}", shadow.poisson_samples),
+        other => other.name().to_string(),
+    };
+    format!("{filter} {}² {}", shadow.resolution, shadow.bias.describe())
+}
+
+/// A TOML error on one line.
+fn one_line_toml(e: &toml::de::Error) -> String {
+    e.message().replace('\n', " ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_sweep_has_24_distinct_points() {
+        let points = parse(DEFAULT_SWEEP, &Settings::default()).unwrap();
+        assert_eq!(points.len(), 24);
+        let mut labels: Vec<_> = points.iter().map(|p| p.label.clone()).collect();
+        labels.sort();
+        labels.dedup();
+        assert_eq!(labels.len(), 24);
+    }
+
+    #[test]
+    fn list_and_cross_product_add_up() {
+        let text = r#"
+            [[config]]
+            filter = "pcf"
+            pcf_size = 5
+            [cross]
+            resolution = [512, 1024, 2048]
+            bias = ["auto", "slope:0.001,2"]
+        "#;
+        let points = parse(text, &Settings::default()).unwrap();
+        assert_eq!(points.len(), 1 + 6);
+        assert_eq!(points[0].shadow.pcf_size, 5);
+        assert_eq!(points[0].label, "pcf5 2048² auto");
+        assert!(points.iter().any(|p| p.label == "pcf3 512² slope:0.001,2"));
+    }
+
+    #[test]
+    fn bad_files_name_the_problem() {
+        let base = Settings::default();
+        let error = |text: &str| parse(text, &base).unwrap_err().to_string();
+        assert!(error("[[config]]\nfilter = \"blur\"").contains("blur"));
+        assert!(error("[[config]]\nsize = 3").contains("size"));
+        assert!(error("[[config]]\nresolution = 3").contains("shadow.resolution"));
+        assert!(error("[[config]]\nbias = \"tilt:3\"").contains("tilt"));
+        assert!(error("[cross]\nresolution = []").contains("no values"));
+        assert!(error("[extra]\na = 1").contains("extra"));
+        assert!(error("").contains("no configuration"));
+        assert!(!error("[[config").is_empty());
+    }
+}

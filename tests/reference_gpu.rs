@@ -1,0 +1,71 @@
+//! The GPU renderer against the CPU reference on the default scene: with
+//! shadows off both compute the same L = c · f_r · E pixel by pixel (same
+//! camera convention, same physics), so they must agree to 1e-3 relative on
+//! every lit pixel.
+
+mod common;
+
+use lumlab::gpu::Renderer;
+use lumlab::reference::{Reference, ReferenceOptions, RenderControl, luminance};
+use lumlab::settings::Settings;
+
+fn compare(settings: &Settings) -> (usize, f64) {
+    let gpu = common::gpu();
+    let scene = lumlab::scene::default_scene();
+    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    renderer.render(settings, (settings.image.width, settings.image.height));
+    let (quantity, aux) = (renderer.read_quantity(), renderer.read_aux());
+    let reference = Reference::new(&scene)
+        .render(settings, &ReferenceOptions::DEFAULT, &RenderControl::default())
+        .unwrap();
+    let mean =
+        reference.radiance.iter().map(|l| luminance(*l)).sum::<f64>() / reference.radiance.len() as f64;
+    let (mut checked, mut worst) = (0, 0.0_f64);
+    for (idx, (l_ref, q)) in reference.radiance.iter().zip(&quantity).enumerate() {
+        assert_eq!(
+            aux[idx][3] > 0.0,
+            reference.coverage[idx] > 0.0,
+            "pixel {idx}: the GPU and the reference disagree on what it shows"
+        );
+        if luminance(*l_ref) <= 1e-3 * mean {
+            continue;
+        }
+        for c in 0..3 {
+            if l_ref[c] <= 1e-3 * mean {
+                continue;
+            }
+            let relative = (q[c] as f64 / l_ref[c] - 1.0).abs();
+            worst = worst.max(relative);
+            assert!(
+                relative < 1e-3,
+                "pixel ({}, {}) channel {c}: GPU {} vs reference {} W/m²/sr",
+                idx as u32 % settings.image.width,
+                idx as u32 / settings.image.width,
+                q[c],
+                l_ref[c]
+            );
+        }
+        checked += 1;
+    }
+    (checked, worst)
+}
+
+#[test]
+fn without_shadows_the_gpu_equals_the_reference_on_every_lit_pixel() {
+    let mut settings = Settings::default();
+    settings.image.width = 192;
+    settings.image.height = 108;
+    settings.shadow.enabled = false;
+    let (checked, worst) = compare(&settings);
+    assert!(checked > 192 * 108 / 3, "only {checked} pixels compared");
+    eprintln!("scene materials: {checked} lit pixels, worst relative difference {worst:.2e}");
+
+    // One sharp lobe everywhere, the light moved.
+    settings.material.use_scene_materials = false;
+    settings.material.k = 0.1;
+    settings.material.m = 1e4;
+    settings.light.position = glam::Vec3::new(-3.0, 4.0, 3.0);
+    let (checked, worst) = compare(&settings);
+    assert!(checked > 192 * 108 / 3, "only {checked} pixels compared");
+    eprintln!("m = 1e4: {checked} lit pixels, worst relative difference {worst:.2e}");
+}
