@@ -241,7 +241,9 @@ fn filter_poisson(r: Receiver, pixel: vec2<f32>) -> f32 {
 }
 
 // Percentage-closer soft shadows for the sphere light of radius R: the
-// blockers' mean depth sizes the penumbra, w = R (z − z_blocker) / z_blocker.
+// blockers' mean depth sizes the penumbra by similar triangles through the
+// light's diameter, w = 2R (z − z_blocker) / z_blocker, and a filter of
+// radius w/2 spreads the edge over w.
 fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
     let radius_m = shadow.misc.w;
     if radius_m <= 0.0 {
@@ -269,7 +271,7 @@ fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
         return 1.0;
     }
     let z_blocker = blocker_sum / blockers;
-    let penumbra_m = radius_m * (r.z - z_blocker) / z_blocker;
+    let penumbra_m = 2.0 * radius_m * (r.z - z_blocker) / z_blocker;
     let filter_texels = clamp(0.5 * penumbra_m / r.texel_m, 0.5, 48.0);
     var sum = 0.0;
     let count = shadow.counts.y;

@@ -69,3 +69,44 @@ fn without_shadows_the_gpu_equals_the_reference_on_every_lit_pixel() {
     assert!(checked > 192 * 108 / 3, "only {checked} pixels compared");
     eprintln!("m = 1e4: {checked} lit pixels, worst relative difference {worst:.2e}");
 }
+
+/// Pixels whose visibility is strictly inside (0.05, 0.95): the penumbra.
+fn penumbra_pixels(visibility: impl Iterator<Item = f64>) -> usize {
+    visibility.filter(|v| *v > 0.05 && *v < 0.95).count()
+}
+
+#[test]
+fn pcss_penumbra_is_as_wide_as_the_sphere_lights() {
+    // A close look at the thin occluder's shadow under a 0.25 m sphere light.
+    let mut settings = Settings::default();
+    settings.image.width = 240;
+    settings.image.height = 135;
+    settings.camera.eye = glam::Vec3::new(-3.7, 2.4, 2.4);
+    settings.camera.target = glam::Vec3::new(-3.7, 0.0, -0.1);
+    settings.camera.fovy_deg = 40.0;
+    settings.light.radius_m = 0.25;
+    settings.shadow.resolution = 2048;
+    settings.shadow.filter = lumlab::settings::Filter::Pcss;
+    settings.shadow.pcss_blocker_samples = 32;
+    settings.shadow.poisson_samples = 32;
+    let gpu = common::gpu();
+    let scene = lumlab::scene::default_scene();
+    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    renderer.render(&settings, (settings.image.width, settings.image.height));
+    let gpu_penumbra = penumbra_pixels(renderer.read_aux().iter().map(|a| a[0] as f64));
+    let options = ReferenceOptions {
+        light_samples: 256,
+        ..ReferenceOptions::DEFAULT
+    };
+    let reference = Reference::new(&scene)
+        .render(&settings, &options, &RenderControl::default())
+        .unwrap();
+    let reference_penumbra = penumbra_pixels(reference.visibility.iter().map(|&v| v as f64));
+    let ratio = gpu_penumbra as f64 / reference_penumbra as f64;
+    eprintln!("penumbra pixels: PCSS {gpu_penumbra}, reference {reference_penumbra} (ratio {ratio:.2})");
+    assert!(reference_penumbra > 1000, "{reference_penumbra}");
+    assert!(
+        (0.75..1.33).contains(&ratio),
+        "PCSS penumbra {ratio:.2} × the reference's"
+    );
+}
