@@ -3,7 +3,7 @@
 #   docs/views/VIEW.png      every debug view of the default scene
 #   docs/filters/FILTER.png  the occluder's shadow under a sphere light, every filter and the reference
 #   docs/energy.png          the albedo curves
-#   docs/report/             a full `lumlab report` (its pareto.png is in the README)
+#   docs/pareto.png, docs/report.csv   from a full `lumlab report` (kept in target/docs-report)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --locked
@@ -20,5 +20,5 @@ for filter in none hw2x2 pcf poisson pcss vsm evsm; do
 done
 "$lumlab" reference "${close[@]}" --light-samples 256 --out docs/filters/reference.png
 "$lumlab" energy --plot docs/energy.png > /dev/null
-rm -rf docs/report
-"$lumlab" report --out docs/report
+"$lumlab" report --out target/docs-report
+cp target/docs-report/pareto.png target/docs-report/report.csv docs/
