@@ -436,8 +436,11 @@ fn normalization_table(page: &mut String, report: &Report) {
         "<h2>BRDF normalizations: energy against brightness</h2><p class=\"note\">The specular lobe alone \
          (k = 0) with each normalization N(m): its directional albedo a(θ) = ∫ f_r cos θ_o dω_o at the lecture's \
          angles (as <code>lumlab energy</code> prints it; red above 1: the BRDF reflects more than it receives), \
-         beside the mean radiance of the scene rendered with that BRDF on every object. Without normalization the \
-         scene darkens as m grows; <code>exact</code> keeps a(0°) = 1 at every m.</p><table><tr><th>normalization</th>\
+         beside the mean radiance of the scene rendered with that BRDF on every object. The mean falls with m under \
+         every normalization: a sharp lobe sends its energy into a narrow cone that few pixels see. Compare the \
+         rows at the same m instead: <code>none</code> (N = 1 ignores the lobe's width) creates energy at small m \
+         and loses it at large m, <code>ndf</code> creates it at large m, while <code>approx</code> and <code>exact</code> keep a(0°) near 1, \
+         so their images differ only in where the light goes, not in how much there is.</p><table><tr><th>normalization</th>\
          <th>m</th>",
     );
     for a in LECTURE_ANGLES_DEG {
