@@ -17,6 +17,7 @@ use super::viewport::{Viewport, ViewportResponse};
 use super::{LaunchOptions, Preloaded, View, help};
 use crate::gpu::readback::ReadState;
 use crate::presets::{ComparisonAxis, Half, Preset};
+use crate::reference::Reference;
 use crate::scene::Scene;
 use crate::settings::{CameraSettings, DebugView, Settings};
 use egui::{Key, KeyboardShortcut, Modifiers, RichText};
@@ -48,6 +49,8 @@ pub struct LabApp {
     scene_load: Option<Receiver<SceneLoad>>,
     undo: UndoStack,
     probe: Probe,
+    /// The scene prepared for ray tracing, built at the first probe.
+    tracer: Option<Reference>,
     pending_probe: Option<PendingProbe>,
     pending_frame: Option<PendingFrame>,
     energy: EnergyPanel,
@@ -147,6 +150,7 @@ impl LabApp {
             scene_name,
             scene_load: None,
             probe: Probe::default(),
+            tracer: None,
             pending_probe: None,
             pending_frame: None,
             energy: EnergyPanel::default(),
@@ -200,6 +204,11 @@ impl LabApp {
     /// A CPU reference is being computed.
     pub fn reference_running(&self) -> bool {
         self.reference.is_running()
+    }
+
+    /// A reference image has been computed (it may be stale).
+    pub fn has_reference(&self) -> bool {
+        self.reference.result.is_some()
     }
 
     /// RMSE and friends of the GPU image against the reference, once computed.
@@ -607,7 +616,8 @@ impl LabApp {
     fn refresh_probe(&mut self) {
         let Some(p) = self.probe.pixel else { return };
         let settings = Viewport::settings_for(&self.state.settings, &self.state.split, p.half);
-        self.probe.terms = super::probe::evaluate(&self.scene, &settings, p.pixel, p.size);
+        let tracer = self.tracer.get_or_insert_with(|| Reference::new(&self.scene));
+        self.probe.terms = super::probe::evaluate(tracer, &self.scene, &settings, p.pixel, p.size);
         self.probe.gpu = None;
         self.pending_probe = self.gpu.as_ref().and_then(|g| g.request_probe(p.half, p.pixel));
         self.probe.reference = self.reference.result.as_ref().and_then(|r| {
@@ -682,6 +692,7 @@ impl LabApp {
             gpu.set_scene(&scene);
         }
         self.scene = Arc::new(scene);
+        self.tracer = None;
         self.scene_name = name;
         self.state.settings.scene = path;
         self.reference.clear();

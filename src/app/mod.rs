@@ -18,7 +18,6 @@ mod legend;
 mod light;
 mod material;
 mod probe;
-mod raycast;
 mod reference;
 mod shadow;
 mod state;
@@ -30,7 +29,7 @@ mod widgets;
 
 pub use lab::LabApp;
 pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
-pub use reference::{ErrorStats, JobControl, ReferenceFn};
+pub use reference::{ErrorStats, ReferenceFn};
 pub use state::State;
 
 use crate::scene::Scene;

@@ -1,15 +1,15 @@
 //! The pixel probe: click a pixel and see every term of L = f_r · E · V there,
-//! with units and formulas. The geometry comes from casting the pixel's ray
-//! on the CPU; the terms from `physics` in f64; V from the renderer's aux
-//! target (read back without blocking) and, when computed, from the CPU
-//! reference.
+//! with units and formulas. The terms come from the CPU reference tracing
+//! the pixel's centre in f64 (the same code as the reference image, so V
+//! and L there are exact); the shadow map's V from the renderer's aux target
+//! (read back without blocking).
 
-use super::raycast::{self, Hit};
 use super::widgets::{number, quantity, rgb, value_row, vector};
 use crate::gpu::ComparisonImage;
-use crate::physics::{BrdfParams, Normalization, brdf, radiometry};
+use crate::physics::{Normalization, brdf, radiometry};
 use crate::presets::Half;
-use crate::scene::{Camera, Scene};
+use crate::reference::{Reference, ReferenceOptions};
+use crate::scene::Scene;
 use crate::settings::{DebugView, Settings};
 use glam::DVec3;
 
@@ -29,7 +29,8 @@ pub struct ProbePixel {
 pub struct ProbeTerms {
     pub object: String,
     pub material: String,
-    pub hit: Hit,
+    /// Where the pixel's ray meets the surface (m).
+    pub position: DVec3,
     /// Shading normal, turned to the viewer on double-sided materials.
     pub n: DVec3,
     /// Unit direction to the light, l = (q − p) / r.
@@ -51,12 +52,15 @@ pub struct ProbeTerms {
     pub norm: Normalization,
     /// f_r / c split into k/π and (1 − k) N(m) cos^m θ_h (1/sr).
     pub brdf: brdf::BrdfTerms<f64>,
-    /// The BRDF colour c (linear RGB).
+    /// The BRDF colour c (linear RGB): base colour × texture, or the override.
     pub color: DVec3,
-    /// The base colour is multiplied by a texture the probe does not sample.
-    pub textured: bool,
     /// The light's colour (linear RGB factors of Φ).
     pub light_color: DVec3,
+    /// V ray traced from p (exact for a point light; the visible fraction of
+    /// the sphere light's cosine-weighted solid angle otherwise).
+    pub visibility: f64,
+    /// L ray traced at the pixel's centre (W/m²/sr).
+    pub radiance: DVec3,
 }
 
 impl ProbeTerms {
@@ -67,68 +71,45 @@ impl ProbeTerms {
 }
 
 /// The terms at pixel (i, j) of an image of `size` pixels rendered with
-/// `settings`, or None where the pixel's ray misses the scene.
+/// `settings`, or None where the pixel's ray misses the scene. `tracer` is
+/// the reference prepared for `scene`.
 pub fn evaluate(
+    tracer: &Reference,
     scene: &Scene,
     settings: &Settings,
     pixel: (u32, u32),
     size: (u32, u32),
 ) -> Option<ProbeTerms> {
-    let camera = Camera {
-        eye: settings.camera.eye,
-        target: settings.camera.target,
-        fovy_deg: settings.camera.fovy_deg,
-    };
-    let eye = camera.eye.as_dvec3();
-    let dir = camera.ray_direction(pixel.0 as f64 + 0.5, pixel.1 as f64 + 0.5, size.0, size.1);
-    let hit = raycast::cast(scene, eye, dir)?;
-    let object = scene.objects.get(hit.object)?;
+    let mut settings = settings.clone();
+    settings.image.width = size.0;
+    settings.image.height = size.1;
+    let (x, y) = (pixel.0 as f64 + 0.5, pixel.1 as f64 + 0.5);
+    let sample = tracer.trace_pixel(&settings, &ReferenceOptions::DEFAULT, x, y)?;
+    let object = scene.objects.get(sample.object)?;
     let material = scene.material_of(object);
-    let o = (eye - hit.position).normalize_or(-dir);
-    let mut n = hit.normal;
-    if material.double_sided && n.dot(o) < 0.0 {
-        n = -n;
-    }
-    let q = settings.light.position.as_dvec3();
-    let incidence = radiometry::incidence(hit.position, n, q);
-    let power = settings.light.power_w as f64;
-    let m_settings = &settings.material;
-    let own = m_settings.use_scene_materials;
-    let k = material.k.filter(|_| own).unwrap_or(m_settings.k) as f64;
-    let m = material.m.filter(|_| own).unwrap_or(m_settings.m) as f64;
-    let params = BrdfParams {
-        k,
-        m,
-        norm: m_settings.norm,
-    };
-    let sum = incidence.l + o;
+    let eye = settings.camera.eye.as_dvec3();
+    let o = (eye - sample.position).normalize_or(sample.normal);
+    let sum = sample.to_light + o;
     Some(ProbeTerms {
         object: object.name.clone(),
         material: material.name.clone(),
-        hit,
-        n,
-        l: incidence.l,
+        position: sample.position,
+        n: sample.normal,
+        l: sample.to_light,
         o,
         h: (sum.length_squared() > 0.0).then(|| sum.normalize()),
-        r_m: incidence.r,
-        cos_theta: incidence.cos_theta,
-        intensity_w_sr: radiometry::intensity(power),
-        irradiance_w_m2: radiometry::sphere_irradiance(
-            power,
-            settings.light.radius_m as f64,
-            incidence.cos_theta,
-            incidence.r,
-        ),
-        k,
-        m,
-        norm: m_settings.norm,
-        brdf: brdf::blinn_phong(n, incidence.l, o, &params),
-        color: m_settings
-            .color_override
-            .unwrap_or_else(|| material.base_color.truncate())
-            .as_dvec3(),
-        textured: material.base_color_texture.is_some() && m_settings.color_override.is_none(),
+        r_m: sample.light_distance_m,
+        cos_theta: sample.cos_theta,
+        intensity_w_sr: radiometry::intensity(settings.light.power_w as f64),
+        irradiance_w_m2: sample.irradiance,
+        k: sample.k,
+        m: sample.m,
+        norm: settings.material.norm,
+        brdf: sample.brdf,
+        color: sample.color,
         light_color: settings.light.color.as_dvec3(),
+        visibility: sample.visibility,
+        radiance: sample.radiance,
     })
 }
 
@@ -219,7 +200,7 @@ impl Probe {
         let mut rows = vec![
             (
                 "p",
-                vector(t.hit.position, "m"),
+                vector(t.position, "m"),
                 "Where the pixel's ray meets the surface (m)",
             ),
             (
@@ -257,11 +238,6 @@ impl Probe {
                 "cos θ_h = max(0, n·h), h = normalize(l + o)",
             ));
         }
-        let texture_note = if t.textured {
-            "  × texture (not sampled)"
-        } else {
-            ""
-        };
         rows.extend([
             (
                 "k, m, N(m)",
@@ -283,8 +259,8 @@ impl Probe {
             ("f_r", times_c(t.brdf.total()), super::material::BRDF),
             (
                 "c",
-                format!("{}{texture_note}", rgb(t.color, "")),
-                "The BRDF colour c (linear RGB)",
+                rgb(t.color, ""),
+                "The BRDF colour c (linear RGB): base colour × texture at the hit's uv, or the override",
             ),
         ]);
         match &self.gpu {
@@ -325,28 +301,26 @@ impl Probe {
                 ),
             ]),
         }
-        match &self.reference {
-            Some(r) => {
-                let stale = if r.stale { "  (stale)" } else { "" };
-                let v = DVec3::from_array(r.radiance.map(f64::from));
-                rows.extend([
-                    (
-                        "V (reference)",
-                        format!("{}{stale}", number(r.visibility as f64)),
-                        "Visibility of the light from p, ray traced on the CPU (f64)",
-                    ),
-                    (
-                        "L (reference)",
-                        format!("{}{stale}", rgb(v, "W/m²/sr")),
-                        "The CPU reference's radiance",
-                    ),
-                ]);
-            }
-            None => rows.push((
-                "V (reference)",
-                "not computed".into(),
-                "Compute it in the Reference panel (F5)",
-            )),
+        rows.extend([
+            (
+                "V (ray traced)",
+                number(t.visibility),
+                "Visibility of the light from p, ray traced on the CPU in f64: the exact V the shadow map approximates",
+            ),
+            (
+                "L (ray traced)",
+                rgb(t.radiance, "W/m²/sr"),
+                "The CPU reference's radiance at this pixel's centre",
+            ),
+        ]);
+        if let Some(r) = &self.reference {
+            let stale = if r.stale { "  (stale)" } else { "" };
+            let v = DVec3::from_array(r.radiance.map(f64::from));
+            rows.push((
+                "L (reference image)",
+                format!("{}{stale}", rgb(v, "W/m²/sr")),
+                "The computed reference image at this pixel (F5), which the error view compares with",
+            ));
         }
         rows
     }
@@ -361,12 +335,12 @@ mod tests {
         let scene = crate::scene::default_scene();
         let settings = Settings::default();
         let size = (320, 200);
-        let t = evaluate(&scene, &settings, (40, 190), size).unwrap();
+        let t = evaluate(&Reference::new(&scene), &scene, &settings, (40, 190), size).unwrap();
         assert_eq!(t.object, "ground");
         let q = settings.light.position.as_dvec3();
-        let r = (q - t.hit.position).length();
+        let r = (q - t.position).length();
         assert!((t.r_m - r).abs() < 1e-12);
-        let cos = (q - t.hit.position).normalize().y;
+        let cos = (q - t.position).normalize().y;
         let e = settings.light.power_w as f64 / (4.0 * std::f64::consts::PI) * cos / (r * r);
         assert!((t.irradiance_w_m2 / e - 1.0).abs() < 1e-12);
         assert!((t.brdf.diffuse - t.k / std::f64::consts::PI).abs() < 1e-15);
@@ -375,6 +349,7 @@ mod tests {
     #[test]
     fn sky_pixels_have_no_terms() {
         let scene = crate::scene::default_scene();
-        assert!(evaluate(&scene, &Settings::default(), (5, 2), (320, 200)).is_none());
+        let tracer = Reference::new(&scene);
+        assert!(evaluate(&tracer, &scene, &Settings::default(), (5, 2), (320, 200)).is_none());
     }
 }

@@ -8,35 +8,30 @@
 
 use super::widgets::{number, quantity};
 use crate::gpu::ComparisonImage;
+use crate::reference::{Reference, ReferenceOptions, RenderControl};
 use crate::scene::Scene;
 use crate::settings::{DebugView, Settings, ShadowSettings, ViewSettings};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::Ordering;
 use std::sync::mpsc::{Receiver, TryRecvError};
 use std::time::{Duration, Instant};
 
-/// Progress and cancellation shared with the thread that computes.
-#[derive(Debug, Default)]
-pub struct JobControl {
-    /// Pixels finished so far.
-    pub pixels_done: AtomicUsize,
-    /// Set to ask the computation to stop.
-    pub cancel: AtomicBool,
-}
-
-/// Computes the reference image for `settings` (size: `settings.image`).
+/// Computes the reference image for `settings` (size: `settings.image`),
+/// reporting progress and stopping when cancelled through the control.
 pub type ReferenceFn =
-    dyn Fn(&Scene, &Settings, &JobControl) -> Result<ComparisonImage, String> + Send + Sync;
+    dyn Fn(&Scene, &Settings, &RenderControl) -> Result<ComparisonImage, String> + Send + Sync;
 
-/// The CPU reference as this build has it.
+/// The CPU ray tracer with its default sampling (pixel centres; 64 strata of
+/// a sphere light).
 pub fn cpu_reference(
-    _scene: &Scene,
-    _settings: &Settings,
-    _control: &JobControl,
+    scene: &Scene,
+    settings: &Settings,
+    control: &RenderControl,
 ) -> Result<ComparisonImage, String> {
-    // The ray tracer (lumlab::reference) is being written on its own branch;
-    // it plugs in here once it is merged.
-    Err("the CPU reference (lumlab::reference) is not part of this build yet".into())
+    Reference::new(scene)
+        .render(settings, &ReferenceOptions::DEFAULT, control)
+        .map(|image| image.to_comparison())
+        .map_err(|e| e.to_string())
 }
 
 /// What a reference depends on: everything but the shadow map's own
@@ -124,7 +119,7 @@ pub fn error_stats(
 }
 
 struct Job {
-    control: Arc<JobControl>,
+    control: Arc<RenderControl>,
     total: usize,
     key: Settings,
     started: Instant,
@@ -176,7 +171,7 @@ impl ReferencePanel {
         let mut settings = settings.clone();
         settings.image.width = size.0;
         settings.image.height = size.1;
-        let control = Arc::new(JobControl::default());
+        let control = Arc::new(RenderControl::default());
         let (sender, receiver) = std::sync::mpsc::channel();
         let compute = Arc::clone(&self.compute);
         let thread_control = Arc::clone(&control);
@@ -207,7 +202,7 @@ impl ReferencePanel {
     /// Asks a running computation to stop (its result is dropped).
     pub fn cancel(&mut self) {
         if let Some(job) = self.job.take() {
-            job.control.cancel.store(true, Ordering::Relaxed);
+            job.control.cancel();
             self.message = Some("reference cancelled".into());
         }
     }

@@ -184,9 +184,16 @@ pub fn build() -> Vec<u8> {
 
 /// The embedded asset through the loader; should it ever fail (the tests
 /// say it does not), the same scene built in code, with a warning.
+///
+/// glTF stores a camera as a node's rotation, not as a target point, so the
+/// loaded camera's target is the default one only to f32 rounding; the
+/// generator's exact camera (the app's default view) replaces it.
 pub fn load_embedded() -> Scene {
     match super::gltf::load_slice(ASSET, Path::new("built-in scene"), None) {
-        Ok(scene) => scene,
+        Ok(mut scene) => {
+            scene.cameras = self::scene().cameras;
+            scene
+        }
         Err(e) => {
             let mut scene = scene();
             scene
@@ -242,6 +249,15 @@ mod tests {
         assert_eq!(scene.objects.len(), 8);
         assert_eq!(scene.cameras.len(), 1);
         let built = super::scene();
+        // The asset's own camera is the default one, to rounding.
+        let stored = crate::scene::gltf::load_slice(ASSET, Path::new("asset"), None).unwrap();
+        let (a, b) = (&stored.cameras[0].camera, &built.cameras[0].camera);
+        let along = (a.target - a.eye).normalize().dot((b.target - b.eye).normalize());
+        assert!(
+            (a.eye - b.eye).length() < 1e-5 && along > 1.0 - 1e-9,
+            "{a:?} vs {b:?}"
+        );
+        assert!((a.fovy_deg - b.fovy_deg).abs() < 1e-4);
         assert_eq!(scene.triangle_count(), built.triangle_count());
         for (loaded, made) in scene.objects.iter().zip(&built.objects) {
             assert_eq!(loaded.name, made.name);
