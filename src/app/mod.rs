@@ -134,7 +134,7 @@ pub fn run(options: LaunchOptions) -> anyhow::Result<()> {
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("lumlab — lighting lab")
-            .with_inner_size([1280.0, 800.0])
+            .with_inner_size([1600.0, 900.0])
             .with_min_inner_size([480.0, 320.0])
             .with_drag_and_drop(true),
         wgpu_options: egui_wgpu::WgpuConfiguration {
