@@ -41,7 +41,7 @@ impl Default for ReportOptions {
 }
 
 /// Timed frames per configuration unless told otherwise.
-pub const DEFAULT_FRAMES: usize = 3;
+pub const DEFAULT_FRAMES: usize = 5;
 
 /// Median times of one configuration's frames (ms).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -262,14 +262,36 @@ fn pareto_plot(report: &Report, path: &Path) -> anyhow::Result<()> {
             )))?
             .label("reference (CPU ray tracing, error 0)")
             .legend(|(x, y)| TriangleMarker::new((x + 9, y), 6, BLACK.filled()));
+        // Labels of the front, each moved up or down until it overlaps no other.
+        let mut placed: Vec<(i32, i32, i32, i32)> = Vec::new();
         for ((p, on), label) in points.iter().zip(&report.pareto).zip(&labels) {
-            if *on {
-                chart.draw_series(std::iter::once(Text::new(
-                    label.clone(),
-                    (p.0 * 1.04, p.1 + 0.015 * e_max),
-                    (FONT, 14).into_font().color(&BLACK),
-                )))?;
+            if !*on {
+                continue;
             }
+            let (x, y) = chart.backend_coord(p);
+            let (width, height) = (7 * label.chars().count() as i32, 16);
+            let overlaps = |top: i32| {
+                placed
+                    .iter()
+                    .any(|&(l, t, r, b)| x + 10 < r && l < x + 10 + width && top < b && t < top + height)
+            };
+            let top = [0, -1, 1, -2, 2, -3, 3, -4, 4]
+                .iter()
+                .map(|k| y - height - 2 + k * (height + 2))
+                .find(|&top| !overlaps(top))
+                .unwrap_or(y - height - 2);
+            placed.push((x + 10, top, x + 10 + width, top + height));
+            if top != y - height - 2 {
+                root.draw(&PathElement::new(
+                    vec![(x + 4, y), (x + 10, top + height / 2)],
+                    BLACK.mix(0.5),
+                ))?;
+            }
+            root.draw(&Text::new(
+                label.clone(),
+                (x + 12, top),
+                (FONT, 14).into_font().color(&BLACK),
+            ))?;
         }
         chart
             .configure_series_labels()
