@@ -614,6 +614,12 @@ fn the_cpu_reference_job_agrees_with_the_gpu_without_shadows() {
         &mut harness,
         egui::pos2(rect.center().x, rect.top() + 0.7 * rect.height()),
     );
+    step_until(&mut harness, "the probe's GPU values", |app| {
+        app.probe_gpu().is_some()
+    });
+    render(&mut harness)
+        .save(screenshot_dir().join("app-probe.png"))
+        .unwrap();
     let t = harness.state().probe_terms().expect("a surface").clone();
     assert!((0.0..=1.0).contains(&t.visibility));
     let l = t.unshadowed_radiance() * t.visibility;

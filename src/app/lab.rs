@@ -276,10 +276,12 @@ impl LabApp {
         if self.state.panels.analysis {
             egui::Panel::right("analysis panel")
                 .resizable(true)
-                .default_size(350.0)
+                .default_size(420.0)
                 .size_range(280.0..=640.0)
                 .show(ui, |ui| {
-                    egui::ScrollArea::vertical().show(ui, |ui| self.analysis_panel(ui, &ctx));
+                    // Scrolled both ways: wide rows (the probe's vectors) never
+                    // widen the panel, which would shrink the image under the probe.
+                    egui::ScrollArea::both().show(ui, |ui| self.analysis_panel(ui, &ctx));
                 });
         }
         let response = egui::CentralPanel::no_frame()
@@ -588,12 +590,10 @@ impl LabApp {
         } else if let Some(pixel) = self.probe.pixel
             && response.rendered[pixel.half as usize]
         {
-            if pixel.size == response.size {
-                self.refresh_probe();
-            } else {
-                self.probe = Default::default();
-                self.pending_probe = None;
-            }
+            // A resized viewport (a panel widened by the probe's own rows, or
+            // the window) keeps the probe on the same point of the image.
+            self.probe.pixel = Some(pixel.resized(response.size));
+            self.refresh_probe();
         }
         let fresh_reference = self
             .reference

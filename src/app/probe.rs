@@ -23,6 +23,24 @@ pub struct ProbePixel {
     pub size: (u32, u32),
 }
 
+impl ProbePixel {
+    /// The pixel at the same place of an image of `size` pixels.
+    pub fn resized(self, size: (u32, u32)) -> Self {
+        let scale = |i: u32, from: u32, to: u32| {
+            let x = (i as f64 + 0.5) * to as f64 / from.max(1) as f64;
+            (x.floor() as u32).min(to.saturating_sub(1))
+        };
+        Self {
+            pixel: (
+                scale(self.pixel.0, self.size.0, size.0),
+                scale(self.pixel.1, self.size.1, size.1),
+            ),
+            size,
+            ..self
+        }
+    }
+}
+
 /// Every term of the rendering equation at the probed point (c = the
 /// material's colour; all in f64 through `physics`).
 #[derive(Clone, Debug, PartialEq)]
@@ -344,6 +362,19 @@ mod tests {
         let e = settings.light.power_w as f64 / (4.0 * std::f64::consts::PI) * cos / (r * r);
         assert!((t.irradiance_w_m2 / e - 1.0).abs() < 1e-12);
         assert!((t.brdf.diffuse - t.k / std::f64::consts::PI).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_resized_probe_stays_on_the_same_point() {
+        let p = ProbePixel {
+            half: Half::A,
+            pixel: (100, 50),
+            size: (400, 200),
+        };
+        assert_eq!(p.resized((400, 200)), p);
+        assert_eq!(p.resized((200, 100)).pixel, (50, 25));
+        assert_eq!(p.resized((800, 400)).pixel, (201, 101));
+        assert_eq!(p.resized((1, 1)).pixel, (0, 0));
     }
 
     #[test]
