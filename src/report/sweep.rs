@@ -17,7 +17,7 @@
 //! bias = ["auto", "slope:0.002,1.5"]
 //! ```
 
-use crate::settings::{Filter, Settings, ShadowSettings};
+use crate::settings::{BiasMode, Filter, Settings, ShadowSettings};
 use std::path::Path;
 
 /// One configuration of the sweep: the base settings' shadow section with
@@ -84,10 +84,15 @@ pub fn parse(text: &str, base: &Settings) -> Result<Vec<SweepPoint>, SweepError>
     if tables.is_empty() {
         return Err(invalid("the sweep has no configuration".into()));
     }
-    let points = tables
-        .iter()
-        .map(|table| point(table, &base.shadow))
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut points: Vec<SweepPoint> = Vec::with_capacity(tables.len());
+    for table in &tables {
+        // A cross-product can ask for values the filter never reads (a PCF
+        // size with VSM): such points render alike, and are measured once.
+        let point = point(table, &base.shadow)?;
+        if !points.iter().any(|p| p.shadow == point.shadow) {
+            points.push(point);
+        }
+    }
     for point in &points {
         let mut settings = base.clone();
         settings.shadow = point.shadow;
@@ -110,7 +115,8 @@ pub fn load(path: &Path, base: &Settings) -> Result<Vec<SweepPoint>, SweepError>
     })
 }
 
-/// Every combination of the axes' values, the first axis varying slowest.
+/// Every combination of the axes' values: keys in alphabetical order, the
+/// first varying slowest.
 fn cross_product(axes: &toml::Table) -> Result<Vec<toml::Table>, SweepError> {
     let mut tables = vec![toml::Table::new()];
     for (key, values) in axes {
@@ -156,20 +162,89 @@ fn point(table: &toml::Table, base: &ShadowSettings) -> Result<SweepPoint, Sweep
             .parse_onto(&text)
             .map_err(|e| SweepError::Invalid(format!("bias: {e}")))?;
     }
+    let shadow = effective(shadow);
     Ok(SweepPoint {
         label: label(&shadow),
         shadow,
     })
 }
 
-/// `filter resolution² bias`, with the filter's size where it has one.
-pub fn label(shadow: &ShadowSettings) -> String {
-    let filter = match shadow.filter {
-        Filter::Pcf => format!("pcf{}", shadow.pcf_size),
-        Filter::Poisson => format!("poisson{}", shadow.poisson_samples),
+/// The settings with every value the filter and the bias mode do not read
+/// set to its default, so that two points that render alike are equal.
+fn effective(mut s: ShadowSettings) -> ShadowSettings {
+    let d = ShadowSettings::default();
+    let uses = |filters: &[Filter]| filters.contains(&s.filter);
+    if !uses(&[Filter::Pcf]) {
+        s.pcf_size = d.pcf_size;
+    }
+    if !uses(&[Filter::Poisson, Filter::Pcss]) {
+        s.poisson_samples = d.poisson_samples;
+    }
+    if !uses(&[Filter::Poisson]) {
+        s.poisson_radius_texels = d.poisson_radius_texels;
+    }
+    if !uses(&[Filter::Pcss]) {
+        s.pcss_blocker_samples = d.pcss_blocker_samples;
+    }
+    if !uses(&[Filter::Vsm, Filter::Evsm]) {
+        s.vsm_blur_texels = d.vsm_blur_texels;
+        s.vsm_bleed_reduction = d.vsm_bleed_reduction;
+    }
+    let (bias, db) = (&mut s.bias, d.bias);
+    if !matches!(bias.mode, BiasMode::Constant | BiasMode::Slope) {
+        bias.depth_m = db.depth_m;
+    }
+    if bias.mode != BiasMode::Slope {
+        bias.slope = db.slope;
+    }
+    if bias.mode != BiasMode::Normal {
+        bias.normal_texels = db.normal_texels;
+    }
+    s
+}
+
+/// `filter resolution² bias`: the filter with its size (pcf3, poisson16)
+/// and any of its other parameters that differ from the defaults.
+pub fn label(s: &ShadowSettings) -> String {
+    let d = ShadowSettings::default();
+    let mut filter = match s.filter {
+        Filter::Pcf => format!("pcf{}", s.pcf_size),
+        Filter::Poisson => format!("poisson{}", s.poisson_samples),
         other => other.name().to_string(),
     };
-    format!("{filter} {}² {}", shadow.resolution, shadow.bias.describe())
+    let mut add = |differs: bool, text: String| {
+        if differs {
+            filter += &format!(" {text}");
+        }
+    };
+    match s.filter {
+        Filter::Poisson => add(
+            s.poisson_radius_texels != d.poisson_radius_texels,
+            format!("r{}", s.poisson_radius_texels),
+        ),
+        Filter::Pcss => {
+            add(
+                s.pcss_blocker_samples != d.pcss_blocker_samples,
+                format!("search{}", s.pcss_blocker_samples),
+            );
+            add(
+                s.poisson_samples != d.poisson_samples,
+                format!("filter{}", s.poisson_samples),
+            );
+        }
+        Filter::Vsm | Filter::Evsm => {
+            add(
+                s.vsm_blur_texels != d.vsm_blur_texels,
+                format!("blur{}", s.vsm_blur_texels),
+            );
+            add(
+                s.vsm_bleed_reduction != d.vsm_bleed_reduction,
+                format!("bleed{}", s.vsm_bleed_reduction),
+            );
+        }
+        _ => {}
+    }
+    format!("{filter} {}² {}", s.resolution, s.bias.describe())
 }
 
 /// A TOML error on one line.
@@ -206,6 +281,31 @@ mod tests {
         assert_eq!(points[0].shadow.pcf_size, 5);
         assert_eq!(points[0].label, "pcf5 2048² auto");
         assert!(points.iter().any(|p| p.label == "pcf3 512² slope:0.001,2"));
+    }
+
+    #[test]
+    fn values_a_filter_does_not_read_make_no_new_point() {
+        let text = r#"
+            [cross]
+            filter = ["hw2x2", "pcf", "vsm"]
+            pcf_size = [3, 9]
+            vsm_blur_texels = [2, 4]
+        "#;
+        let labels: Vec<String> = parse(text, &Settings::default())
+            .unwrap()
+            .into_iter()
+            .map(|p| p.label)
+            .collect();
+        assert_eq!(
+            labels,
+            [
+                "hw2x2 2048² auto",
+                "pcf3 2048² auto",
+                "pcf9 2048² auto",
+                "vsm 2048² auto",
+                "vsm blur4 2048² auto"
+            ]
+        );
     }
 
     #[test]
