@@ -110,3 +110,36 @@ fn pcss_penumbra_is_as_wide_as_the_sphere_lights() {
         "PCSS penumbra {ratio:.2} × the reference's"
     );
 }
+
+/// The fraction of light-facing pixels whose shadow state differs from the
+/// reference's, on the default scene at 320×180 with a 2048² map.
+fn wrong_shadow_fraction(filter: lumlab::settings::Filter, bias: &str) -> f64 {
+    let mut settings = Settings::default();
+    settings.image.width = 320;
+    settings.image.height = 180;
+    settings.shadow.filter = filter;
+    settings.shadow.bias = settings.shadow.bias.parse_onto(bias).unwrap();
+    let gpu = common::gpu();
+    let scene = lumlab::scene::default_scene();
+    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    renderer.render(&settings, (settings.image.width, settings.image.height));
+    let (quantity, aux) = (renderer.read_quantity(), renderer.read_aux());
+    let reference = Reference::new(&scene)
+        .render(&settings, &ReferenceOptions::DEFAULT, &RenderControl::default())
+        .unwrap();
+    let comparison = lumlab::report::metrics::Comparison::new(&reference, &aux);
+    let frame = lumlab::report::metrics::Frame::from_gpu(&quantity, &aux);
+    comparison.measure(&frame).wrong_shadow_fraction
+}
+
+#[test]
+fn shadow_maps_agree_with_ray_traced_visibility_except_at_edges() {
+    use lumlab::settings::Filter;
+    let auto = wrong_shadow_fraction(Filter::None, "auto");
+    let none = wrong_shadow_fraction(Filter::None, "constant:0");
+    eprintln!("wrong shadow states: auto bias {auto:.4}, no bias {none:.4}");
+    // Automatic bias: only pixels on shadow edges (a texel's width) disagree.
+    assert!(auto < 0.003, "auto bias: {auto}");
+    // Without bias, acne shadows lit surfaces: the lesson shows.
+    assert!(none > 10.0 * auto && none > 0.01, "no bias: {none}");
+}
