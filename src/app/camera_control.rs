@@ -12,6 +12,29 @@ pub const MAX_DISTANCE_M: f64 = 1e4;
 /// Pitch stays within this of the poles (degrees) so the frame stays defined.
 const POLE_MARGIN_DEG: f64 = 1.0;
 
+/// The frame the settings' vertical field of view is meant for: the
+/// command line's default 16:9 image.
+pub const FRAME_ASPECT: f64 = 16.0 / 9.0;
+/// The widest vertical field of view the fit gives (degrees).
+const MAX_FITTED_FOVY_DEG: f64 = 75.0;
+
+/// The camera a viewport of `size` pixels shows: as set when the viewport is
+/// at least as wide as 16:9; narrower, the vertical field of view widens so
+/// that the 16:9 frame's horizontal extent still fits (the panels, not the
+/// user, chose the viewport's shape), up to 75° (beyond, a very narrow
+/// viewport crops the sides rather than distort the view).
+pub fn fitted(c: &CameraSettings, size: (u32, u32)) -> CameraSettings {
+    let aspect = size.0 as f64 / size.1.max(1) as f64;
+    if size.0 == 0 || aspect >= FRAME_ASPECT {
+        return *c;
+    }
+    let tan_half = (0.5 * c.fovy_deg as f64).to_radians().tan() * FRAME_ASPECT / aspect;
+    CameraSettings {
+        fovy_deg: (2.0 * tan_half.atan().to_degrees()).min(MAX_FITTED_FOVY_DEG.max(c.fovy_deg as f64)) as f32,
+        ..*c
+    }
+}
+
 fn camera(c: &CameraSettings) -> Camera {
     Camera {
         eye: c.eye,
@@ -122,6 +145,23 @@ mod tests {
         assert!(((c.eye - c.target).length() as f64 - 0.5 * r0).abs() < 1e-4);
         zoom(&mut c, 1e-9);
         assert!(((c.eye - c.target).length() as f64 - MIN_DISTANCE_M).abs() < 1e-4);
+    }
+
+    #[test]
+    fn a_narrow_viewport_keeps_the_16_9_frames_width() {
+        let c = CameraSettings::default();
+        assert_eq!(fitted(&c, (1600, 900)), c);
+        assert_eq!(fitted(&c, (2000, 900)), c);
+        let square = fitted(&c, (900, 900));
+        assert!(square.fovy_deg > c.fovy_deg);
+        let half_width =
+            |c: &CameraSettings, aspect: f64| (0.5 * c.fovy_deg as f64).to_radians().tan() * aspect;
+        assert!((half_width(&square, 1.0) / half_width(&c, FRAME_ASPECT) - 1.0).abs() < 1e-6);
+        assert_eq!((square.eye, square.target), (c.eye, c.target));
+        assert_eq!(fitted(&c, (1, 10_000)).fovy_deg, 75.0);
+        // A view set wider than the cap is never narrowed.
+        let wide = CameraSettings { fovy_deg: 120.0, ..c };
+        assert_eq!(fitted(&wide, (500, 1000)).fovy_deg, 120.0);
     }
 
     #[test]

@@ -449,7 +449,12 @@ impl LabApp {
                 .ui(ui, &curves, incidence.as_ref().map(|(t, s)| (*t, s.as_str())))
         });
         let mut action = ReferenceAction::None;
-        let settings_a = Viewport::settings_for(&self.state.settings, &self.state.split, Half::A);
+        let settings_a = Viewport::render_settings(
+            &self.state.settings,
+            &self.state.split,
+            Half::A,
+            self.viewport_size,
+        );
         section(ui, "Reference and error", true, |ui| {
             action = self.reference.ui(ui, &settings_a, self.viewport_size);
         });
@@ -532,10 +537,12 @@ impl LabApp {
 
     /// The settings of half A, with the viewport's image size.
     fn keyed(&self, half: Half) -> Settings {
-        let mut s = Viewport::settings_for(&self.state.settings, &self.state.split, half);
-        s.image.width = self.viewport_size.0;
-        s.image.height = self.viewport_size.1;
-        reference_key(&s)
+        reference_key(&Viewport::render_settings(
+            &self.state.settings,
+            &self.state.split,
+            half,
+            self.viewport_size,
+        ))
     }
 
     /// Gives each half the reference it can compare with: A always (marked
@@ -615,7 +622,7 @@ impl LabApp {
     /// Recomputes the probe's terms and asks the GPU for its values there.
     fn refresh_probe(&mut self) {
         let Some(p) = self.probe.pixel else { return };
-        let settings = Viewport::settings_for(&self.state.settings, &self.state.split, p.half);
+        let settings = Viewport::render_settings(&self.state.settings, &self.state.split, p.half, p.size);
         let tracer = self.tracer.get_or_insert_with(|| Reference::new(&self.scene));
         self.probe.terms = super::probe::evaluate(tracer, &self.scene, &settings, p.pixel, p.size);
         self.probe.gpu = None;
@@ -727,7 +734,12 @@ impl LabApp {
         if self.viewport_size.0 == 0 {
             return;
         }
-        let settings = Viewport::settings_for(&self.state.settings, &self.state.split, Half::A);
+        let settings = Viewport::render_settings(
+            &self.state.settings,
+            &self.state.split,
+            Half::A,
+            self.viewport_size,
+        );
         self.reference
             .start(Arc::clone(&self.scene), &settings, self.viewport_size, ctx);
     }

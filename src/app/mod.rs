@@ -27,6 +27,7 @@ mod view;
 mod viewport;
 mod widgets;
 
+pub use camera_control::fitted as fitted_camera;
 pub use lab::LabApp;
 pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
 pub use reference::{ErrorStats, ReferenceFn};

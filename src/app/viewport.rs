@@ -2,7 +2,7 @@
 //! split view), camera orbit/pan/zoom, the light gizmo, the split divider,
 //! the probe's marker, the half labels and the colour legends.
 
-use super::camera_control::{drag_height, drag_in_image_plane, orbit, pan, project, zoom};
+use super::camera_control::{drag_height, drag_in_image_plane, fitted, orbit, pan, project, zoom};
 use super::gpu_view::GpuViews;
 use super::legend;
 use super::probe::ProbePixel;
@@ -56,6 +56,22 @@ impl Viewport<'_> {
         }
     }
 
+    /// What a half renders in a viewport of `size` pixels: its settings at
+    /// that image size, with the camera fitted to the viewport's shape
+    /// (see [`fitted`]). The renderer, the probe and the reference all use it.
+    pub fn render_settings(
+        settings: &Settings,
+        split: &SplitState,
+        half: Half,
+        size: (u32, u32),
+    ) -> Settings {
+        let mut s = Self::settings_for(settings, split, half);
+        s.camera = fitted(&s.camera, size);
+        s.image.width = size.0;
+        s.image.height = size.1;
+        s
+    }
+
     pub fn show(self, ui: &mut egui::Ui) -> ViewportResponse {
         let Self {
             settings,
@@ -85,7 +101,9 @@ impl Viewport<'_> {
         // The light gizmo and the divider are on top of the image: they take
         // the drag when the pointer is on them.
         let aspect_size = (size.0 as f64, size.1 as f64);
-        let light_px = project(&settings.camera, settings.light.position, aspect_size);
+        // The camera as this viewport shows it: projections and drags use it.
+        let view_camera = fitted(&settings.camera, size);
+        let light_px = project(&view_camera, settings.light.position, aspect_size);
         let to_points = |p: DVec2| rect.min + Vec2::new(p.x as f32, p.y as f32) / ppp;
         // Off-image, the gizmo waits at the edge, pointing to the light.
         // The top band is left to the half labels.
@@ -118,10 +136,10 @@ impl Viewport<'_> {
                 let delta = gizmo.drag_delta() * ppp;
                 let light = &mut settings.light.position;
                 *light = if ui.input(|i| i.modifiers.command || i.modifiers.ctrl) {
-                    drag_height(&settings.camera, *light, delta.y as f64, height_px)
+                    drag_height(&view_camera, *light, delta.y as f64, height_px)
                 } else {
                     drag_in_image_plane(
-                        &settings.camera,
+                        &view_camera,
                         *light,
                         DVec2::new(delta.x as f64, delta.y as f64),
                         height_px,
@@ -156,11 +174,14 @@ impl Viewport<'_> {
             if response.dragged_by(PointerButton::Middle)
                 || (shift && response.dragged_by(PointerButton::Primary))
             {
+                let mut moved = view_camera;
                 pan(
-                    &mut settings.camera,
+                    &mut moved,
                     DVec2::new(delta.x as f64, delta.y as f64) * ppp as f64,
                     height_px,
                 );
+                settings.camera.eye = moved.eye;
+                settings.camera.target = moved.target;
                 ui.ctx().set_cursor_icon(CursorIcon::Move);
             } else if response.dragged_by(PointerButton::Primary) {
                 orbit(
@@ -213,7 +234,7 @@ impl Viewport<'_> {
             return out;
         };
         for &half in halves {
-            let s = Self::settings_for(settings, split, half);
+            let s = Self::render_settings(settings, split, half, size);
             out.rendered[half as usize] = gpu.prepare(half, &s, size);
         }
         let part = |half: Half| -> (Rect, Rect) {
@@ -273,7 +294,7 @@ impl Viewport<'_> {
                 sun(&painter, p);
                 // A drop line to the ground plane y = 0 shows the light's height.
                 let foot = glam::Vec3::new(settings.light.position.x, 0.0, settings.light.position.z);
-                if let Some(f) = project(&settings.camera, foot, aspect_size).map(to_points) {
+                if let Some(f) = project(&view_camera, foot, aspect_size).map(to_points) {
                     let stroke = Stroke::new(1.5, LIGHT_YELLOW.gamma_multiply(0.7));
                     painter.line_segment([p, f], stroke);
                     painter.circle_stroke(f, 4.0, stroke);
@@ -287,12 +308,14 @@ impl Viewport<'_> {
                     dir * 22.0,
                     Stroke::new(3.0, LIGHT_YELLOW),
                 );
-                let side = if dir.x > 0.0 {
+                // The label goes towards the middle of the image, where there is room.
+                let towards_left = p.x > rect.center().x;
+                let side = if towards_left {
                     Align2::RIGHT_CENTER
                 } else {
                     Align2::LEFT_CENTER
                 };
-                let offset = if dir.x > 0.0 { -1.0 } else { 1.0 } * (GIZMO_RADIUS + 14.0);
+                let offset = if towards_left { -1.0 } else { 1.0 } * (GIZMO_RADIUS + 14.0);
                 label(ui, p + Vec2::new(offset, 0.0), side, "light (off the image)");
             }
             None => label(
