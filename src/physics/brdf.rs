@@ -119,6 +119,13 @@ pub fn blinn_phong<V: Vector3>(n: V, l: V, o: V, params: &BrdfParams<V::S>) -> B
         return BrdfTerms::default();
     }
     let diffuse = params.k / V::S::PI();
+    if params.k >= one {
+        // Lambert alone: (1 − k) = 0 times a finite lobe.
+        return BrdfTerms {
+            diffuse,
+            specular: zero,
+        };
+    }
     let sum = l + o;
     let len2 = sum.length_squared();
     if len2.is_nan() || len2 <= zero {
