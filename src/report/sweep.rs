@@ -212,37 +212,36 @@ pub fn label(s: &ShadowSettings) -> String {
         Filter::Poisson => format!("poisson{}", s.poisson_samples),
         other => other.name().to_string(),
     };
-    let mut add = |differs: bool, text: String| {
-        if differs {
-            filter += &format!(" {text}");
-        }
-    };
-    match s.filter {
-        Filter::Poisson => add(
+    // (parameter differs from the default, how the label names it)
+    let extras = match s.filter {
+        Filter::Poisson => vec![(
             s.poisson_radius_texels != d.poisson_radius_texels,
             format!("r{}", s.poisson_radius_texels),
-        ),
-        Filter::Pcss => {
-            add(
+        )],
+        Filter::Pcss => vec![
+            (
                 s.pcss_blocker_samples != d.pcss_blocker_samples,
                 format!("search{}", s.pcss_blocker_samples),
-            );
-            add(
+            ),
+            (
                 s.poisson_samples != d.poisson_samples,
                 format!("filter{}", s.poisson_samples),
-            );
-        }
-        Filter::Vsm | Filter::Evsm => {
-            add(
+            ),
+        ],
+        Filter::Vsm | Filter::Evsm => vec![
+            (
                 s.vsm_blur_texels != d.vsm_blur_texels,
                 format!("blur{}", s.vsm_blur_texels),
-            );
-            add(
+            ),
+            (
                 s.vsm_bleed_reduction != d.vsm_bleed_reduction,
                 format!("bleed{}", s.vsm_bleed_reduction),
-            );
-        }
-        _ => {}
+            ),
+        ],
+        _ => Vec::new(),
+    };
+    for (_, text) in extras.iter().filter(|(differs, _)| *differs) {
+        filter += &format!(" {text}");
     }
     format!("{filter} {}² {}", s.resolution, s.bias.describe())
 }
