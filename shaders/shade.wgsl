@@ -160,12 +160,21 @@ fn in_map(texel: vec2<i32>) -> bool {
     return all(texel >= vec2<i32>(0)) && all(texel < vec2<i32>(res));
 }
 
+// The texel a filter reads for one it asks for beyond the edge of a cube
+// face: the edge texel, standing in for the neighbouring face that continues
+// there (counting it lit would leak light along the seams between faces).
+// Beyond a single fitted frustum nothing was drawn: callers count it lit.
+fn texel_in_layer(texel: vec2<i32>) -> vec2<i32> {
+    return clamp(texel, vec2<i32>(0), vec2<i32>(i32(resolution()) - 1));
+}
+
 // 1 when the texel's stored depth does not hide the receiver.
 fn depth_test(r: Receiver, texel: vec2<i32>) -> f32 {
-    if !in_map(texel) {
+    if !in_map(texel) && shadow.mode.y == 0u {
         return 1.0;
     }
-    return select(0.0, 1.0, compared_depth(r, texel) <= stored_depth(r.layer, texel));
+    let t = texel_in_layer(texel);
+    return select(0.0, 1.0, compared_depth(r, t) <= stored_depth(r.layer, t));
 }
 
 // Bilinearly weighted tests of the 2×2 texels around the continuous position tc.
@@ -259,9 +268,10 @@ fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
     var blockers = 0.0;
     for (var s = 0u; s < shadow.counts.z; s++) {
         let texel = vec2<i32>(floor(r.tc + rotate(POISSON_DISC[s], angle) * search));
-        if in_map(texel) {
-            let z_s = stored_depth(r.layer, texel);
-            if z_s < compared_depth(r, texel) {
+        if in_map(texel) || shadow.mode.y != 0u {
+            let t = texel_in_layer(texel);
+            let z_s = stored_depth(r.layer, t);
+            if z_s < compared_depth(r, t) {
                 blocker_sum += z_s;
                 blockers += 1.0;
             }
