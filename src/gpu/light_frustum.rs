@@ -186,13 +186,18 @@ impl ShadowLayout {
             };
         }
         let extent = bounds.extent().length().max(1e-6) as f64;
-        let near = (bounds.distance_to(light.as_vec3()) as f64 * 0.99).max(extent * 1e-6);
+        let half = 1.0 + 2.0 * margin;
+        // A face's depth is along its axis: at tangents (t1, t2) a point at
+        // distance d lies at depth d / √(1 + t1² + t2²), down to d / √(1 + 2·half²)
+        // in the face's corners. The nearest geometry must stay beyond near there
+        // too, or it is clipped off the map and light leaks through it.
+        let corner = (1.0 + 2.0 * half * half).sqrt();
+        let near = (bounds.distance_to(light.as_vec3()) as f64 * 0.99 / corner).max(extent * 1e-6);
         let far_corner = bounds
             .corners()
             .iter()
             .map(|c| (c.as_dvec3() - light).length())
             .fold(0.0, f64::max);
-        let half = 1.0 + 2.0 * margin;
         let layers = CUBE_AXES
             .iter()
             .map(|&axis| {
@@ -299,6 +304,41 @@ mod tests {
         assert!(layout.layers[3].active, "−Y sees the floor");
         assert!(layout.layers[0].active, "+X sees the box");
         assert!(!layout.layers[2].active, "+Y sees nothing");
+    }
+
+    #[test]
+    fn cube_faces_clip_no_geometry_off_their_axis() {
+        // The default scene's case: the light above a wide ground, the
+        // nearest geometry 45° off two face axes.
+        let ground = aabb([-6.0, -0.5, -6.0], [6.0, 0.0, 6.0]);
+        let slab = aabb([-1.7, 2.39, 0.3], [-0.7, 2.41, 1.3]);
+        let light = DVec3::new(2.5, 6.0, 2.0);
+        let margin = 50.0 / 1024.0;
+        let layout = ShadowLayout::fit(light, &[ground, slab], margin);
+        assert_eq!(layout.kind, LayoutKind::Cube);
+        let half = 1.0 + 2.0 * margin;
+        for layer in &layout.layers {
+            let f = &layer.frustum;
+            // Points all over the slab, not only its corners.
+            let steps = 20;
+            let points = (0..=steps).flat_map(|i| {
+                (0..=steps).flat_map(move |k| {
+                    [0.0, 1.0].map(|j| {
+                        let t =
+                            DVec3::new(i as f64, j, k as f64) / DVec3::new(steps as f64, 1.0, steps as f64);
+                        slab.min.as_dvec3() + (slab.max - slab.min).as_dvec3() * t
+                    })
+                })
+            });
+            for point in points {
+                let d = point - f.apex;
+                let z = d.dot(f.frame.forward);
+                let (tx, ty) = (d.dot(f.frame.right) / z, d.dot(f.frame.up) / z);
+                if z > 0.0 && tx.abs() <= half && ty.abs() <= half {
+                    assert!(z > f.near, "{point:?} at depth {z} before near {}", f.near);
+                }
+            }
+        }
     }
 
     #[test]
