@@ -94,6 +94,7 @@ impl DirectionGrid {
     }
 
     /// The triangles in the direction w from the centre.
+    #[inline]
     fn cell(&self, w: DVec3) -> Answer<&[u32]> {
         let Some((face, u, v)) = face_coordinates(w) else {
             return Answer::AskBvh;
@@ -170,25 +171,25 @@ fn face_axes(face: usize) -> (usize, f64, usize, usize) {
 
 /// The face a direction falls on and its coordinates (u, v) there; None
 /// for the zero vector.
+#[inline]
 fn face_coordinates(w: DVec3) -> Option<(usize, f64, f64)> {
     let a = w.abs();
-    let k = if a.x >= a.y && a.x >= a.z {
-        0
+    // The major axis k and the two others, (k + 1) % 3 and (k + 2) % 3 as
+    // `face_axes` orders them, spelled out.
+    let (k, major, wa, wb) = if a.x >= a.y && a.x >= a.z {
+        (0, w.x, w.y, w.z)
     } else if a.y >= a.z {
-        1
+        (1, w.y, w.z, w.x)
     } else {
-        2
+        (2, w.z, w.x, w.y)
     };
-    let w = w.to_array();
-    let major = w[k];
     let valid = major.abs() > 0.0 && major.is_finite();
     if !valid {
         return None;
     }
     let face = 2 * k + usize::from(major < 0.0);
-    let (_, _, ia, ib) = face_axes(face);
     let per_major = 1.0 / major.abs();
-    Some((face, w[ia] * per_major, w[ib] * per_major))
+    Some((face, wa * per_major, wb * per_major))
 }
 
 /// The cells [i0, i1] × [j0, j1] of face f that the triangle (corners
