@@ -9,6 +9,7 @@ use glam::{DVec3, Vec3};
 use lumlab::reference::bvh::{BvhTriangle, TriangleBvh, closest_hit_brute_force, occluded_brute_force};
 use lumlab::reference::grid::{Answer, DirectionGrid};
 use lumlab::reference::sampling::Rng;
+use lumlab::reference::{SHADOW_OFFSET_REL, STOP_SHORT_REL};
 use lumlab::scene::{Aabb, Mesh, shapes};
 
 /// A ground, 12 boxes and 12 spheres at random places; every other object
@@ -170,7 +171,7 @@ fn direction_grids_equal_brute_force_for_rays_through_their_centre() {
             if direction.length_squared() == 0.0 {
                 continue;
             }
-            match grid.closest_from_centre(&triangles, direction) {
+            match grid.closest_from_centre(direction) {
                 Answer::Known(hit) => {
                     let expected = closest_hit_brute_force(&triangles, centre, direction, 0.0, f64::INFINITY);
                     assert_eq!(hit, expected, "ray {ray} from {centre} along {direction}");
@@ -181,7 +182,8 @@ fn direction_grids_equal_brute_force_for_rays_through_their_centre() {
             // A shadow ray from somewhere along the line towards the centre.
             let origin = centre + direction * (0.2 + 2.0 * rng.next_f64());
             let t_max = 1.0 - 1e-9;
-            if let Answer::Known(blocked) = occluders.blocked_towards_centre(&triangles, origin, t_max) {
+            if let Answer::Known(blocked) = occluders.blocked_towards_centre(&triangles, origin, t_max, None)
+            {
                 let expected = occluded_brute_force(&triangles, origin, centre - origin, 0.0, t_max);
                 assert_eq!(blocked, expected, "shadow ray {ray} from {origin} to {centre}");
             }
@@ -225,5 +227,53 @@ fn occluders_gathered_near_a_ball_block_exactly_what_brute_force_does() {
     assert!(
         gathered > 200 && blocked > 100,
         "{gathered} gathered, {blocked} blocked"
+    );
+}
+
+#[test]
+fn a_shadow_ray_lifted_off_its_triangle_towards_the_light_never_meets_it() {
+    // What lets the light's grid skip a shading point's own triangle: lifted
+    // by the shadow offset along the normal on the light's side, its
+    // segment to the light never meets that triangle, and the grid that
+    // skips it answers what brute force over every triangle answers.
+    let mut rng = Rng::new(17, 0, 0);
+    let triangles = generated_scene(&mut rng);
+    let light = DVec3::new(0.5, 5.0, -0.3);
+    let grid = DirectionGrid::new(light, &triangles, |t| t.occludes);
+    let t_max = 1.0 - STOP_SHORT_REL;
+    let (mut tested, mut blocked) = (0, 0);
+    for ray in 0..20_000 {
+        let own = (rng.next_f64() * triangles.len() as f64) as usize % triangles.len();
+        let [a, b, c] = triangles[own].corners;
+        let (u, v) = (rng.next_f64(), rng.next_f64());
+        let (u, v) = if u + v > 1.0 { (1.0 - u, 1.0 - v) } else { (u, v) };
+        let p = a * (1.0 - u - v) + b * u + c * v;
+        let face = (b - a).cross(c - a).normalize();
+        let normal = if face.dot(light - p) > 0.0 { face } else { -face };
+        let largest = [a, b, c]
+            .iter()
+            .fold(0.0_f64, |m, q| m.max(q.abs().max_element()));
+        let offset = SHADOW_OFFSET_REL * largest;
+        // The condition the shading checks before it skips the triangle.
+        let to_light = light - p;
+        if normal.dot(to_light) <= offset + 1e-12 * to_light.abs().element_sum() {
+            continue;
+        }
+        let origin = p + normal * offset;
+        let d = light - origin;
+        assert!(
+            !occluded_brute_force(&triangles[own..=own], origin, d, 0.0, t_max),
+            "ray {ray}: triangle {own} blocks its own shadow ray"
+        );
+        let expected = occluded_brute_force(&triangles, origin, d, 0.0, t_max);
+        if let Answer::Known(got) = grid.blocked_towards_centre(&triangles, origin, t_max, Some(own)) {
+            assert_eq!(got, expected, "ray {ray} from triangle {own}");
+            tested += 1;
+            blocked += expected as u32;
+        }
+    }
+    assert!(
+        tested > 5000 && blocked > 500,
+        "{tested} tested, {blocked} blocked"
     );
 }

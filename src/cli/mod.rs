@@ -1,6 +1,6 @@
 //! The command line: `lumlab [COMMAND]`. Without a command the lab opens.
 //!
-//! Every command reads the same [`Settings`]: a `--settings FILE` first, then
+//! Every command reads the same [`Settings`](crate::settings::Settings): a `--settings FILE` first, then
 //! the flags on top. Usage errors exit with 2, runtime errors with 1, each as
 //! one line on stderr; output files are written atomically.
 

@@ -8,13 +8,22 @@
 //! testing every triangle gives.
 //!
 //! Binning is conservative: each triangle, relative to the centre, is clipped
-//! to each face's pyramid widened by [`WIDEN`], projected, and its bounding
-//! rectangle widened by [`MARGIN`] before it is rasterized into cells; a
+//! to each face's pyramid widened by `WIDEN`, projected, and its bounding
+//! rectangle widened by `MARGIN` before it is rasterized into cells; a
 //! triangle reaching the centre itself covers the whole face. Cells listing
 //! more than [`MAX_LIST`] triangles answer "ask the BVH" instead.
+//!
+//! Each cell's list is sorted by a lower bound of each triangle's depth
+//! inside the cell (along the face's axis), so searches end early and still
+//! exactly: a closest hit once the next bound lies beyond it, a shadow ray
+//! once the next bound reaches its origin's depth (nothing farther from the
+//! light can block it). The triangles' corners relative to the centre are
+//! stored once, which is the first step of every test of a ray from it; and
+//! all rays through one pixel share their cell when its four corners do.
 
 use super::bvh::{BvhTriangle, Hit, closer};
-use super::intersect::ShearedRay;
+use super::intersect::{ShearedRay, with_axes};
+use crate::scene::camera::PixelRays;
 use glam::DVec3;
 
 /// Cells per side of each cube face (each about 0.7° wide).
@@ -44,108 +53,236 @@ pub enum Answer<T> {
 #[derive(Clone, Debug)]
 pub struct DirectionGrid {
     centre: DVec3,
-    /// Per cell, (first, count) of its triangles in `items`; count
+    /// Per cell, (first, count) of its members in `items`; count
     /// `CROWDED` when the cell defers to the BVH.
     cells: Vec<(u32, u32)>,
-    /// Indices into the triangle list the grid was built from.
-    items: Vec<u32>,
+    /// The members of the cells, each cell's sorted by `Item::depth`.
+    items: Vec<Item>,
+    /// The triangles listed in some cell: their indices in the list the
+    /// grid was built from, and their corners relative to the centre (the
+    /// first step of every ray test from the centre, done once).
+    members: Vec<u32>,
+    relative: Vec<[DVec3; 3]>,
 }
+
+/// The cell range of a triangle seen on a whole face.
+const WHOLE_FACE: [usize; 4] = [0, CELLS - 1, 0, CELLS - 1];
 
 /// The count of a cell listing more than [`MAX_LIST`] triangles.
 const CROWDED: u32 = u32::MAX;
 
+/// A triangle listed in a cell.
+#[derive(Clone, Copy, Debug)]
+struct Item {
+    /// Index into `DirectionGrid::members`.
+    member: u32,
+    /// A lower bound of the depth (along the face's axis) of the part of
+    /// the triangle inside the cell's pyramid: a ray from the centre with
+    /// direction d meets it at t ≥ depth / |d_k|.
+    depth: f32,
+}
+
+/// A cell of a grid, as [`DirectionGrid::cell_of`] finds it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Cell(usize);
+
 impl DirectionGrid {
     /// The grid around `centre` of the triangles `keep` accepts.
     pub fn new(centre: DVec3, triangles: &[BvhTriangle], keep: impl Fn(&BvhTriangle) -> bool) -> Self {
-        let cells = 6 * CELLS * CELLS;
-        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); cells];
+        // Each triangle's rectangle of cells on each face, then the cells'
+        // lists in one array (a counting sort: lists keep the triangle order).
+        let mut spans = Vec::new();
         for (index, tri) in triangles.iter().enumerate() {
             if !keep(tri) || !tri.corners.iter().all(|p| p.is_finite()) {
                 continue;
             }
             let relative = tri.corners.map(|p| p - centre);
             for face in 0..6 {
-                if let Some([i0, i1, j0, j1]) = cell_range(&relative, face) {
-                    for j in j0..=j1 {
-                        for i in i0..=i1 {
-                            lists[cell_index(face, i, j)].push(index as u32);
-                        }
-                    }
+                if let Some(range) = cell_range(&relative, face) {
+                    spans.push((index as u32, face, range));
                 }
             }
         }
-        let mut items = Vec::new();
+        let cells_of = |&(_, face, [i0, i1, j0, j1]): &(u32, usize, [usize; 4])| {
+            (j0..=j1).flat_map(move |j| (i0..=i1).map(move |i| cell_index(face, i, j)))
+        };
+        let mut starts = vec![0usize; 6 * CELLS * CELLS + 1];
+        for span in &spans {
+            for cell in cells_of(span) {
+                starts[cell + 1] += 1;
+            }
+        }
+        for cell in 1..starts.len() {
+            starts[cell] += starts[cell - 1];
+        }
+        let mut listed = vec![0u32; starts[starts.len() - 1]];
+        let mut fill = starts.clone();
+        for span in &spans {
+            for cell in cells_of(span) {
+                listed[fill[cell]] = span.0;
+                fill[cell] += 1;
+            }
+        }
+        let lists = starts.windows(2).map(|w| &listed[w[0]..w[1]]);
+        // Members are numbered as they are first listed by an uncrowded cell.
+        let mut member_of = vec![u32::MAX; triangles.len()];
+        let (mut members, mut relative, mut items) = (Vec::new(), Vec::new(), Vec::new());
         let cells = lists
-            .iter()
-            .map(|list| {
-                let first = items.len() as u32;
+            .enumerate()
+            .map(|(cell, list)| {
+                let first = items.len();
                 if list.len() > MAX_LIST {
-                    return (first, CROWDED);
+                    return (first as u32, CROWDED);
                 }
-                items.extend_from_slice(list);
-                (first, list.len() as u32)
+                for &triangle in list {
+                    let member = &mut member_of[triangle as usize];
+                    if *member == u32::MAX {
+                        *member = members.len() as u32;
+                        members.push(triangle);
+                        relative.push(triangles[triangle as usize].corners.map(|p| p - centre));
+                    }
+                    // A lone triangle needs no order and ends no search early.
+                    let depth = if list.len() > 1 {
+                        round_down(depth_in_cell(&relative[*member as usize], cell))
+                    } else {
+                        0.0
+                    };
+                    items.push(Item {
+                        member: *member,
+                        depth,
+                    });
+                }
+                items[first..].sort_by(|a, b| a.depth.total_cmp(&b.depth));
+                (first as u32, list.len() as u32)
             })
             .collect();
-        Self { centre, cells, items }
+        Self {
+            centre,
+            cells,
+            items,
+            members,
+            relative,
+        }
     }
 
     pub fn centre(&self) -> DVec3 {
         self.centre
     }
 
-    /// The triangles in the direction w from the centre.
+    /// The cell that direction w from the centre falls in; None for the
+    /// zero vector (or a non-finite one). Any w whose cone of directions
+    /// lies in this cell (to 10⁻¹² or so) may be cast through it: the
+    /// cells' lists are widened by far more than the rounding of w.
     #[inline]
-    fn cell(&self, w: DVec3) -> Answer<&[u32]> {
-        let Some((face, u, v)) = face_coordinates(w) else {
-            return Answer::AskBvh;
-        };
-        let (first, count) = self.cells[cell_index(face, to_cell(u), to_cell(v))];
-        if count == CROWDED {
-            return Answer::AskBvh;
-        }
-        Answer::Known(&self.items[first as usize..(first + count) as usize])
+    pub fn cell_of(&self, w: DVec3) -> Option<Cell> {
+        let (face, u, v) = face_coordinates(w)?;
+        Some(Cell(cell_index(face, to_cell(u), to_cell(v))))
+    }
+
+    /// The cell that holds every ray of `rays` through pixel (i, j) (the
+    /// grid around their eye), if one does: the pixel's rays fill the convex
+    /// cone of its four corner rays, and a cell is a convex cone too, so when
+    /// the corners share a cell every sample of the pixel lies in it.
+    pub fn pixel_cell(&self, rays: &PixelRays, i: f64, j: f64) -> Option<Cell> {
+        let cell = self.cell_of(rays.towards(i, j))?;
+        let corners = [(i + 1.0, j), (i, j + 1.0), (i + 1.0, j + 1.0)];
+        corners
+            .iter()
+            .all(|&(x, y)| self.cell_of(rays.towards(x, y)) == Some(cell))
+            .then_some(cell)
+    }
+
+    /// The items of a cell, or None when it defers to the BVH.
+    #[inline]
+    fn items(&self, cell: Cell) -> Option<&[Item]> {
+        let (first, count) = self.cells[cell.0];
+        (count != CROWDED).then(|| &self.items[first as usize..(first + count) as usize])
     }
 
     /// The closest hit of the ray from the centre along `direction`, t > 0,
-    /// among `triangles` (the list the grid was built from): among equal
+    /// among the triangles of the list the grid was built from: among equal
     /// distances the lowest triangle index, as the BVH chooses.
-    pub fn closest_from_centre(&self, triangles: &[BvhTriangle], direction: DVec3) -> Answer<Option<Hit>> {
-        let items = match self.cell(direction) {
-            Answer::Known(items) => items,
-            Answer::AskBvh => return Answer::AskBvh,
+    pub fn closest_from_centre(&self, direction: DVec3) -> Answer<Option<Hit>> {
+        match self.cell_of(direction) {
+            Some(cell) => self.closest_in(cell, direction),
+            None => Answer::AskBvh,
+        }
+    }
+
+    /// [`Self::closest_from_centre`] for a direction known to lie in `cell`.
+    #[inline]
+    pub fn closest_in(&self, cell: Cell, direction: DVec3) -> Answer<Option<Hit>> {
+        let Some(items) = self.items(cell) else {
+            return Answer::AskBvh;
         };
         let ray = ShearedRay::new(self.centre, direction);
+        Answer::Known(with_axes!(ray.axes(), KZ, SWAP => self.closest_among::<KZ, SWAP>(&ray, items)))
+    }
+
+    /// The closest hit among the items, nearest first: the search ends at
+    /// the first item whose depth bound puts it beyond the best hit so far
+    /// (t ≥ depth / |d_k| = depth · |sz|, the bound already rounded down).
+    #[inline(always)]
+    fn closest_among<const KZ: usize, const SWAP: bool>(
+        &self,
+        ray: &ShearedRay,
+        items: &[Item],
+    ) -> Option<Hit> {
+        let per_depth = ray.per_depth();
         let mut best: Option<Hit> = None;
-        for &item in items {
-            let triangle = item as usize;
+        for item in items {
+            if best.is_some_and(|b| item.depth as f64 * per_depth > b.at.t) {
+                break;
+            }
+            let member = item.member as usize;
             let limit = best.map_or(f64::INFINITY, |b| b.at.t.next_up());
-            if let Some(at) = ray.intersect(&triangles[triangle].corners, 0.0, limit)
-                && best.is_none_or(|b| closer(at, triangle, b))
-            {
+            let Some(at) = ray.intersect_in::<KZ, SWAP>(&self.relative[member], 0.0, limit) else {
+                continue;
+            };
+            let triangle = self.members[member] as usize;
+            if best.is_none_or(|b| closer(at, triangle, b)) {
                 best = Some(Hit { triangle, at });
             }
         }
-        Answer::Known(best)
+        best
     }
 
     /// Whether a listed triangle meets the segment origin + t (centre −
     /// origin), t ∈ (0, t_max): a shadow ray towards the centre.
+    /// `triangles` is the list the grid was built from; `skip`, a triangle
+    /// of it the caller knows cannot meet the segment (the one the origin
+    /// was lifted off, towards the centre), or None.
+    ///
+    /// Only triangles nearer the centre than the origin can block: points of
+    /// the segment have depth (1 − t) · depth(origin), so the search ends at
+    /// the first item whose depth bound reaches the origin's depth.
     pub fn blocked_towards_centre(
         &self,
         triangles: &[BvhTriangle],
         origin: DVec3,
         t_max: f64,
+        skip: Option<usize>,
     ) -> Answer<bool> {
-        let items = match self.cell(origin - self.centre) {
-            Answer::Known(items) => items,
-            Answer::AskBvh => return Answer::AskBvh,
+        let w = origin - self.centre;
+        let Some(items) = self.cell_of(w).and_then(|cell| self.items(cell)) else {
+            return Answer::AskBvh;
         };
-        let ray = ShearedRay::new(origin, self.centre - origin);
-        Answer::Known(
-            items
-                .iter()
-                .any(|&t| ray.hits(&triangles[t as usize].corners, 0.0, t_max)),
-        )
+        let reach = w.abs().max_element();
+        let mut candidates = items
+            .iter()
+            .take_while(|item| (item.depth as f64) < reach)
+            .map(|item| self.members[item.member as usize] as usize)
+            .filter(|&triangle| skip != Some(triangle))
+            .peekable();
+        // Most shadow rays have nothing left to test: no ray to prepare.
+        if candidates.peek().is_none() {
+            return Answer::Known(false);
+        }
+        let ray = ShearedRay::new(origin, -w);
+        let blocked = with_axes!(ray.axes(), KZ, SWAP => candidates.any(|triangle| {
+            ray.hits_in::<KZ, SWAP>(&ray.relative(&triangles[triangle].corners), 0.0, t_max)
+        }));
+        Answer::Known(blocked)
     }
 }
 
@@ -197,22 +334,20 @@ fn face_coordinates(w: DVec3) -> Option<(usize, f64, f64)> {
 fn cell_range(relative: &[DVec3; 3], face: usize) -> Option<[usize; 4]> {
     let (k, sign, ia, ib) = face_axes(face);
     let size = relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
-    let mut polygon: Vec<DVec3> = relative.to_vec();
+    let mut polygon = Polygon::triangle(relative);
     // Keep (1 + WIDEN) s w_k ± w_a ≥ 0 and the same for b: the widened pyramid.
     for (axis, side) in [(ia, 1.0), (ia, -1.0), (ib, 1.0), (ib, -1.0)] {
-        let f = |w: DVec3| (1.0 + WIDEN) * sign * w[k] + side * w[axis];
-        polygon = clip(&polygon, f);
+        polygon = polygon.clip(|w: DVec3| (1.0 + WIDEN) * sign * w[k] + side * w[axis]);
         if polygon.is_empty() {
             return None;
         }
     }
-    let whole = [0, CELLS - 1, 0, CELLS - 1];
     let (mut u0, mut u1, mut v0, mut v1) =
         (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for w in &polygon {
+    for w in polygon.points() {
         let depth = sign * w[k];
         if depth <= APEX * size {
-            return Some(whole);
+            return Some(WHOLE_FACE);
         }
         let (u, v) = (w[ia] / depth, w[ib] / depth);
         (u0, u1, v0, v1) = (u0.min(u), u1.max(u), v0.min(v), v1.max(v));
@@ -225,20 +360,91 @@ fn cell_range(relative: &[DVec3; 3], face: usize) -> Option<[usize; 4]> {
     ])
 }
 
-/// Sutherland–Hodgman: the part of a convex polygon where f ≥ 0 (f linear).
-fn clip(polygon: &[DVec3], f: impl Fn(DVec3) -> f64) -> Vec<DVec3> {
-    let mut out = Vec::with_capacity(polygon.len() + 1);
-    for (i, &p) in polygon.iter().enumerate() {
-        let q = polygon[(i + 1) % polygon.len()];
-        let (fp, fq) = (f(p), f(q));
-        if fp >= 0.0 {
-            out.push(p);
-        }
-        if (fp >= 0.0) != (fq >= 0.0) {
-            out.push(p + (q - p) * (fp / (fp - fq)));
+/// A lower bound of the depth (sign · w_k) over the part of the triangle
+/// (corners relative to the centre) inside the pyramid of `cell`, widened
+/// by `MARGIN` as the binning is: the depth is linear, so its least value
+/// is at a vertex of the clipped polygon; less the rounding of clipping
+/// (10⁻⁹ of the triangle's size, far above it), and never below 0.
+fn depth_in_cell(relative: &[DVec3; 3], cell: usize) -> f64 {
+    let (face, j, i) = (cell / (CELLS * CELLS), cell / CELLS % CELLS, cell % CELLS);
+    if cell_range(relative, face) == Some(WHOLE_FACE) {
+        // It may reach the centre itself, where rounding decides hits at
+        // t ≈ 0 that no clipping predicts: test it first, always.
+        return 0.0;
+    }
+    let (k, sign, ia, ib) = face_axes(face);
+    let size = relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+    let edge = |n: usize| -1.0 + 2.0 * n as f64 / CELLS as f64;
+    let (u0, u1) = (edge(i) - MARGIN, edge(i + 1) + MARGIN);
+    let (v0, v1) = (edge(j) - MARGIN, edge(j + 1) + MARGIN);
+    let mut polygon = Polygon::triangle(relative);
+    // u ≥ u0 ⇔ w_a − u0 · depth ≥ 0, and so on, with depth = sign · w_k.
+    for (axis, side, bound) in [(ia, 1.0, u0), (ia, -1.0, u1), (ib, 1.0, v0), (ib, -1.0, v1)] {
+        polygon = polygon.clip(|w: DVec3| side * (w[axis] - bound * sign * w[k]));
+        if polygon.is_empty() {
+            // Listed by the wider per-face bounds only: it cannot be hit here.
+            return f64::INFINITY;
         }
     }
-    out
+    let least = polygon
+        .points()
+        .iter()
+        .fold(f64::INFINITY, |m, w| m.min(sign * w[k]));
+    (least - 1e-9 * size).max(0.0)
+}
+
+/// The f32 at or below x (for bounds that must not grow).
+fn round_down(x: f64) -> f32 {
+    let y = x as f32;
+    if y as f64 > x { y.next_down() } else { y }
+}
+
+/// A convex polygon: a triangle clipped by at most five planes.
+#[derive(Clone, Copy)]
+struct Polygon {
+    points: [DVec3; 8],
+    len: usize,
+}
+
+impl Polygon {
+    fn triangle(corners: &[DVec3; 3]) -> Self {
+        let mut points = [DVec3::ZERO; 8];
+        points[..3].copy_from_slice(corners);
+        Self { points, len: 3 }
+    }
+
+    fn points(&self) -> &[DVec3] {
+        &self.points[..self.len]
+    }
+
+    fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Sutherland–Hodgman: the part where f ≥ 0 (f linear). Each plane
+    /// adds at most one vertex.
+    fn clip(&self, f: impl Fn(DVec3) -> f64) -> Self {
+        let mut out = Self {
+            points: [DVec3::ZERO; 8],
+            len: 0,
+        };
+        let mut push = |p: DVec3| {
+            out.points[out.len] = p;
+            out.len += 1;
+        };
+        let points = self.points();
+        for (i, &p) in points.iter().enumerate() {
+            let q = points[(i + 1) % points.len()];
+            let (fp, fq) = (f(p), f(q));
+            if fp >= 0.0 {
+                push(p);
+            }
+            if (fp >= 0.0) != (fq >= 0.0) {
+                push(p + (q - p) * (fp / (fp - fq)));
+            }
+        }
+        out
+    }
 }
 
 #[cfg(test)]

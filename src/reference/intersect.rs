@@ -3,19 +3,52 @@
 //! origin; the triangle's 2D edge functions U, V, W then decide the hit by their
 //! signs alone, so a ray through an edge or a vertex shared by two triangles
 //! hits at least one of them: no cracks, whatever the rounding.
+//!
+//! The axis permutation depends on the ray only. Loops that test one ray
+//! against many triangles fix it at compile time (`with_axes!` and the
+//! `*_in` methods), so that picking coordinates costs nothing; the
+//! per-call methods dispatch on it once per triangle. Both run the same
+//! operations in the same order: the same bits.
 
 use glam::DVec3;
 
-/// A ray prepared for many triangle tests: its dominant axis and the shear.
+/// The permutation of a ray's axes: kz is the axis of its largest |d|
+/// component; kx, ky the two others in cyclic order, swapped when d_kz < 0
+/// so that the winding is kept.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Axes {
+    pub kz: usize,
+    pub swap: bool,
+}
+
+/// Runs `$body` with the const generics `$kz: usize` and `$swap: bool` set
+/// to the value of `$axes` (an [`Axes`]): one match, six instantiations.
+macro_rules! with_axes {
+    ($axes:expr, $kz:ident, $swap:ident => $body:expr) => {{
+        let axes: $crate::reference::intersect::Axes = $axes;
+        match (axes.kz, axes.swap) {
+            (0, false) => with_axes!(@arm 0, false, $kz, $swap, $body),
+            (0, true) => with_axes!(@arm 0, true, $kz, $swap, $body),
+            (1, false) => with_axes!(@arm 1, false, $kz, $swap, $body),
+            (1, true) => with_axes!(@arm 1, true, $kz, $swap, $body),
+            (_, false) => with_axes!(@arm 2, false, $kz, $swap, $body),
+            (_, true) => with_axes!(@arm 2, true, $kz, $swap, $body),
+        }
+    }};
+    (@arm $k:literal, $s:literal, $kz:ident, $swap:ident, $body:expr) => {{
+        const $kz: usize = $k;
+        const $swap: bool = $s;
+        $body
+    }};
+}
+pub(crate) use with_axes;
+
+/// A ray prepared for many triangle tests: its axes and the shear.
 #[derive(Clone, Copy, Debug)]
 pub struct ShearedRay {
     pub origin: DVec3,
     pub direction: DVec3,
-    /// The axes permuted so that kz is the largest |d| component (and the
-    /// winding is kept when d_kz < 0).
-    kx: usize,
-    ky: usize,
-    kz: usize,
+    axes: Axes,
     /// Shear constants: d_kx / d_kz, d_ky / d_kz, 1 / d_kz.
     sx: f64,
     sy: f64,
@@ -31,6 +64,13 @@ pub struct TriangleHit {
     pub barycentric: [f64; 3],
 }
 
+/// The two other axes of kz, cyclic, swapped on request.
+#[inline(always)]
+const fn other_axes(kz: usize, swap: bool) -> (usize, usize) {
+    let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
+    if swap { (ky, kx) } else { (kx, ky) }
+}
+
 impl ShearedRay {
     /// `direction` need not be normalized but must not be zero.
     pub fn new(origin: DVec3, direction: DVec3) -> Self {
@@ -42,28 +82,63 @@ impl ShearedRay {
         } else {
             2
         };
-        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        if direction[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
+        let axes = Axes {
+            kz,
+            swap: direction[kz] < 0.0,
+        };
+        let (kx, ky) = other_axes(kz, axes.swap);
         let sz = 1.0 / direction[kz];
         Self {
             origin,
             direction,
-            kx,
-            ky,
-            kz,
+            axes,
             sx: direction[kx] * sz,
             sy: direction[ky] * sz,
             sz,
         }
     }
 
+    pub fn axes(&self) -> Axes {
+        self.axes
+    }
+
+    /// 1 / |d_kz|: a point at depth z along the ray's main axis is at t = z / |d_kz|.
+    pub fn per_depth(&self) -> f64 {
+        self.sz.abs()
+    }
+
+    /// The corners relative to the ray's origin, as the `*_in` methods take them.
+    #[inline(always)]
+    pub fn relative(&self, corners: &[DVec3; 3]) -> [DVec3; 3] {
+        corners.map(|p| p - self.origin)
+    }
+
     /// The hit with t ∈ (t_min, t_max), both faces counted; None for a miss
     /// or a degenerate (zero-area in projection) triangle.
     #[inline]
     pub fn intersect(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> Option<TriangleHit> {
-        let e = self.edges(corners)?;
+        let relative = self.relative(corners);
+        with_axes!(self.axes, KZ, SWAP => self.intersect_in::<KZ, SWAP>(&relative, t_min, t_max))
+    }
+
+    /// Whether the ray meets the triangle at t ∈ (t_min, t_max), without
+    /// any division (t = t_scaled / det compared as in Woop et al.).
+    #[inline]
+    pub fn hits(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> bool {
+        let relative = self.relative(corners);
+        with_axes!(self.axes, KZ, SWAP => self.hits_in::<KZ, SWAP>(&relative, t_min, t_max))
+    }
+
+    /// [`Self::intersect`] with the corners relative to the origin and the
+    /// ray's own axes as `KZ`, `SWAP` (see `with_axes!`).
+    #[inline(always)]
+    pub fn intersect_in<const KZ: usize, const SWAP: bool>(
+        &self,
+        relative: &[DVec3; 3],
+        t_min: f64,
+        t_max: f64,
+    ) -> Option<TriangleHit> {
+        let e = self.edges::<KZ, SWAP>(relative)?;
         // A division-free test a little wider than the range first; then the
         // range on the computed t itself, so that the closest of several
         // hits is decided by their computed distances alone, in any order.
@@ -80,25 +155,28 @@ impl ShearedRay {
         })
     }
 
-    /// Whether the ray meets the triangle at t ∈ (t_min, t_max), without
-    /// any division (t = t_scaled / det compared as in Woop et al.).
-    #[inline]
-    pub fn hits(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> bool {
-        self.edges(corners)
+    /// [`Self::hits`] with the corners relative to the origin and the ray's
+    /// own axes as `KZ`, `SWAP`.
+    #[inline(always)]
+    pub fn hits_in<const KZ: usize, const SWAP: bool>(
+        &self,
+        relative: &[DVec3; 3],
+        t_min: f64,
+        t_max: f64,
+    ) -> bool {
+        self.edges::<KZ, SWAP>(relative)
             .is_some_and(|e| e.t_scaled > t_min * e.det && e.t_scaled < t_max * e.det)
     }
 
     /// The edge functions and the scaled distance, with signs normalized so
     /// that det > 0; None when the ray misses the triangle's interior.
     #[inline(always)]
-    fn edges(&self, [a, b, c]: &[DVec3; 3]) -> Option<Edges> {
-        let (kx, ky, kz) = (self.kx, self.ky, self.kz);
-        let a = (*a - self.origin).to_array();
-        let b = (*b - self.origin).to_array();
-        let c = (*c - self.origin).to_array();
-        let (ax, ay) = (a[kx] - self.sx * a[kz], a[ky] - self.sy * a[kz]);
-        let (bx, by) = (b[kx] - self.sx * b[kz], b[ky] - self.sy * b[kz]);
-        let (cx, cy) = (c[kx] - self.sx * c[kz], c[ky] - self.sy * c[kz]);
+    fn edges<const KZ: usize, const SWAP: bool>(&self, [a, b, c]: &[DVec3; 3]) -> Option<Edges> {
+        debug_assert_eq!(self.axes, Axes { kz: KZ, swap: SWAP });
+        let (kx, ky) = other_axes(KZ, SWAP);
+        let (ax, ay) = (a[kx] - self.sx * a[KZ], a[ky] - self.sy * a[KZ]);
+        let (bx, by) = (b[kx] - self.sx * b[KZ], b[ky] - self.sy * b[KZ]);
+        let (cx, cy) = (c[kx] - self.sx * c[KZ], c[ky] - self.sy * c[KZ]);
         // Twice the signed areas of the sub-triangles opposite a, b and c.
         let u = cx * by - cy * bx;
         let v = ax * cy - ay * cx;
@@ -110,7 +188,7 @@ impl ShearedRay {
         if det == 0.0 || !det.is_finite() {
             return None;
         }
-        let t_scaled = u * self.sz * a[kz] + v * self.sz * b[kz] + w * self.sz * c[kz];
+        let t_scaled = u * self.sz * a[KZ] + v * self.sz * b[KZ] + w * self.sz * c[KZ];
         let sign = det.signum();
         Some(Edges {
             u: sign * u,

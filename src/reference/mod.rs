@@ -4,7 +4,8 @@
 //! with a noise estimate where it cannot (the sphere light's penumbra).
 //!
 //! It shares no code with `gpu`: it judges the renderer. Per pixel, the primary
-//! ray comes from [`Camera::ray_direction`](crate::scene::Camera::ray_direction)
+//! ray is the camera's ray ([`PixelRays`](crate::scene::camera::PixelRays),
+//! cast along a direction that is not normalized)
 //! through the pixel centre (one sample per pixel) or through jittered strata
 //! of the pixel square (more samples, box filter). See `shading` for the
 //! radiance and the shadow-ray epsilon, `bvh` for exact ray casting (an f32
@@ -39,7 +40,7 @@ use glam::{DVec2, DVec3};
 use grid::DirectionGrid;
 use rayon::prelude::*;
 use sampling::{Rng, Strata, collapsed_strata_variance};
-use shading::{Scratch, Setup};
+use shading::{Scratch, Setup, Surface};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Instant;
 use texture::LinearTexture;
@@ -245,11 +246,15 @@ impl Reference {
         let mut setup = Setup::new(settings, options.light_samples, options.seed);
         // Every primary ray leaves the eye and every point-light shadow ray
         // ends at the light: both are cast through direction grids there.
-        setup.eye_grid = Some(DirectionGrid::new(setup.rays.eye, &self.bvh_triangles, |_| true));
-        if setup.shadows && !setup.is_sphere_light() {
-            let light = setup.light_position;
-            setup.light_grid = Some(DirectionGrid::new(light, &self.bvh_triangles, |t| t.occludes));
-        }
+        let light_grid = setup.shadows && !setup.is_sphere_light();
+        let (eye_grid, light_grid) = rayon::join(
+            || DirectionGrid::new(setup.rays.eye, &self.bvh_triangles, |_| true),
+            || {
+                light_grid
+                    .then(|| DirectionGrid::new(setup.light_position, &self.bvh_triangles, |t| t.occludes))
+            },
+        );
+        (setup.eye_grid, setup.light_grid) = (Some(eye_grid), light_grid);
         let setup = setup;
         let (width, height) = (setup.width, setup.height);
         let tiles: Vec<(u32, u32)> = (0..height.div_ceil(TILE))
@@ -318,64 +323,17 @@ impl Reference {
             shadow_rays: 0,
             noise_known: true,
         };
-        let n = spp.count();
-        let mut scratch = Scratch::default();
-        let mut sample_luminance = Vec::with_capacity(n as usize);
+        let mut buffers = PixelBuffers::default();
         for j in y0..y1 {
             if control.cancelled() {
                 return None;
             }
             for i in x0..x1 {
-                let pixel = pixel_index(setup, i as f64, j as f64);
-                let mut sum = [0.0; 3];
-                let (mut hits, mut visibility) = (0u32, 0.0);
-                let mut variance = 0.0;
-                sample_luminance.clear();
-                for s in 0..n {
-                    let mut rng = Rng::new(setup.seed, pixel, s as u64);
-                    // DESIGN.md: one sample per pixel is the pixel centre.
-                    let (dx, dy) = if n == 1 {
-                        (0.5, 0.5)
-                    } else {
-                        spp.jittered(s, &mut rng)
-                    };
-                    tile.primary_rays += 1;
-                    let Some(surface) = self.surface(setup, i as f64 + dx, j as f64 + dy) else {
-                        sample_luminance.push(0.0);
-                        continue;
-                    };
-                    let light = self.light(setup, &surface, &mut rng, &mut scratch);
-                    tile.shadow_rays += light.shadow_rays as u64;
-                    hits += 1;
-                    visibility += light.visibility;
-                    let l = (surface.tint * light.scaled_radiance).to_array();
-                    for c in 0..3 {
-                        sum[c] += l[c];
-                    }
-                    sample_luminance.push(luminance(l));
-                    let tint_y = luminance(surface.tint.to_array());
-                    match light.std_error {
-                        Some(se) => variance += (tint_y * se).powi(2),
-                        None => tile.noise_known &= n > 1,
-                    }
-                }
-                // One sample: its own light-sampling error; more: the spread
-                // between the pixel's strata, which includes it.
-                let noise = if n == 1 {
-                    variance.sqrt()
-                } else {
-                    collapsed_strata_variance(&sample_luminance).map_or(0.0, f64::sqrt)
-                };
-                tile.pixels.push(Pixel {
-                    radiance: sum.map(|c| c / n as f64),
-                    visibility: if hits > 0 {
-                        (visibility / hits as f64) as f32
-                    } else {
-                        0.0
-                    },
-                    coverage: hits as f32 / n as f32,
-                    noise: noise as f32,
-                });
+                let pixel = self.render_pixel(setup, spp, i, j, &mut buffers);
+                tile.primary_rays += spp.count() as u64;
+                tile.shadow_rays += pixel.shadow_rays;
+                tile.noise_known &= pixel.noise_known;
+                tile.pixels.push(pixel);
             }
             control
                 .pixels_done
@@ -383,6 +341,92 @@ impl Reference {
         }
         Some(tile)
     }
+
+    /// Pixel (i, j) with `spp` primary samples: first every primary ray,
+    /// then the light at every surface. Two short loops of independent
+    /// iterations let the CPU overlap the samples' long chains of
+    /// divisions and square roots better than one long loop does (8 %).
+    #[inline(always)]
+    fn render_pixel(&self, setup: &Setup, spp: Strata, i: u32, j: u32, buffers: &mut PixelBuffers) -> Pixel {
+        let n = spp.count();
+        let pixel = pixel_index(setup, i as f64, j as f64);
+        let (x, y) = (i as f64, j as f64);
+        // Several samples: find their cell once when it is the same for all.
+        let cell = setup
+            .eye_grid
+            .as_ref()
+            .filter(|_| n > 1)
+            .and_then(|grid| grid.pixel_cell(&setup.rays, x, y));
+        let PixelBuffers {
+            samples,
+            luminance: sample_luminance,
+            scratch,
+        } = buffers;
+        samples.clear();
+        for (s, stratum) in spp.cells().enumerate() {
+            let mut rng = Rng::new(setup.seed, pixel, s as u64);
+            // DESIGN.md: one sample per pixel is the pixel centre.
+            let (dx, dy) = if n == 1 {
+                (0.5, 0.5)
+            } else {
+                spp.jittered(stratum, &mut rng)
+            };
+            samples.push((self.surface(setup, x + dx, y + dy, cell), rng));
+        }
+        let mut sum = [0.0; 3];
+        let (mut hits, mut visibility, mut variance) = (0u32, 0.0, 0.0);
+        let (mut shadow_rays, mut noise_known) = (0, true);
+        sample_luminance.clear();
+        for (surface, rng) in samples.iter_mut() {
+            let Some(surface) = surface else {
+                sample_luminance.push(0.0);
+                continue;
+            };
+            let light = self.light(setup, surface, rng, scratch);
+            shadow_rays += light.shadow_rays as u64;
+            hits += 1;
+            visibility += light.visibility;
+            let l = (surface.tint * light.scaled_radiance).to_array();
+            for c in 0..3 {
+                sum[c] += l[c];
+            }
+            sample_luminance.push(luminance(l));
+            let tint_y = luminance(surface.tint.to_array());
+            match light.std_error {
+                Some(se) => variance += (tint_y * se).powi(2),
+                None => noise_known &= n > 1,
+            }
+        }
+        // One sample: its own light-sampling error; more: the spread
+        // between the pixel's strata, which includes it.
+        let noise = if n == 1 {
+            variance.sqrt()
+        } else {
+            collapsed_strata_variance(sample_luminance).map_or(0.0, f64::sqrt)
+        };
+        Pixel {
+            radiance: sum.map(|c| c / n as f64),
+            visibility: if hits > 0 {
+                (visibility / hits as f64) as f32
+            } else {
+                0.0
+            },
+            coverage: hits as f32 / n as f32,
+            noise: noise as f32,
+            shadow_rays,
+            noise_known,
+        }
+    }
+}
+
+/// Buffers one thread reuses from pixel to pixel.
+#[derive(Default)]
+struct PixelBuffers {
+    /// Each sample's surface (None: background) and its random stream.
+    samples: Vec<(Option<Surface>, Rng)>,
+    /// Each sample's luminance, for the noise estimate.
+    luminance: Vec<f64>,
+    scratch: Scratch,
 }
 
 /// The values of `values` at the three indices, None when one is out of range.
@@ -402,6 +446,8 @@ struct Pixel {
     visibility: f32,
     coverage: f32,
     noise: f32,
+    shadow_rays: u64,
+    noise_known: bool,
 }
 
 struct Tile {
@@ -418,7 +464,7 @@ struct Tile {
 mod tests {
     use super::*;
     use crate::physics::display::srgb_decode;
-    use crate::scene::{Object, Texture, shapes};
+    use crate::scene::{Camera, Object, Texture, shapes};
     use glam::{Vec3, Vec4};
 
     /// A 4 m ground facing +Y with one material (and its texture, if any).
@@ -501,6 +547,32 @@ mod tests {
             } else {
                 assert_eq!(sample.radiance, DVec3::ZERO);
             }
+        }
+    }
+
+    #[test]
+    fn distance_and_view_direction_match_the_hit_point() {
+        // Primary rays are cast along directions that are not normalized.
+        let reference = Reference::new(&ground_scene(Material::default(), None));
+        let s = settings(3.0);
+        let eye = s.camera.eye.as_dvec3();
+        for (x, y) in [(8.0, 6.0), (4.5, 3.5), (12.25, 9.75)] {
+            let sample = reference
+                .trace_pixel(&s, &ReferenceOptions::default(), x, y)
+                .unwrap();
+            let to_eye = eye - sample.position;
+            let expected = to_eye.length();
+            assert!(
+                (sample.distance_m - expected).abs() < 1e-12 * expected,
+                "({x}, {y})"
+            );
+            let direction = Camera {
+                eye: s.camera.eye,
+                target: s.camera.target,
+                fovy_deg: s.camera.fovy_deg,
+            }
+            .ray_direction(x, y, s.image.width, s.image.height);
+            assert!((to_eye / expected + direction).length() < 1e-12, "({x}, {y})");
         }
     }
 

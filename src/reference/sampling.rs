@@ -60,13 +60,20 @@ impl Strata {
         self.nx * self.ny
     }
 
-    /// A point jittered uniformly inside cell `i` (row-major, x fastest, so
-    /// that cells 2j and 2j + 1 are neighbours whenever nx is even).
-    pub fn jittered(self, i: u32, rng: &mut Rng) -> (f64, f64) {
-        let (ix, iy) = (i % self.nx, i / self.nx);
+    /// The cells (ix, iy), row-major, x fastest, so that cells 2j and
+    /// 2j + 1 are neighbours whenever nx is even.
+    pub fn cells(self) -> impl Iterator<Item = (u32, u32)> {
+        (0..self.ny).flat_map(move |iy| (0..self.nx).map(move |ix| (ix, iy)))
+    }
+
+    /// A point jittered uniformly inside cell (ix, iy).
+    #[inline]
+    pub fn jittered(self, (ix, iy): (u32, u32), rng: &mut Rng) -> (f64, f64) {
+        // Reciprocals that a loop over the cells computes once.
+        let (per_x, per_y) = (1.0 / self.nx as f64, 1.0 / self.ny as f64);
         (
-            (ix as f64 + rng.next_f64()) / self.nx as f64,
-            (iy as f64 + rng.next_f64()) / self.ny as f64,
+            (ix as f64 + rng.next_f64()) * per_x,
+            (iy as f64 + rng.next_f64()) * per_y,
         )
     }
 }
@@ -149,15 +156,17 @@ pub fn collapsed_strata_variance(y: &[f64]) -> Option<f64> {
     if n < 2 {
         return None;
     }
-    let mut sum = 0.0;
-    let mut start = 0;
-    while start < n {
-        let g = if n - start == 3 { 3 } else { 2 };
-        let group = &y[start..start + g];
-        let mean = group.iter().sum::<f64>() / g as f64;
-        let squares: f64 = group.iter().map(|v| (v - mean) * (v - mean)).sum();
-        sum += g as f64 / (g as f64 - 1.0) * squares;
-        start += g;
+    // A pair contributes 2 · ((a − b) / 2)² · 2 = (a − b)²; an odd count
+    // ends with a triple.
+    let (pairs, triple) = if n % 2 == 1 {
+        (&y[..n - 3], Some(&y[n - 3..]))
+    } else {
+        (y, None)
+    };
+    let mut sum: f64 = pairs.chunks_exact(2).map(|p| (p[0] - p[1]) * (p[0] - p[1])).sum();
+    if let Some(group) = triple {
+        let mean = group.iter().sum::<f64>() / 3.0;
+        sum += 1.5 * group.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>();
     }
     Some(sum / (n * n) as f64)
 }
@@ -179,10 +188,12 @@ mod tests {
     fn jittered_points_stay_in_their_cell() {
         let strata = Strata::new(12);
         let mut rng = Rng::new(3, 4, 5);
-        for i in 0..12 {
-            let (u, v) = strata.jittered(i, &mut rng);
+        let cells: Vec<_> = strata.cells().collect();
+        assert_eq!(cells.len(), 12);
+        for (i, &cell) in cells.iter().enumerate() {
+            let (u, v) = strata.jittered(cell, &mut rng);
             let (ix, iy) = ((u * strata.nx as f64) as u32, (v * strata.ny as f64) as u32);
-            assert_eq!(iy * strata.nx + ix, i);
+            assert_eq!(iy * strata.nx + ix, i as u32);
         }
     }
 

@@ -21,7 +21,7 @@
 //! from the origin it is 1 nm: no occluder closer than that exists in a scene.
 
 use super::Reference;
-use super::grid::{Answer, DirectionGrid};
+use super::grid::{Answer, Cell, DirectionGrid};
 use super::image::luminance;
 use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
 use crate::physics::brdf::blinn_phong;
@@ -30,7 +30,7 @@ use crate::physics::radiometry::{
 };
 use crate::physics::{BrdfParams, BrdfTerms, Normalization};
 use crate::scene::Camera;
-use crate::scene::camera::Frame;
+use crate::scene::camera::PixelRays;
 use crate::settings::Settings;
 use glam::{DVec2, DVec3};
 
@@ -38,40 +38,6 @@ use glam::{DVec2, DVec3};
 pub const SHADOW_OFFSET_REL: f64 = 1e-9;
 /// Shadow rays end this fraction of their length before the light.
 pub const STOP_SHORT_REL: f64 = 1e-9;
-
-/// [`Camera::ray_direction`] with the camera's frame and tan(fovy / 2)
-/// computed once per image instead of once per ray: the same expression,
-/// term for term and in the same order, so the same bits (tested).
-#[derive(Clone, Debug)]
-pub(super) struct PixelRays {
-    pub eye: DVec3,
-    frame: Frame,
-    tan_half_fovy: f64,
-    aspect: f64,
-    width: f64,
-    height: f64,
-}
-
-impl PixelRays {
-    pub fn new(camera: &Camera, width: u32, height: u32) -> Self {
-        Self {
-            eye: camera.eye.as_dvec3(),
-            frame: camera.frame(),
-            tan_half_fovy: camera.tan_half_fovy(),
-            aspect: width as f64 / height as f64,
-            width: width as f64,
-            height: height as f64,
-        }
-    }
-
-    /// The unit direction through image point (x, y) (pixels).
-    pub fn direction(&self, x: f64, y: f64) -> DVec3 {
-        let (f, t) = (&self.frame, self.tan_half_fovy);
-        let sx = (2.0 * x / self.width - 1.0) * t * self.aspect;
-        let sy = (1.0 - 2.0 * y / self.height) * t;
-        (f.forward + f.right * sx + f.up * sy).normalize()
-    }
-}
 
 /// Everything a sample needs from the settings, in f64.
 #[derive(Clone, Debug)]
@@ -106,7 +72,7 @@ impl Setup {
             fovy_deg: c.fovy_deg,
         };
         Self {
-            rays: PixelRays::new(&camera, settings.image.width, settings.image.height),
+            rays: camera.pixel_rays(settings.image.width, settings.image.height),
             width: settings.image.width,
             height: settings.image.height,
             light_position: l.position.as_dvec3(),
@@ -219,22 +185,32 @@ pub(super) struct Surface {
 
 impl Reference {
     /// The surface seen through image point (x, y) (pixels, centres at
-    /// i + 0.5); None on background.
-    #[inline]
-    pub(super) fn surface(&self, setup: &Setup, x: f64, y: f64) -> Option<Surface> {
-        let dir = setup.rays.direction(x, y);
-        let grid = setup.eye_grid.as_ref();
-        let hit = match grid.map(|g| g.closest_from_centre(&self.bvh_triangles, dir)) {
+    /// i + 0.5); None on background. `cell`: the eye grid's cell of the
+    /// point's pixel, when one holds it whole (see [`DirectionGrid::pixel_cell`]).
+    #[inline(always)]
+    pub(super) fn surface(&self, setup: &Setup, x: f64, y: f64, cell: Option<Cell>) -> Option<Surface> {
+        // The ray is cast along a direction that is not normalized: the
+        // normalization (a square root and a division) then runs beside
+        // the intersection instead of before it, which is 20 % faster.
+        let towards = setup.rays.towards(x, y);
+        let answer = setup.eye_grid.as_ref().map(|g| match cell {
+            Some(cell) => g.closest_in(cell, towards),
+            None => g.closest_from_centre(towards),
+        });
+        let hit = match answer {
             Some(Answer::Known(hit)) => hit?,
-            _ => self.bvh.closest_hit(setup.rays.eye, dir, 0.0, f64::INFINITY)?,
+            _ => self
+                .bvh
+                .closest_hit(setup.rays.eye, towards, 0.0, f64::INFINITY)?,
         };
+        let length = towards.length();
         let tri = &self.triangles[hit.triangle];
         let object = &self.objects[tri.object];
         let material = &self.materials[object.material];
         let [b0, b1, b2] = hit.at.barycentric;
         let [a, b, c] = tri.corners;
         let p = a * b0 + b * b1 + c * b2;
-        let o = -dir;
+        let o = -towards / length;
         let face = tri.face_normal;
         let geometric_normal = if face.dot(o) < 0.0 { -face } else { face };
         let mut n = tri.flat_normal.unwrap_or_else(|| {
@@ -263,7 +239,7 @@ impl Reference {
         };
         Some(Surface {
             triangle: hit.triangle,
-            distance_m: hit.at.t,
+            distance_m: hit.at.t * length,
             p,
             n,
             geometric_normal,
@@ -283,7 +259,7 @@ impl Reference {
 
     /// Everything about the primary sample through (x, y): the pixel probe.
     pub(super) fn probe(&self, setup: &Setup, x: f64, y: f64, rng: &mut Rng) -> Option<ShadingSample> {
-        let s = self.surface(setup, x, y)?;
+        let s = self.surface(setup, x, y, None)?;
         let estimate = self.light(setup, &s, rng, &mut Scratch::default());
         let tri = &self.triangles[s.triangle];
         let inc = incidence(s.p, s.n, setup.light_position);
@@ -315,10 +291,16 @@ impl Reference {
     /// blocked, through the light's grid when there is one.
     fn blocked_from_light(&self, setup: &Setup, s: &Surface) -> bool {
         let t_max = 1.0 - STOP_SHORT_REL;
+        // With the light on the lifted side of the hit triangle's plane, by
+        // more than the offset and the rounding of the dot product, the
+        // segment never reaches that plane: its own triangle need not be tested.
+        let to_light = setup.light_position - s.p;
+        let clear = self.triangles[s.triangle].shadow_offset_m + 1e-12 * to_light.abs().element_sum();
+        let own = (s.geometric_normal.dot(to_light) > clear).then_some(s.triangle);
         match setup
             .light_grid
             .as_ref()
-            .map(|g| g.blocked_towards_centre(&self.bvh_triangles, s.shadow_origin, t_max))
+            .map(|g| g.blocked_towards_centre(&self.bvh_triangles, s.shadow_origin, t_max, own))
         {
             Some(Answer::Known(blocked)) => blocked,
             _ => self.blocked(s, setup.light_position),
@@ -335,6 +317,7 @@ impl Reference {
 
     /// L / (c · colour) = (f_d + f_s)(l) · E · V, with V from one shadow ray;
     /// the BRDF is evaluated only where light arrives.
+    #[inline(always)]
     fn point_light(&self, setup: &Setup, s: &Surface) -> LightEstimate {
         let q = setup.light_position;
         let inc = incidence(s.p, s.n, q);
@@ -400,8 +383,8 @@ impl Reference {
         let (mut cos_sum, mut visible_cos_sum) = (0.0, 0.0);
         let mut shadow_rays = 0;
         y.clear();
-        for i in 0..strata.count() {
-            let sample = cone.direction(strata.jittered(i, rng));
+        for stratum in strata.cells() {
+            let sample = cone.direction(strata.jittered(stratum, rng));
             let l = sample.direction;
             let cos = s.n.dot(l).max(0.0);
             let mut v = 1.0;
@@ -454,32 +437,6 @@ impl Reference {
             visibility,
             std_error: collapsed_strata_variance(y).map(f64::sqrt),
             shadow_rays,
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use glam::Vec3;
-
-    #[test]
-    fn pixel_rays_are_the_cameras_rays_bit_for_bit() {
-        let camera = Camera {
-            eye: Vec3::new(1.5, 2.25, -7.0),
-            target: Vec3::new(0.1, 0.4, 0.3),
-            fovy_deg: 37.5,
-        };
-        let (w, h) = (963, 541);
-        let rays = PixelRays::new(&camera, w, h);
-        let mut rng = Rng::new(0, 0, 0);
-        for _ in 0..10_000 {
-            let (x, y) = (rng.next_f64() * w as f64, rng.next_f64() * h as f64);
-            assert_eq!(
-                rays.direction(x, y),
-                camera.ray_direction(x, y, w, h),
-                "({x}, {y})"
-            );
         }
     }
 }

@@ -17,6 +17,40 @@ pub struct Camera {
     pub fovy_deg: f32,
 }
 
+/// The rays of one image size: the camera's frame and the pixel-to-tangent
+/// scales computed once, so that a ray costs no division but its
+/// normalization. Every ray of the lab (the reference, the probe, the tests)
+/// comes from here.
+#[derive(Clone, Debug)]
+pub struct PixelRays {
+    pub eye: DVec3,
+    frame: Frame,
+    /// 2 / width and 2 / height (per pixel).
+    x_scale: f64,
+    y_scale: f64,
+    /// tan(fovy / 2) · aspect and tan(fovy / 2).
+    tan_x: f64,
+    tan_y: f64,
+}
+
+impl PixelRays {
+    /// The unit direction through image point (x, y) (pixels).
+    #[inline]
+    pub fn direction(&self, x: f64, y: f64) -> DVec3 {
+        self.towards(x, y).normalize()
+    }
+
+    /// A direction through image point (x, y), not normalized:
+    /// forward + sx · right + sy · up on the plane one metre ahead.
+    #[inline]
+    pub fn towards(&self, x: f64, y: f64) -> DVec3 {
+        let f = &self.frame;
+        let sx = (x * self.x_scale - 1.0) * self.tan_x;
+        let sy = (1.0 - y * self.y_scale) * self.tan_y;
+        f.forward + f.right * sx + f.up * sy
+    }
+}
+
 /// An orthonormal camera frame in f64.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
@@ -41,12 +75,20 @@ impl Camera {
     /// Unit direction of the ray through the image point (x, y) in pixels of a
     /// `width`×`height` image; pixel centres are at (i + 0.5, j + 0.5).
     pub fn ray_direction(&self, x: f64, y: f64, width: u32, height: u32) -> DVec3 {
-        let f = self.frame();
+        self.pixel_rays(width, height).direction(x, y)
+    }
+
+    /// The rays of a `width`×`height` image, for casting many.
+    pub fn pixel_rays(&self, width: u32, height: u32) -> PixelRays {
         let t = self.tan_half_fovy();
-        let aspect = width as f64 / height as f64;
-        let sx = (2.0 * x / width as f64 - 1.0) * t * aspect;
-        let sy = (1.0 - 2.0 * y / height as f64) * t;
-        (f.forward + f.right * sx + f.up * sy).normalize()
+        PixelRays {
+            eye: self.eye.as_dvec3(),
+            frame: self.frame(),
+            x_scale: 2.0 / width as f64,
+            y_scale: 2.0 / height as f64,
+            tan_x: t * (width as f64 / height as f64),
+            tan_y: t,
+        }
     }
 
     /// World → view: a rotation (no translation: the GPU works relative to the
