@@ -29,9 +29,17 @@ impl ImageFormat {
     }
 }
 
-fn encode(image: impl Into<image::DynamicImage>, format: image::ImageFormat) -> anyhow::Result<Vec<u8>> {
+/// The file's bytes, encoded in place (no copy of the image).
+fn encode<P>(
+    image: &image::ImageBuffer<P, Vec<P::Subpixel>>,
+    format: image::ImageFormat,
+) -> anyhow::Result<Vec<u8>>
+where
+    P: image::PixelWithColorType,
+    [P::Subpixel]: image::EncodableLayout,
+{
     let mut bytes = Cursor::new(Vec::new());
-    image.into().write_to(&mut bytes, format)?;
+    image.write_to(&mut bytes, format)?;
     Ok(bytes.into_inner())
 }
 
@@ -41,15 +49,15 @@ fn write(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
 
 /// Writes an 8-bit RGB image as PNG.
 pub fn write_png_rgb8(path: &Path, image: &image::RgbImage) -> anyhow::Result<()> {
-    write(path, &encode(image.clone(), image::ImageFormat::Png)?)
+    write(path, &encode(image, image::ImageFormat::Png)?)
 }
 
 /// Writes an 8-bit RGBA image (sRGB) as PNG.
 pub fn write_png_rgba8(path: &Path, image: &image::RgbaImage) -> anyhow::Result<()> {
-    write(path, &encode(image.clone(), image::ImageFormat::Png)?)
+    write(path, &encode(image, image::ImageFormat::Png)?)
 }
 
 /// Writes linear float RGBA as OpenEXR.
 pub fn write_exr(path: &Path, image: &image::Rgba32FImage) -> anyhow::Result<()> {
-    write(path, &encode(image.clone(), image::ImageFormat::OpenExr)?)
+    write(path, &encode(image, image::ImageFormat::OpenExr)?)
 }

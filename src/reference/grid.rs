@@ -115,11 +115,14 @@ impl DirectionGrid {
         for cell in 1..starts.len() {
             starts[cell] += starts[cell - 1];
         }
-        let mut listed = vec![0u32; starts[starts.len() - 1]];
+        // With each listing, whether the triangle covers the whole face (it
+        // may reach the centre itself, where rounding decides hits at t ≈ 0
+        // that no clipping predicts: its depth bound is 0).
+        let mut listed = vec![(0u32, false); starts[starts.len() - 1]];
         let mut fill = starts.clone();
         for span in &spans {
             for cell in cells_of(span) {
-                listed[fill[cell]] = span.0;
+                listed[fill[cell]] = (span.0, span.2 == WHOLE_FACE);
                 fill[cell] += 1;
             }
         }
@@ -134,7 +137,7 @@ impl DirectionGrid {
                 if list.len() > MAX_LIST {
                     return (first as u32, CROWDED);
                 }
-                for &triangle in list {
+                for &(triangle, whole) in list {
                     let member = &mut member_of[triangle as usize];
                     if *member == u32::MAX {
                         *member = members.len() as u32;
@@ -142,7 +145,7 @@ impl DirectionGrid {
                         relative.push(triangles[triangle as usize].corners.map(|p| p - centre));
                     }
                     // A lone triangle needs no order and ends no search early.
-                    let depth = if list.len() > 1 {
+                    let depth = if list.len() > 1 && !whole {
                         round_down(depth_in_cell(&relative[*member as usize], cell))
                     } else {
                         0.0
@@ -367,11 +370,6 @@ fn cell_range(relative: &[DVec3; 3], face: usize) -> Option<[usize; 4]> {
 /// (10⁻⁹ of the triangle's size, far above it), and never below 0.
 fn depth_in_cell(relative: &[DVec3; 3], cell: usize) -> f64 {
     let (face, j, i) = (cell / (CELLS * CELLS), cell / CELLS % CELLS, cell % CELLS);
-    if cell_range(relative, face) == Some(WHOLE_FACE) {
-        // It may reach the centre itself, where rounding decides hits at
-        // t ≈ 0 that no clipping predicts: test it first, always.
-        return 0.0;
-    }
     let (k, sign, ia, ib) = face_axes(face);
     let size = relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
     let edge = |n: usize| -1.0 + 2.0 * n as f64 / CELLS as f64;
