@@ -10,7 +10,7 @@ use lumlab::reference::bvh::{BvhTriangle, TriangleBvh, closest_hit_brute_force, 
 use lumlab::reference::grid::{Answer, DirectionGrid};
 use lumlab::reference::sampling::Rng;
 use lumlab::reference::{SHADOW_OFFSET_REL, STOP_SHORT_REL};
-use lumlab::scene::{Aabb, Mesh, shapes};
+use lumlab::scene::{Aabb, Camera, Mesh, shapes};
 
 /// A ground, 12 boxes and 12 spheres at random places; every other object
 /// casts no shadow so that the shadow-ray filter is exercised too.
@@ -275,5 +275,54 @@ fn a_shadow_ray_lifted_off_its_triangle_towards_the_light_never_meets_it() {
     assert!(
         tested > 5000 && blocked > 500,
         "{tested} tested, {blocked} blocked"
+    );
+}
+
+#[test]
+fn rays_through_a_pixel_that_shares_a_cell_find_what_brute_force_finds() {
+    // The reference looks up a pixel's cell once when its four corners
+    // share it: every ray through the pixel must then find its closest hit
+    // in that cell's list. A camera near the scene, so that cells list many
+    // triangles, and pixels half as wide as a cell (0.3°): 4000 random
+    // pixels of a 320×240 image.
+    let mut rng = Rng::new(19, 0, 0);
+    let triangles = generated_scene(&mut rng);
+    let camera = Camera {
+        eye: Vec3::new(5.0, 2.5, 6.0),
+        target: Vec3::new(0.0, 0.5, 0.0),
+        fovy_deg: 70.0,
+    };
+    let (w, h) = (320, 240);
+    let rays = camera.pixel_rays(w, h);
+    let grid = DirectionGrid::new(rays.eye, &triangles, |_| true);
+    let (mut shared, mut hits) = (0, 0);
+    for _ in 0..4000 {
+        let (i, j) = (
+            (rng.next_f64() * w as f64).floor(),
+            (rng.next_f64() * h as f64).floor(),
+        );
+        let Some(cell) = grid.pixel_cell(&rays, i, j) else {
+            continue;
+        };
+        shared += 1;
+        // Corners and edges of the pixel too, where rounding is closest to the cell's edge.
+        for (dx, dy) in [
+            (0.0, 0.0),
+            (1.0, 1.0),
+            (0.0, rng.next_f64()),
+            (rng.next_f64(), rng.next_f64()),
+        ] {
+            let (x, y) = (i + dx, j + dy);
+            let v = rays.towards(x, y);
+            if let Answer::Known(hit) = grid.closest_in(cell, v) {
+                let expected = closest_hit_brute_force(&triangles, rays.eye, v, 0.0, f64::INFINITY);
+                assert_eq!(hit, expected, "pixel ({i}, {j}) at ({x}, {y})");
+                hits += hit.is_some() as u32;
+            }
+        }
+    }
+    assert!(
+        shared > 1000 && hits > 1000,
+        "{shared} pixels shared a cell, {hits} hits"
     );
 }
