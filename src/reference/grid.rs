@@ -259,6 +259,7 @@ impl DirectionGrid {
     /// Only triangles nearer the centre than the origin can block: points of
     /// the segment have depth (1 − t) · depth(origin), so the search ends at
     /// the first item whose depth bound reaches the origin's depth.
+    #[inline]
     pub fn blocked_towards_centre(
         &self,
         triangles: &[BvhTriangle],
