@@ -52,9 +52,19 @@ fn random_point(rng: &mut Rng, half: f64) -> DVec3 {
     )
 }
 
+/// A random triangle's index.
+fn random_triangle(triangles: &[BvhTriangle], rng: &mut Rng) -> usize {
+    (rng.next_f64() * triangles.len() as f64) as usize % triangles.len()
+}
+
 /// A point on a random triangle: a corner, a point on an edge, or inside.
 fn point_on(triangles: &[BvhTriangle], rng: &mut Rng) -> DVec3 {
-    let tri = &triangles[(rng.next_f64() * triangles.len() as f64) as usize % triangles.len()];
+    let tri = &triangles[random_triangle(triangles, rng)];
+    point_on_triangle(tri, rng)
+}
+
+/// A point on the triangle: a corner, a point on an edge, or inside.
+fn point_on_triangle(tri: &BvhTriangle, rng: &mut Rng) -> DVec3 {
     let [a, b, c] = tri.corners;
     match (rng.next_f64() * 3.0) as u32 {
         0 => a,
@@ -243,11 +253,9 @@ fn a_shadow_ray_lifted_off_its_triangle_towards_the_light_never_meets_it() {
     let t_max = 1.0 - STOP_SHORT_REL;
     let (mut tested, mut blocked) = (0, 0);
     for ray in 0..20_000 {
-        let own = (rng.next_f64() * triangles.len() as f64) as usize % triangles.len();
+        let own = random_triangle(&triangles, &mut rng);
+        let p = point_on_triangle(&triangles[own], &mut rng);
         let [a, b, c] = triangles[own].corners;
-        let (u, v) = (rng.next_f64(), rng.next_f64());
-        let (u, v) = if u + v > 1.0 { (1.0 - u, 1.0 - v) } else { (u, v) };
-        let p = a * (1.0 - u - v) + b * u + c * v;
         let face = (b - a).cross(c - a).normalize();
         let normal = if face.dot(light - p) > 0.0 { face } else { -face };
         let largest = [a, b, c]

@@ -337,15 +337,10 @@ fn face_coordinates(w: DVec3) -> Option<(usize, f64, f64)> {
 /// relative to the centre) may be seen in; None when it is not on the face.
 fn cell_range(relative: &[DVec3; 3], face: usize) -> Option<[usize; 4]> {
     let (k, sign, ia, ib) = face_axes(face);
-    let size = relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
-    let mut polygon = Polygon::triangle(relative);
-    // Keep (1 + WIDEN) s w_k ± w_a ≥ 0 and the same for b: the widened pyramid.
-    for (axis, side) in [(ia, 1.0), (ia, -1.0), (ib, 1.0), (ib, -1.0)] {
-        polygon = polygon.clip(|w: DVec3| (1.0 + WIDEN) * sign * w[k] + side * w[axis]);
-        if polygon.is_empty() {
-            return None;
-        }
-    }
+    let size = extent(relative);
+    // The face's pyramid, widened: |u|, |v| ≤ 1 + WIDEN.
+    let widened = (-1.0 - WIDEN, 1.0 + WIDEN);
+    let polygon = clip_to_pyramid(relative, face, widened, widened)?;
     let (mut u0, mut u1, mut v0, mut v1) =
         (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
     for w in polygon.points() {
@@ -371,25 +366,44 @@ fn cell_range(relative: &[DVec3; 3], face: usize) -> Option<[usize; 4]> {
 /// (10⁻⁹ of the triangle's size, far above it), and never below 0.
 fn depth_in_cell(relative: &[DVec3; 3], cell: usize) -> f64 {
     let (face, j, i) = (cell / (CELLS * CELLS), cell / CELLS % CELLS, cell % CELLS);
-    let (k, sign, ia, ib) = face_axes(face);
-    let size = relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+    let (k, sign, _, _) = face_axes(face);
     let edge = |n: usize| -1.0 + 2.0 * n as f64 / CELLS as f64;
-    let (u0, u1) = (edge(i) - MARGIN, edge(i + 1) + MARGIN);
-    let (v0, v1) = (edge(j) - MARGIN, edge(j + 1) + MARGIN);
+    let u = (edge(i) - MARGIN, edge(i + 1) + MARGIN);
+    let v = (edge(j) - MARGIN, edge(j + 1) + MARGIN);
+    let Some(polygon) = clip_to_pyramid(relative, face, u, v) else {
+        // Listed by the wider per-face bounds only: it cannot be hit here.
+        return f64::INFINITY;
+    };
+    let least = polygon
+        .points()
+        .iter()
+        .fold(f64::INFINITY, |m, w| m.min(sign * w[k]));
+    (least - 1e-9 * extent(relative)).max(0.0)
+}
+
+/// The largest |coordinate| of the corners: the triangle's size, seen from the centre.
+fn extent(relative: &[DVec3; 3]) -> f64 {
+    relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()))
+}
+
+/// The part of the triangle (corners relative to the centre) inside the
+/// pyramid of face f where u ∈ [u0, u1] and v ∈ [v0, v1]; None when empty.
+fn clip_to_pyramid(
+    relative: &[DVec3; 3],
+    face: usize,
+    (u0, u1): (f64, f64),
+    (v0, v1): (f64, f64),
+) -> Option<Polygon> {
+    let (k, sign, ia, ib) = face_axes(face);
     let mut polygon = Polygon::triangle(relative);
     // u ≥ u0 ⇔ w_a − u0 · depth ≥ 0, and so on, with depth = sign · w_k.
     for (axis, side, bound) in [(ia, 1.0, u0), (ia, -1.0, u1), (ib, 1.0, v0), (ib, -1.0, v1)] {
         polygon = polygon.clip(|w: DVec3| side * (w[axis] - bound * sign * w[k]));
         if polygon.is_empty() {
-            // Listed by the wider per-face bounds only: it cannot be hit here.
-            return f64::INFINITY;
+            return None;
         }
     }
-    let least = polygon
-        .points()
-        .iter()
-        .fold(f64::INFINITY, |m, w| m.min(sign * w[k]));
-    (least - 1e-9 * size).max(0.0)
+    Some(polygon)
 }
 
 /// The f32 at or below x (for bounds that must not grow).
