@@ -4,10 +4,12 @@
 //!
 //! A preset starts from the default settings, keeping the scene, the image
 //! size and (unless it names one) the camera, then sets the values listed in
-//! its doc comment. Light positions and cameras are tuned for the built-in
-//! scene (a 12 m ground, a 1 m box at the origin, a sphere of radius 0.5 m).
+//! its doc comment. Light positions, cameras and lengths are tuned for the
+//! built-in scene (a 12 m ground, a 1 m box at the origin, a sphere of
+//! radius 0.5 m); another scene gets them through its [`SceneScale`].
 
 use crate::physics::Normalization;
+use crate::scene::SceneScale;
 use crate::settings::{BiasMode, DebugView, Filter, Settings};
 use glam::Vec3;
 
@@ -88,13 +90,14 @@ impl Preset {
         }
     }
 
-    /// Sets the preset's values (see each variant's documentation).
-    pub fn apply(self, settings: &mut Settings) {
+    /// Sets the preset's values (see each variant's documentation), its
+    /// lengths and positions those of the built-in scene moved by `scale`.
+    pub fn apply(self, settings: &mut Settings, scale: SceneScale) {
         let kept = Settings {
             scene: settings.scene.clone(),
             camera: settings.camera,
             image: settings.image,
-            ..Settings::default()
+            ..Settings::for_scale(scale)
         };
         *settings = kept;
         let s = settings;
@@ -107,12 +110,12 @@ impl Preset {
             }
             Self::PeterPanning => {
                 s.shadow.bias.mode = BiasMode::Constant;
-                s.shadow.bias.depth_m = 0.5;
+                s.shadow.bias.depth_m = scale.length(0.5);
                 s.shadow.filter = Filter::Pcf;
                 s.shadow.pcf_size = 3;
-                s.light.position = Vec3::new(3.5, 3.0, 3.0);
-                s.camera.eye = Vec3::new(1.8, 1.6, -3.2);
-                s.camera.target = Vec3::new(-0.6, 0.1, -0.6);
+                s.light.position = scale.point(Vec3::new(3.5, 3.0, 3.0));
+                s.camera.eye = scale.point(Vec3::new(1.8, 1.6, -3.2));
+                s.camera.target = scale.point(Vec3::new(-0.6, 0.1, -0.6));
                 s.camera.fovy_deg = 45.0;
             }
             Self::Aliasing => {
@@ -127,8 +130,8 @@ impl Preset {
                 s.shadow.bias.mode = BiasMode::Auto;
             }
             Self::Penumbra => {
-                s.light.radius_m = 0.4;
-                s.light.position = Vec3::new(2.5, 4.0, 2.0);
+                s.light.radius_m = scale.length(0.4);
+                s.light.position = scale.point(Vec3::new(2.5, 4.0, 2.0));
                 s.shadow.filter = Filter::Pcss;
                 s.shadow.pcss_blocker_samples = 32;
                 s.shadow.poisson_samples = 32;
@@ -141,8 +144,8 @@ impl Preset {
                 s.material.use_scene_materials = false;
             }
             Self::Grazing => {
-                s.light.position = Vec3::new(6.0, 0.8, 0.0);
-                s.light.power_w = 2000.0;
+                s.light.position = scale.point(Vec3::new(6.0, 0.8, 0.0));
+                s.light.power_w = scale.power(2000.0);
                 s.view.mode = DebugView::Ndotl;
             }
         }
@@ -259,7 +262,7 @@ mod tests {
     fn every_preset_gives_valid_settings() {
         for &p in Preset::ALL {
             let mut s = Settings::default();
-            p.apply(&mut s);
+            p.apply(&mut s, SceneScale::BUILT_IN);
             s.validate().unwrap_or_else(|e| panic!("{p}: {e}"));
             assert!(!p.description().is_empty() && !p.title().is_empty());
         }
@@ -268,7 +271,7 @@ mod tests {
     #[test]
     fn acne_preset_has_no_bias_and_no_filter() {
         let mut s = Settings::default();
-        Preset::ShadowAcne.apply(&mut s);
+        Preset::ShadowAcne.apply(&mut s, SceneScale::BUILT_IN);
         assert_eq!(s.shadow.bias.describe(), "constant:0");
         assert_eq!(s.shadow.filter, Filter::None);
     }
@@ -281,7 +284,7 @@ mod tests {
         };
         s.image.width = 123;
         s.material.k = 0.9;
-        Preset::Aliasing.apply(&mut s);
+        Preset::Aliasing.apply(&mut s, SceneScale::BUILT_IN);
         assert_eq!(s.scene.as_deref(), Some(std::path::Path::new("x.glb")));
         assert_eq!(s.image.width, 123);
         assert_eq!(s.material.k, Settings::default().material.k);
@@ -290,7 +293,7 @@ mod tests {
     #[test]
     fn energy_gain_preset_gains_energy() {
         let mut s = Settings::default();
-        Preset::EnergyGain.apply(&mut s);
+        Preset::EnergyGain.apply(&mut s, SceneScale::BUILT_IN);
         let params = crate::physics::BrdfParams {
             k: s.material.k as f64,
             m: s.material.m as f64,

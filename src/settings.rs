@@ -4,6 +4,7 @@
 //! allowed range of any bad value.
 
 use crate::physics::Normalization;
+use crate::scene::{Camera, SceneScale};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -33,40 +34,12 @@ pub struct Settings {
     /// The glTF/GLB scene; none = the built-in default scene.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub scene: Option<PathBuf>,
-    pub camera: CameraSettings,
+    pub camera: Camera,
     pub image: ImageSettings,
     pub light: LightSettings,
     pub material: MaterialSettings,
     pub shadow: ShadowSettings,
     pub view: ViewSettings,
-}
-
-/// A perspective camera: eye, target and vertical field of view; up is +Y.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct CameraSettings {
-    /// Eye position (m).
-    pub eye: Vec3,
-    /// Point looked at (m).
-    pub target: Vec3,
-    /// Vertical field of view (degrees).
-    pub fovy_deg: f32,
-}
-
-impl CameraSettings {
-    pub const DEFAULT_EYE: Vec3 = Vec3::new(0.0, 3.4, 8.2);
-    pub const DEFAULT_TARGET: Vec3 = Vec3::new(0.0, 0.7, 0.0);
-    pub const DEFAULT_FOVY_DEG: f32 = 45.0;
-}
-
-impl Default for CameraSettings {
-    fn default() -> Self {
-        Self {
-            eye: Self::DEFAULT_EYE,
-            target: Self::DEFAULT_TARGET,
-            fovy_deg: Self::DEFAULT_FOVY_DEG,
-        }
-    }
 }
 
 /// Size of the rendered image (pixels) for the command line and the report.
@@ -199,7 +172,7 @@ impl Default for BiasSettings {
     fn default() -> Self {
         Self {
             mode: BiasMode::Auto,
-            depth_m: 0.005,
+            depth_m: SceneScale::DEFAULT_BIAS,
             slope: 1.0,
             normal_texels: 1.0,
         }
@@ -347,6 +320,20 @@ impl Default for ViewSettings {
 }
 
 impl Settings {
+    /// The default settings moved to a scene of `scale`: the light, the
+    /// camera and the bias where the built-in scene has them, scaled. The
+    /// built-in scale gives [`Settings::default`] exactly.
+    pub fn for_scale(scale: SceneScale) -> Self {
+        let mut s = Self::default();
+        s.camera.eye = scale.point(s.camera.eye);
+        s.camera.target = scale.point(s.camera.target);
+        s.light.position = scale.point(s.light.position);
+        s.light.radius_m = scale.length(s.light.radius_m);
+        s.light.power_w = scale.power(s.light.power_w);
+        s.shadow.bias.depth_m = scale.length(s.shadow.bias.depth_m);
+        s
+    }
+
     /// Reads, parses and validates a settings file.
     pub fn load(path: &Path) -> Result<Self, SettingsError> {
         let text = std::fs::read_to_string(path).map_err(|source| SettingsError::Read {

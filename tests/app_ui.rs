@@ -4,68 +4,19 @@
 //! the physics of the clicked pixel.
 
 use egui::accesskit::Role;
+use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use egui_kittest::{Harness, wgpu::WgpuTestRenderer};
 use glam::DVec3;
-use lumlab::app::{LabApp, LaunchOptions, Preloaded};
+use lumlab::app::LabApp;
 use lumlab::physics::{BrdfParams, brdf, radiometry};
 use lumlab::presets::Preset;
-use lumlab::scene::Camera;
+use lumlab::scene::SceneScale;
 use lumlab::settings::{BiasMode, Filter, Settings};
 use std::sync::Arc;
 use std::time::Duration;
 
-const SIZE: egui::Vec2 = egui::vec2(1280.0, 800.0);
-
-/// The lab on our own device (the adapter's limits and features), with a
-/// kittest renderer sharing it so native textures can be drawn.
-fn harness() -> Harness<'static, LabApp> {
-    let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
-    setup.instance_descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
-    setup.device_descriptor = Arc::new(lumlab::gpu::context::device_descriptor);
-    let render_state = egui_kittest::wgpu::create_render_state(
-        egui_wgpu::WgpuSetup::CreateNew(setup),
-        egui_wgpu::RendererOptions::PREDICTABLE,
-    );
-    let app = LabApp::new(
-        Some(render_state.clone()),
-        None,
-        &LaunchOptions::default(),
-        Preloaded {
-            settings: None,
-            scene: None,
-        },
-        Arc::default(),
-    )
-    .expect("the app starts on a wgpu device");
-    let mut harness = Harness::builder()
-        .with_size(SIZE)
-        .renderer(WgpuTestRenderer::from_render_state(render_state))
-        .with_render_cursor(false)
-        .build_ui_state(
-            |ui, app: &mut LabApp| {
-                // The whole window, as eframe gives it (kittest adds a margin).
-                let whole = ui.ctx().content_rect();
-                let mut root = ui.new_child(egui::UiBuilder::new().max_rect(whole));
-                app.show(&mut root);
-            },
-            app,
-        );
-    harness.run();
-    harness
-}
-
-/// Steps until `done` holds (async readbacks), failing after a few seconds.
-fn step_until(harness: &mut Harness<'_, LabApp>, what: &str, done: impl Fn(&LabApp) -> bool) {
-    for _ in 0..300 {
-        harness.step();
-        if done(harness.state()) {
-            return;
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
-    panic!("timed out waiting for {what}");
-}
+mod app_support;
+use app_support::{SIZE, harness, step_until};
 
 /// Mean radiance (W/m²/sr, luminance-free: the mean of r, g, b) over the
 /// pixels the scene covers, read back from the renderer.
@@ -107,7 +58,7 @@ fn power_slider_changes_settings_and_scales_the_radiance() {
 fn presets_set_their_documented_values() {
     let mut harness = harness();
     let mut expected = harness.state().settings().clone();
-    Preset::ShadowAcne.apply(&mut expected);
+    Preset::ShadowAcne.apply(&mut expected, SceneScale::BUILT_IN);
     harness.get_by_label(Preset::ShadowAcne.title()).click();
     harness.run();
     let s = harness.state().settings();
@@ -154,12 +105,7 @@ fn probe_numbers_are_the_physics_of_the_clicked_pixel() {
     // The pixel's ray meets the plane y = 0 here (f64, independently of the probe).
     let s: &Settings = app.settings();
     // The camera as the viewport shows it (its shape may widen the view).
-    let shown = lumlab::app::fitted_camera(&s.camera, pixel.size);
-    let camera = Camera {
-        eye: shown.eye,
-        target: shown.target,
-        fovy_deg: shown.fovy_deg,
-    };
+    let camera = s.camera.widened_for(pixel.size);
     let d = camera.ray_direction(
         pixel.pixel.0 as f64 + 0.5,
         pixel.pixel.1 as f64 + 0.5,
@@ -286,7 +232,7 @@ fn split_view_and_energy_panel_render() {
 
     // The energy panel: no normalization at m = 1 against approx, both curves.
     let app = harness.state_mut();
-    Preset::EnergyGain.apply(app.settings_mut());
+    Preset::EnergyGain.apply(app.settings_mut(), SceneScale::BUILT_IN);
     app.state_mut().panels.settings = false;
     harness.run();
     step_until(&mut harness, "the energy panel", |app| {
@@ -446,12 +392,7 @@ fn dragging_orbits_scrolling_zooms_and_the_light_follows_its_gizmo() {
     harness.run_steps(2);
     let s = harness.state().settings().clone();
     let size = harness.state().viewport_size();
-    let shown = lumlab::app::fitted_camera(&s.camera, size);
-    let camera = Camera {
-        eye: shown.eye,
-        target: shown.target,
-        fovy_deg: shown.fovy_deg,
-    };
+    let camera = s.camera.widened_for(size);
     // Project by intersecting pixel rays: find the pixel whose ray passes the light.
     let to_light = (s.light.position - s.camera.eye).as_dvec3().normalize();
     let f = camera.frame();

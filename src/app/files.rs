@@ -3,20 +3,9 @@
 //! radiance (EXR). egui has no native dialog; a path field and a small
 //! directory browser stand in for one.
 
+use super::command::Command;
 use super::state::Paths;
 use std::path::{Path, PathBuf};
-
-/// What the user asked for.
-#[derive(Clone, Debug, PartialEq)]
-pub enum FileAction {
-    SaveSettings(PathBuf),
-    LoadSettings(PathBuf),
-    OpenScene(PathBuf),
-    BuiltInScene,
-    Screenshot(PathBuf),
-    ExportExr(PathBuf),
-    ResetEverything,
-}
 
 /// Which path field the browser fills.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -172,10 +161,10 @@ impl FilesPanel {
         });
     }
 
-    /// The panel; returns what to do.
-    pub fn ui(&mut self, ui: &mut egui::Ui, paths: &mut Paths, scene_name: &str) -> Option<FileAction> {
+    /// The panel; returns the command its buttons emit.
+    pub fn ui(&mut self, ui: &mut egui::Ui, paths: &mut Paths, scene_name: &str) -> Option<Command> {
         let mut action = None;
-        let path = |p: &str| PathBuf::from(p.trim());
+        let path = |p: &str| Some(PathBuf::from(p.trim()));
 
         ui.label(egui::RichText::new(format!("Scene: {scene_name}")).strong());
         self.path_row(
@@ -191,14 +180,14 @@ impl FilesPanel {
                 .on_hover_text("Load the glTF/GLB file above (Ctrl+O)")
                 .clicked()
             {
-                action = Some(FileAction::OpenScene(path(&paths.scene_file)));
+                action = Some(Command::OpenScene(path(&paths.scene_file)));
             }
             if ui
                 .button("Built-in scene")
                 .on_hover_text("Back to the lab's own scene")
                 .clicked()
             {
-                action = Some(FileAction::BuiltInScene);
+                action = Some(Command::BuiltInScene);
             }
         });
         ui.separator();
@@ -216,14 +205,14 @@ impl FilesPanel {
                 .on_hover_text("Write every setting to the file")
                 .clicked()
             {
-                action = Some(FileAction::SaveSettings(path(&paths.settings_file)));
+                action = Some(Command::SaveSettings(path(&paths.settings_file)));
             }
             if ui
                 .button("Load")
                 .on_hover_text("Read the settings from the file (undo with Ctrl+Z)")
                 .clicked()
             {
-                action = Some(FileAction::LoadSettings(path(&paths.settings_file)));
+                action = Some(Command::LoadSettings(path(&paths.settings_file)));
             }
         });
         ui.separator();
@@ -240,7 +229,7 @@ impl FilesPanel {
             .on_hover_text("The whole window, as displayed")
             .clicked()
         {
-            action = Some(FileAction::Screenshot(path(&paths.screenshot_file)));
+            action = Some(Command::Screenshot(path(&paths.screenshot_file)));
         }
         self.path_row(
             ui,
@@ -254,7 +243,7 @@ impl FilesPanel {
             .on_hover_text("Unscaled linear values, no exposure, no sRGB")
             .clicked()
         {
-            action = Some(FileAction::ExportExr(path(&paths.exr_file)));
+            action = Some(Command::ExportExr(path(&paths.exr_file)));
         }
         ui.separator();
         if ui
@@ -262,7 +251,7 @@ impl FilesPanel {
             .on_hover_text("Every setting, the split view, the panels and the scene back to their defaults (Ctrl+Z undoes the settings)")
             .clicked()
         {
-            action = Some(FileAction::ResetEverything);
+            action = Some(Command::ResetEverything);
         }
 
         if let Some(browser) = &mut self.browser {

@@ -8,11 +8,11 @@ use crate::settings::LightSettings;
 
 /// The largest power the slider offers (W); the settings file allows more.
 pub const MAX_POWER_W: f64 = 1e6;
-/// The largest sphere-light radius the slider offers (m).
-pub const MAX_RADIUS_M: f32 = 2.0;
 
 pub struct LightPanel<'a> {
     pub light: &'a mut LightSettings,
+    /// The largest radius the slider offers (m): the scene's scale decides.
+    pub max_radius_m: f32,
 }
 
 impl View for LightPanel<'_> {
@@ -65,7 +65,7 @@ impl View for LightPanel<'_> {
              (soft shadows with the PCSS filter).",
         );
         ui.add(
-            egui::Slider::new(radius_m, 0.0..=MAX_RADIUS_M)
+            egui::Slider::new(radius_m, 0.0..=self.max_radius_m)
                 .suffix(" m")
                 .custom_formatter(|x, _| super::widgets::number(x)),
         )

@@ -7,12 +7,16 @@
 //! the right (`probe`, `energy`, `reference`, `timings`), the renderer's
 //! image in the middle (`viewport`, drawn by `gpu_view`). What is persisted
 //! (`state`) is kept apart from every GPU object.
+//!
+//! Every action is a [`Command`] (`command`): panels, shortcuts
+//! (`shortcuts`, one table for the keys and the help), dropped files and
+//! scripts emit them; `lab` applies them in one place and records undo.
 
 mod camera_control;
+mod command;
 mod energy;
 mod files;
 mod gpu_view;
-mod help;
 mod lab;
 mod legend;
 mod light;
@@ -20,6 +24,7 @@ mod material;
 mod probe;
 mod reference;
 mod shadow;
+mod shortcuts;
 mod state;
 mod timings;
 mod undo;
@@ -27,10 +32,11 @@ mod view;
 mod viewport;
 mod widgets;
 
-pub use camera_control::fitted as fitted_camera;
+pub use command::Command;
 pub use lab::LabApp;
 pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
 pub use reference::{ErrorStats, ReferenceFn};
+pub use shortcuts::{GESTURES, SHORTCUTS, Shortcut};
 pub use state::State;
 
 use crate::scene::Scene;

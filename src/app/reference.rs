@@ -6,6 +6,7 @@
 //! image size is the viewport's) and a progress/cancel control, returning the
 //! image the renderer compares with (rgb = L_ref, a = V_ref).
 
+use super::command::Command;
 use super::widgets::{number, quantity};
 use crate::gpu::ComparisonImage;
 use crate::reference::{Reference, ReferenceOptions, RenderControl};
@@ -126,16 +127,6 @@ struct Job {
     result: Receiver<Result<ComparisonImage, String>>,
 }
 
-/// What the panel asks the app to do.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ReferenceAction {
-    None,
-    /// Start computing for the current settings at the viewport's size.
-    Compute,
-    /// Switch the view (error or reference visibility).
-    Show(DebugView),
-}
-
 pub struct ReferencePanel {
     compute: Arc<ReferenceFn>,
     job: Option<Job>,
@@ -247,8 +238,8 @@ impl ReferencePanel {
         self.message = None;
     }
 
-    pub fn ui(&mut self, ui: &mut egui::Ui, settings: &Settings, size: (u32, u32)) -> ReferenceAction {
-        let mut action = ReferenceAction::None;
+    pub fn ui(&mut self, ui: &mut egui::Ui, settings: &Settings, size: (u32, u32)) -> Option<Command> {
+        let mut action = None;
         ui.horizontal(|ui| {
             if ui
                 .add_enabled(self.job.is_none(), egui::Button::new("Compute reference (F5)"))
@@ -258,7 +249,7 @@ impl ReferencePanel {
                 )
                 .clicked()
             {
-                action = ReferenceAction::Compute;
+                action = Some(Command::StartReference);
             }
             if self.job.is_some()
                 && ui
@@ -266,7 +257,7 @@ impl ReferencePanel {
                     .on_hover_text("Stop the computation")
                     .clicked()
             {
-                self.cancel();
+                action = Some(Command::Cancel);
             }
         });
         if let Some(job) = &self.job {
@@ -327,14 +318,14 @@ impl ReferencePanel {
                 .on_hover_text("Signed L − L_ref in false colour")
                 .clicked()
             {
-                action = ReferenceAction::Show(DebugView::Error);
+                action = Some(Command::ShowView(DebugView::Error));
             }
             if ui
                 .button("Reference V")
                 .on_hover_text("The reference's visibility V_ref")
                 .clicked()
             {
-                action = ReferenceAction::Show(DebugView::RefVisibility);
+                action = Some(Command::ShowView(DebugView::RefVisibility));
             }
         });
         action

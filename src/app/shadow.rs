@@ -8,6 +8,8 @@ pub struct ShadowPanel<'a> {
     pub shadow: &'a mut ShadowSettings,
     /// The light's radius R (m): PCSS sizes its penumbra from it.
     pub light_radius_m: &'a mut f32,
+    /// The largest radius its slider offers (m).
+    pub max_light_radius_m: f32,
     /// The adapter's largest texture side (texels).
     pub max_texture_side: u32,
     /// Why the last frame used a smaller map than asked, if it did.
@@ -101,7 +103,7 @@ impl View for ShadowPanel<'_> {
                 }
                 Filter::Pcss => {
                     ui.add(
-                        egui::Slider::new(self.light_radius_m, 0.0..=super::light::MAX_RADIUS_M)
+                        egui::Slider::new(self.light_radius_m, 0.0..=self.max_light_radius_m)
                             .text("light R")
                             .suffix(" m")
                             .custom_formatter(|x, _| number(x)),

@@ -52,6 +52,18 @@ impl UndoStack {
         false
     }
 
+    /// Commits `current` at once, as an undo step of its own: called before
+    /// and after a discrete command (a preset, a loaded file), so that the
+    /// command is exactly one step and a pending slider change another.
+    pub fn checkpoint(&mut self, current: &Settings) {
+        if *current != self.committed {
+            let previous = std::mem::replace(&mut self.committed, current.clone());
+            self.push_undo(previous);
+            self.redo.clear();
+        }
+        self.last_seen = current.clone();
+    }
+
     fn push_undo(&mut self, settings: Settings) {
         self.undo.push_back(settings);
         if self.undo.len() > Self::DEPTH {
@@ -135,6 +147,23 @@ mod tests {
         assert_eq!(current.light.power_w, 2.0);
         assert!(stack.undo(&mut current));
         assert_eq!(current.light.power_w, 1.0);
+    }
+
+    #[test]
+    fn a_checkpoint_is_one_step_apart_from_a_pending_drag() {
+        let mut stack = UndoStack::new(&with_power(1.0));
+        // A drag still held...
+        assert!(stack.observe(&with_power(2.0), true, 0.0));
+        // ...then a preset: the drag and the preset are two steps.
+        stack.checkpoint(&with_power(2.0));
+        let mut current = with_power(9.0);
+        stack.checkpoint(&current);
+        assert!(!stack.observe(&current, false, 5.0));
+        assert!(stack.undo(&mut current));
+        assert_eq!(current.light.power_w, 2.0);
+        assert!(stack.undo(&mut current));
+        assert_eq!(current.light.power_w, 1.0);
+        assert!(!stack.undo(&mut current));
     }
 
     #[test]

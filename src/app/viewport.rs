@@ -2,12 +2,13 @@
 //! split view), camera orbit/pan/zoom, the light gizmo, the split divider,
 //! the probe's marker, the half labels and the colour legends.
 
-use super::camera_control::{drag_height, drag_in_image_plane, fitted, orbit, pan, project, zoom};
+use super::camera_control::{drag_height, drag_in_image_plane, orbit, pan, project, zoom};
 use super::gpu_view::GpuViews;
 use super::legend;
 use super::probe::ProbePixel;
 use super::state::SplitState;
 use crate::presets::Half;
+use crate::scene::SceneScale;
 use crate::settings::{DebugView, Settings};
 use egui::emath::GuiRounding;
 use egui::{Align2, Color32, CursorIcon, FontId, PointerButton, Pos2, Rect, Sense, Stroke, Vec2};
@@ -30,6 +31,8 @@ pub struct Viewport<'a> {
     pub banner: Option<String>,
     /// A number to show over the image, above the legend (e.g. the RMSE).
     pub caption: Option<String>,
+    /// The scene's scale: the orbit's distance limits follow it.
+    pub scale: SceneScale,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -57,8 +60,10 @@ impl Viewport<'_> {
     }
 
     /// What a half renders in a viewport of `size` pixels: its settings at
-    /// that image size, with the camera fitted to the viewport's shape
-    /// (see [`fitted`]). The renderer, the probe and the reference all use it.
+    /// that image size, with the camera widened to the viewport's shape
+    /// (see [`crate::scene::Camera::widened_for`]). The renderer, the probe
+    /// and the reference all use it: it is the one place the app decides
+    /// which camera an image is seen from.
     pub fn render_settings(
         settings: &Settings,
         split: &SplitState,
@@ -66,7 +71,7 @@ impl Viewport<'_> {
         size: (u32, u32),
     ) -> Settings {
         let mut s = Self::settings_for(settings, split, half);
-        s.camera = fitted(&s.camera, size);
+        s.camera = s.camera.widened_for(size);
         s.image.width = size.0;
         s.image.height = size.1;
         s
@@ -80,6 +85,7 @@ impl Viewport<'_> {
             probe,
             banner,
             caption,
+            scale,
         } = self;
         let ppp = ui.ctx().pixels_per_point();
         let rect = ui.available_rect_before_wrap().round_to_pixels(ppp);
@@ -102,7 +108,7 @@ impl Viewport<'_> {
         // the drag when the pointer is on them.
         let aspect_size = (size.0 as f64, size.1 as f64);
         // The camera as this viewport shows it: projections and drags use it.
-        let view_camera = fitted(&settings.camera, size);
+        let view_camera = settings.camera.widened_for(size);
         let light_px = project(&view_camera, settings.light.position, aspect_size);
         let to_points = |p: DVec2| rect.min + Vec2::new(p.x as f32, p.y as f32) / ppp;
         // Off-image, the gizmo waits at the edge, pointing to the light.
@@ -196,7 +202,11 @@ impl Viewport<'_> {
         if response.hovered() {
             let scroll = ui.input(|i| i.smooth_scroll_delta.y) as f64;
             if scroll != 0.0 {
-                zoom(&mut settings.camera, (-scroll * ZOOM_PER_POINT).exp());
+                zoom(
+                    &mut settings.camera,
+                    (-scroll * ZOOM_PER_POINT).exp(),
+                    scale.orbit_distance_m(),
+                );
             }
         }
         let wipe_x = rect.min.x + rect.width() * split.wipe.clamp(0.0, 1.0);

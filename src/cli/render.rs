@@ -33,9 +33,7 @@ pub fn load(options: &SceneOptions) -> anyhow::Result<(Settings, Scene)> {
                 scene.cameras.len()
             )
         })?;
-        settings.camera.eye = camera.camera.eye;
-        settings.camera.target = camera.camera.target;
-        settings.camera.fovy_deg = camera.camera.fovy_deg;
+        settings.camera = camera.camera;
         settings.validate().context("camera from the scene file")?;
     }
     Ok((settings, scene))

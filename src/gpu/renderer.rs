@@ -310,11 +310,7 @@ impl Renderer {
             self.has_comparison = self.upload_comparison(&targets);
             self.targets = Some(targets);
         }
-        let camera = Camera {
-            eye: settings.camera.eye,
-            target: settings.camera.target,
-            fovy_deg: settings.camera.fovy_deg,
-        };
+        let camera = settings.camera;
         let bounds = self.scene.scene_bounds();
         let (near, far) = camera_depth_range(&camera, &bounds);
         let aspect = size.0 as f64 / size.1 as f64;

@@ -464,7 +464,7 @@ struct Tile {
 mod tests {
     use super::*;
     use crate::physics::display::srgb_decode;
-    use crate::scene::{Camera, Object, Texture, shapes};
+    use crate::scene::{Object, Texture, shapes};
     use glam::{Vec3, Vec4};
 
     /// A 4 m ground facing +Y with one material (and its texture, if any).
@@ -566,12 +566,7 @@ mod tests {
                 (sample.distance_m - expected).abs() < 1e-12 * expected,
                 "({x}, {y})"
             );
-            let direction = Camera {
-                eye: s.camera.eye,
-                target: s.camera.target,
-                fovy_deg: s.camera.fovy_deg,
-            }
-            .ray_direction(x, y, s.image.width, s.image.height);
+            let direction = s.camera.ray_direction(x, y, s.image.width, s.image.height);
             assert!((to_eye / expected + direction).length() < 1e-12, "({x}, {y})");
         }
     }

@@ -29,7 +29,6 @@ use crate::physics::radiometry::{
     incidence, intensity, point_irradiance, sphere_irradiance, sphere_radiance,
 };
 use crate::physics::{BrdfParams, BrdfTerms, Normalization};
-use crate::scene::Camera;
 use crate::scene::camera::PixelRays;
 use crate::settings::Settings;
 use glam::{DVec2, DVec3};
@@ -65,14 +64,11 @@ pub(super) struct Setup {
 
 impl Setup {
     pub fn new(settings: &Settings, light_samples: u32, seed: u64) -> Self {
-        let (c, l, m) = (&settings.camera, &settings.light, &settings.material);
-        let camera = Camera {
-            eye: c.eye,
-            target: c.target,
-            fovy_deg: c.fovy_deg,
-        };
+        let (l, m) = (&settings.light, &settings.material);
         Self {
-            rays: camera.pixel_rays(settings.image.width, settings.image.height),
+            rays: settings
+                .camera
+                .pixel_rays(settings.image.width, settings.image.height),
             width: settings.image.width,
             height: settings.image.height,
             light_position: l.position.as_dvec3(),

@@ -7,14 +7,31 @@
 //! for precision from millimetres to kilometres.
 
 use glam::{DMat4, DVec3, DVec4, Vec3};
+use serde::{Deserialize, Serialize};
 
-/// A perspective camera.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A perspective camera: eye, target and vertical field of view; up is +Y.
+/// The one camera type of the lab: the settings hold it, the app orbits it,
+/// the renderer, the probe and the reference cast their rays from it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
 pub struct Camera {
+    /// Eye position (m).
     pub eye: Vec3,
+    /// Point looked at (m).
     pub target: Vec3,
     /// Vertical field of view (degrees).
     pub fovy_deg: f32,
+}
+
+impl Default for Camera {
+    /// The built-in scene's designed view.
+    fn default() -> Self {
+        Self {
+            eye: Self::DEFAULT_EYE,
+            target: Self::DEFAULT_TARGET,
+            fovy_deg: Self::DEFAULT_FOVY_DEG,
+        }
+    }
 }
 
 /// The rays of one image size: the camera's frame and the pixel-to-tangent
@@ -61,6 +78,34 @@ pub struct Frame {
 }
 
 impl Camera {
+    pub const DEFAULT_EYE: Vec3 = Vec3::new(0.0, 3.4, 8.2);
+    pub const DEFAULT_TARGET: Vec3 = Vec3::new(0.0, 0.7, 0.0);
+    pub const DEFAULT_FOVY_DEG: f32 = 45.0;
+    /// The image shape the vertical field of view is meant for: the command
+    /// line's default 16:9 image.
+    pub const FRAME_ASPECT: f64 = 16.0 / 9.0;
+    /// The widest vertical field of view [`Camera::widened_for`] gives (degrees).
+    const MAX_WIDENED_FOVY_DEG: f64 = 75.0;
+
+    /// This camera as a viewport of `size` pixels shows it: unchanged when
+    /// the viewport is at least as wide as 16:9; narrower, the vertical
+    /// field of view widens so that the 16:9 frame's horizontal extent still
+    /// fits (the panels, not the user, chose the viewport's shape), up to
+    /// 75° (beyond, a very narrow viewport crops the sides rather than
+    /// distort the view). It frames nothing: eye and target stay.
+    pub fn widened_for(&self, size: (u32, u32)) -> Self {
+        let aspect = size.0 as f64 / size.1.max(1) as f64;
+        if size.0 == 0 || aspect >= Self::FRAME_ASPECT {
+            return *self;
+        }
+        let tan_half = self.tan_half_fovy() * Self::FRAME_ASPECT / aspect;
+        let widest = Self::MAX_WIDENED_FOVY_DEG.max(self.fovy_deg as f64);
+        Self {
+            fovy_deg: (2.0 * tan_half.atan().to_degrees()).min(widest) as f32,
+            ..*self
+        }
+    }
+
     /// Right, up and forward. Up is +Y; when looking straight up or down, +Z
     /// stands in for it so the frame stays defined.
     pub fn frame(&self) -> Frame {
@@ -218,6 +263,22 @@ mod tests {
         assert!(depth(200.0).abs() < 1e-12);
         let (a, b) = reversed_z_coefficients(0.5, 200.0);
         assert!((a / (depth(13.0) - b) - 13.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_narrow_viewport_keeps_the_16_9_frames_width() {
+        let c = Camera::default();
+        assert_eq!(c.widened_for((1600, 900)), c);
+        assert_eq!(c.widened_for((2000, 900)), c);
+        let square = c.widened_for((900, 900));
+        assert!(square.fovy_deg > c.fovy_deg);
+        let half_width = |c: &Camera, aspect: f64| (0.5 * c.fovy_deg as f64).to_radians().tan() * aspect;
+        assert!((half_width(&square, 1.0) / half_width(&c, Camera::FRAME_ASPECT) - 1.0).abs() < 1e-6);
+        assert_eq!((square.eye, square.target), (c.eye, c.target));
+        assert_eq!(c.widened_for((1, 10_000)).fovy_deg, 75.0);
+        // A view set wider than the cap is never narrowed.
+        let wide = Camera { fovy_deg: 120.0, ..c };
+        assert_eq!(wide.widened_for((500, 1000)).fovy_deg, 120.0);
     }
 
     #[test]

@@ -20,7 +20,6 @@
 
 use super::shapes::{cuboid, cylinder, ground_slab, sphere};
 use super::{Aabb, Camera, Material, Object, Scene, SceneCamera};
-use crate::settings::CameraSettings;
 use glam::Vec3;
 use std::path::Path;
 
@@ -167,11 +166,7 @@ pub fn scene() -> Scene {
         materials: finishes.iter().map(|f| f.material()).collect(),
         cameras: vec![SceneCamera {
             name: "default".into(),
-            camera: Camera {
-                eye: CameraSettings::DEFAULT_EYE,
-                target: CameraSettings::DEFAULT_TARGET,
-                fovy_deg: CameraSettings::DEFAULT_FOVY_DEG,
-            },
+            camera: Camera::default(),
         }],
         ..Scene::default()
     }
@@ -192,6 +187,7 @@ pub fn load_embedded() -> Scene {
     match super::gltf::load_slice(ASSET, Path::new("built-in scene"), None) {
         Ok(mut scene) => {
             scene.cameras = self::scene().cameras;
+            scene.scale = super::SceneScale::BUILT_IN;
             scene
         }
         Err(e) => {
@@ -211,11 +207,7 @@ mod tests {
     use glam::DVec3;
 
     fn default_camera() -> Camera {
-        Camera {
-            eye: CameraSettings::DEFAULT_EYE,
-            target: CameraSettings::DEFAULT_TARGET,
-            fovy_deg: CameraSettings::DEFAULT_FOVY_DEG,
-        }
+        Camera::default()
     }
 
     /// Normalized device coordinates of `p` seen by the default camera
@@ -352,7 +344,7 @@ mod tests {
             }
         }
         // The face the light grazes is the one the camera sees.
-        const { assert!(CameraSettings::DEFAULT_EYE.x < PANEL_FACE_X_M) };
+        const { assert!(Camera::DEFAULT_EYE.x < PANEL_FACE_X_M) };
     }
 
     #[test]

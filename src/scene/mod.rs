@@ -9,12 +9,14 @@ pub mod camera;
 pub mod default_scene;
 pub mod facts;
 pub mod gltf;
+pub mod scale;
 pub mod shapes;
 pub mod stress;
 
 pub use bounds::Aabb;
 pub use camera::Camera;
 pub use facts::{NormalsPresence, ObjectFacts, SceneFacts, SourceInfo};
+pub use scale::SceneScale;
 
 use crate::settings::Settings;
 use glam::{Vec2, Vec3, Vec4};
@@ -109,6 +111,9 @@ pub struct Scene {
     /// What the file defines beyond the flattened objects (counts, the
     /// bounds of points and lines); `None` for scenes built in code.
     pub source: Option<SourceInfo>,
+    /// How the lab's lengths map onto this scene: the built-in scale for the
+    /// built-in scene and scenes built in code, the bounds' for a file.
+    pub scale: SceneScale,
 }
 
 /// One mesh primitive instance, in world space.

@@ -275,6 +275,7 @@ impl Loader<'_, '_, '_> {
             cameras,
             warnings: self.warnings,
             source: Some(source),
+            scale: super::SceneScale::of_bounds(&bounds),
         })
     }
 
@@ -595,8 +596,9 @@ impl Loader<'_, '_, '_> {
     }
 
     /// The placed cameras in file order, reduced to eye, target (along the
-    /// node's −Z, one metre away unless the node's extras say
-    /// `{"lumlab": {"target_distance": 8.6}}`) and vertical field of view.
+    /// node's −Z, at the depth of the bounds' centre unless the node's
+    /// extras say `{"lumlab": {"target_distance": 8.6}}`) and vertical field
+    /// of view.
     fn cameras(&mut self, placed: &[CameraInstance], bounds: &Aabb) -> Vec<SceneCamera> {
         let root = self.root;
         let mut order: Vec<&CameraInstance> = placed.iter().collect();
@@ -650,7 +652,8 @@ impl Loader<'_, '_, '_> {
                 }
             };
             let fovy_deg = fovy_deg.clamp(FOVY_RANGE_DEG.0, FOVY_RANGE_DEG.1);
-            let distance_m = target_distance(&root.nodes[instance.node].extras).unwrap_or(1.0);
+            let distance_m = target_distance(&root.nodes[instance.node].extras)
+                .unwrap_or_else(|| orbit_distance(eye, forward, bounds));
             cameras.push(SceneCamera {
                 name,
                 camera: Camera {
@@ -711,6 +714,19 @@ fn lab_extras(extras: &gltf::json::Extras) -> Option<serde_json::Map<String, ser
     let raw = extras.as_ref()?;
     let value: serde_json::Value = serde_json::from_str(raw.get()).ok()?;
     value.get("lumlab")?.as_object().cloned()
+}
+
+/// How far ahead of a file's camera its orbit target goes (m): the depth of
+/// the scene's centre along the view, so that orbiting turns around the
+/// model; a tenth of the scene's size when the centre is behind or too near
+/// (1 m for an empty scene).
+fn orbit_distance(eye: DVec3, forward: DVec3, bounds: &Aabb) -> f64 {
+    if bounds.is_empty() {
+        return 1.0;
+    }
+    let size = bounds.extent().as_dvec3().length().max(1e-9);
+    let depth = (bounds.center().as_dvec3() - eye).dot(forward);
+    depth.max(0.1 * size)
 }
 
 /// A camera node's `{"lumlab": {"target_distance": D}}` (m), when positive.

@@ -1,0 +1,208 @@
+//! The one place where commands change the app: settings (with undo),
+//! scenes, files, the reference job, the split view and the panels.
+
+use super::super::command::Command;
+use super::super::state::State;
+use super::super::viewport::Viewport;
+use super::{LabApp, adopt_scene, chosen, display_name};
+use crate::presets::Half;
+use crate::scene::Scene;
+use crate::settings::Settings;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+impl LabApp {
+    /// Carries out `command`.
+    pub(super) fn apply(&mut self, command: Command, ctx: &egui::Context) {
+        ctx.request_repaint();
+        match command {
+            Command::SetSettings(_)
+            | Command::ApplyPreset(_)
+            | Command::ShowView(_)
+            | Command::StepView(_)
+            | Command::ResetView => {
+                let scene = self.scene_view();
+                if let Some(after) = command.settings_after(&self.state.settings, scene) {
+                    self.change_settings(&command, after);
+                }
+            }
+            Command::SetSplit(split) => self.state.split = split,
+            Command::SetPanels(panels) => self.state.panels = panels,
+            Command::Undo => {
+                self.undo.undo(&mut self.state.settings);
+            }
+            Command::Redo => {
+                self.undo.redo(&mut self.state.settings);
+            }
+            Command::OpenScene(path) => {
+                let path = chosen(path, &self.state.paths.scene_file);
+                if path.as_os_str().is_empty() {
+                    self.say("type or browse to a .gltf/.glb file first", true);
+                } else {
+                    self.state.paths.scene_file = path.display().to_string();
+                    self.open_scene(path, ctx);
+                }
+            }
+            Command::BuiltInScene => self.use_scene(None, crate::scene::default_scene()),
+            Command::LoadSettings(path) => {
+                let path = chosen(path, &self.state.paths.settings_file);
+                self.load_settings(&path, ctx);
+            }
+            Command::SaveSettings(path) => {
+                let path = chosen(path, &self.state.paths.settings_file);
+                match self.state.settings.save(&path) {
+                    Ok(()) => self.say(format!("settings saved to {}", path.display()), false),
+                    Err(e) => self.say(e.to_string(), true),
+                }
+            }
+            Command::Screenshot(path) => {
+                let path = chosen(path, &self.state.paths.screenshot_file);
+                self.jobs.request_screenshot(path, ctx);
+            }
+            Command::ExportExr(path) => {
+                let path = chosen(path, &self.state.paths.exr_file);
+                match self.export_exr(&path) {
+                    Ok(()) => self.say(format!("linear values written to {}", path.display()), false),
+                    Err(e) => self.say(crate::cli::one_line(&e), true),
+                }
+            }
+            Command::StartReference => {
+                if !self.reference.is_running() {
+                    self.start_reference(ctx);
+                }
+            }
+            Command::Cancel => {
+                if self.reference.is_running() {
+                    self.reference.cancel();
+                } else {
+                    self.help_open = false;
+                }
+            }
+            Command::ToggleSplit => self.state.split.enabled = !self.state.split.enabled,
+            Command::ToggleHelp => self.help_open = !self.help_open,
+            Command::TogglePanels => {
+                let show = !(self.state.panels.settings || self.state.panels.analysis);
+                self.state.panels.settings = show;
+                self.state.panels.analysis = show;
+            }
+            Command::ResetEverything => {
+                self.undo.checkpoint(&self.state.settings);
+                let paths = self.state.paths.clone();
+                self.state = State {
+                    paths,
+                    ..State::default()
+                };
+                ctx.memory_mut(|m| *m = Default::default());
+                self.use_scene(None, crate::scene::default_scene());
+                self.undo.checkpoint(&self.state.settings);
+                self.say("everything reset (Ctrl+Z brings the settings back)", false);
+            }
+        }
+    }
+
+    /// A command that only changes the settings. A continuous edit is left
+    /// to the undo stack's quiet-time rule (one drag, one step); any other
+    /// is one undo step of its own.
+    fn change_settings(&mut self, command: &Command, after: Settings) {
+        let discrete = !matches!(command, Command::SetSettings(_));
+        if discrete {
+            self.undo.checkpoint(&self.state.settings);
+        }
+        self.state.settings = after;
+        if discrete {
+            self.undo.checkpoint(&self.state.settings);
+        }
+        if let Command::ApplyPreset(preset) = command {
+            self.say(format!("preset: {} (Ctrl+Z to undo)", preset.title()), false);
+        }
+    }
+
+    fn load_settings(&mut self, path: &Path, ctx: &egui::Context) {
+        match Settings::load(path) {
+            Ok(loaded) => {
+                let scene_changes = loaded.scene != self.state.settings.scene;
+                let scene = loaded.scene.clone();
+                self.undo.checkpoint(&self.state.settings);
+                self.state.settings = loaded;
+                self.undo.checkpoint(&self.state.settings);
+                self.say(
+                    format!("settings loaded from {} (Ctrl+Z to undo)", path.display()),
+                    false,
+                );
+                if scene_changes {
+                    match scene {
+                        Some(p) => self.open_scene(p, ctx),
+                        None => self.use_scene(None, crate::scene::default_scene()),
+                    }
+                }
+            }
+            Err(e) => self.say(e.to_string(), true),
+        }
+    }
+
+    /// Shows `scene` (from `path`; None: built-in) from now on.
+    pub(super) fn use_scene(&mut self, path: Option<PathBuf>, scene: Scene) {
+        let name = path.as_deref().map_or_else(|| "built-in".into(), display_name);
+        let mut text = format!("scene: {name}, {} triangles", scene.triangle_count());
+        if !scene.warnings.is_empty() {
+            text += &format!(
+                " ({} warnings: {})",
+                scene.warnings.len(),
+                scene.warnings.join("; ")
+            );
+        }
+        self.undo.checkpoint(&self.state.settings);
+        adopt_scene(&mut self.state.settings, path.as_deref(), &scene);
+        self.undo.checkpoint(&self.state.settings);
+        if let Some(gpu) = &mut self.gpu {
+            gpu.set_scene(&scene);
+        }
+        self.scene = Arc::new(scene);
+        self.tracer = None;
+        self.scene_name = name;
+        self.reference.clear();
+        self.reference_generation += 1;
+        self.probe = Default::default();
+        self.jobs.pending_probe = None;
+        self.say(text, false);
+    }
+
+    /// Loads a scene on a thread; the current one stays until it succeeds.
+    fn open_scene(&mut self, path: PathBuf, ctx: &egui::Context) {
+        match self.jobs.load_scene(path.clone(), ctx) {
+            Ok(()) => self.say(format!("loading {}…", path.display()), false),
+            Err(e) => self.say(format!("cannot start loading: {e}"), true),
+        }
+    }
+
+    fn start_reference(&mut self, ctx: &egui::Context) {
+        if self.viewport_size.0 == 0 {
+            return;
+        }
+        let settings = Viewport::render_settings(
+            &self.state.settings,
+            &self.state.split,
+            Half::A,
+            self.viewport_size,
+        );
+        self.reference
+            .start(Arc::clone(&self.scene), &settings, self.viewport_size, ctx);
+    }
+
+    fn export_exr(&self, path: &Path) -> anyhow::Result<()> {
+        crate::image_io::ImageFormat::of_path(path)?;
+        let half = self
+            .gpu
+            .as_ref()
+            .and_then(|g| g.half(Half::A))
+            .filter(|h| h.report.size != (0, 0))
+            .ok_or_else(|| anyhow::anyhow!("no image to export yet"))?;
+        let renderer = half.renderer();
+        let (w, h) = half.report.size;
+        let texels = renderer.read_quantity();
+        let flat: Vec<f32> = texels.iter().flatten().copied().collect();
+        let image = image::Rgba32FImage::from_raw(w, h, flat)
+            .ok_or_else(|| anyhow::anyhow!("the image changed size while reading it; try again"))?;
+        crate::image_io::write_exr(path, &image)
+    }
+}

@@ -1,0 +1,264 @@
+//! The layout around the viewport: the top bar, the status bar, the settings
+//! panel on the left and the analysis panel on the right. Panels edit copies
+//! and emit commands; nothing here changes the app's state itself.
+
+use super::super::View;
+use super::super::command::Command;
+use super::super::energy::{Curve, EnergyKey};
+use super::super::light::LightPanel;
+use super::super::material::MaterialPanel;
+use super::super::shadow::ShadowPanel;
+use super::super::view::ViewPanel;
+use super::super::viewport::Viewport;
+use super::{LabApp, section};
+use crate::presets::{ComparisonAxis, Half, Preset};
+use egui::RichText;
+
+impl LabApp {
+    pub(super) fn top_bar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            ui.heading("lumlab");
+            ui.separator();
+            let can_undo = self.undo.can_undo(&self.state.settings);
+            if ui
+                .add_enabled(can_undo, egui::Button::new("Undo"))
+                .on_hover_text("Undo the last settings change (Ctrl+Z)")
+                .clicked()
+            {
+                self.emit(Command::Undo);
+            }
+            if ui
+                .add_enabled(self.undo.can_redo(), egui::Button::new("Redo"))
+                .on_hover_text("Redo (Ctrl+Shift+Z or Ctrl+Y)")
+                .clicked()
+            {
+                self.emit(Command::Redo);
+            }
+            if ui
+                .button("Reset view")
+                .on_hover_text("Camera back to the scene's own view (R)")
+                .clicked()
+            {
+                self.emit(Command::ResetView);
+            }
+            if ui
+                .selectable_label(self.state.split.enabled, "Split A | B")
+                .on_hover_text("Compare two settings side by side (S)")
+                .clicked()
+            {
+                self.emit(Command::ToggleSplit);
+            }
+            ui.separator();
+            let mut panels = self.state.panels;
+            ui.toggle_value(&mut panels.settings, "Settings")
+                .on_hover_text("Show the settings panel (F9 hides both panels)");
+            ui.toggle_value(&mut panels.analysis, "Analysis")
+                .on_hover_text("Show the probe, energy, reference and timings panel");
+            if panels != self.state.panels {
+                self.emit(Command::SetPanels(panels));
+            }
+            if ui
+                .selectable_label(self.help_open, "Help (F1)")
+                .on_hover_text("Keyboard and mouse shortcuts")
+                .clicked()
+            {
+                self.emit(Command::ToggleHelp);
+            }
+        });
+    }
+
+    pub(super) fn status_bar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            match &self.status {
+                Some(s) if s.error => {
+                    ui.label(RichText::new(&s.text).color(ui.visuals().error_fg_color));
+                }
+                Some(s) => {
+                    ui.label(&s.text);
+                }
+                None => {
+                    ui.label("Drag: orbit · Shift+drag: pan · wheel: zoom · click: probe · F1: help");
+                }
+            }
+            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                if let Some(gpu) = &self.gpu {
+                    let caps = gpu.capabilities();
+                    let name = caps.adapter.split(" (").next().unwrap_or(&caps.adapter);
+                    ui.label(format!(
+                        "{}×{} px · {name} ({})",
+                        self.viewport_size.0,
+                        self.viewport_size.1,
+                        gpu.backend()
+                    ))
+                    .on_hover_text(caps.adapter.as_str());
+                }
+            });
+        });
+    }
+
+    /// The settings panel (left) and the analysis panel (right), as the
+    /// panel state shows them.
+    pub(super) fn side_panels(&mut self, ui: &mut egui::Ui) {
+        if self.state.panels.settings {
+            egui::Panel::left("settings panel")
+                .resizable(true)
+                .default_size(330.0)
+                .size_range(260.0..=560.0)
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| self.settings_panel(ui));
+                });
+        }
+        if self.state.panels.analysis {
+            egui::Panel::right("analysis panel")
+                .resizable(true)
+                .default_size(420.0)
+                .size_range(280.0..=640.0)
+                .show(ui, |ui| {
+                    // Scrolled both ways: wide rows (the probe's vectors) never
+                    // widen the panel, which would shrink the image under the probe.
+                    egui::ScrollArea::both().show(ui, |ui| self.analysis_panel(ui));
+                });
+        }
+    }
+
+    fn settings_panel(&mut self, ui: &mut egui::Ui) {
+        section(ui, "Experiments", true, |ui| {
+            ui.horizontal_wrapped(|ui| {
+                for &preset in Preset::ALL {
+                    if ui
+                        .button(preset.title())
+                        .on_hover_text(preset.description())
+                        .clicked()
+                    {
+                        self.emit(Command::ApplyPreset(preset));
+                    }
+                }
+            });
+        });
+        let mut settings = self.state.settings.clone();
+        let mut split = self.state.split;
+        let (max_side, note) = match &self.gpu {
+            Some(gpu) => (
+                gpu.capabilities().max_texture_side,
+                gpu.half(Half::A)
+                    .and_then(|h| h.report.resolution_note.clone().map(|n| (h.report.resolution, n))),
+            ),
+            None => (crate::settings::ShadowSettings::MAX_RESOLUTION, None),
+        };
+        section(ui, "Light", true, |ui| {
+            LightPanel {
+                light: &mut settings.light,
+                max_radius_m: self.scene.scale.max_light_radius_m(),
+            }
+            .ui(ui)
+        });
+        section(ui, "Material", true, |ui| {
+            MaterialPanel {
+                material: &mut settings.material,
+            }
+            .ui(ui)
+        });
+        section(ui, "Shadow", true, |ui| {
+            ShadowPanel {
+                shadow: &mut settings.shadow,
+                light_radius_m: &mut settings.light.radius_m,
+                max_light_radius_m: self.scene.scale.max_light_radius_m(),
+                max_texture_side: max_side,
+                resolution_note: note,
+            }
+            .ui(ui)
+        });
+        section(ui, "View", true, |ui| {
+            ViewPanel {
+                view: &mut settings.view,
+                split: &mut split,
+                max_texture_side: max_side,
+            }
+            .ui(ui)
+        });
+        if settings != self.state.settings {
+            self.emit(Command::SetSettings(Box::new(settings)));
+        }
+        if split != self.state.split {
+            self.emit(Command::SetSplit(split));
+        }
+        section(ui, "Files", false, |ui| {
+            if let Some(command) = self.files.ui(ui, &mut self.state.paths, &self.scene_name) {
+                self.queue.push(command);
+            }
+        });
+    }
+
+    fn analysis_panel(&mut self, ui: &mut egui::Ui) {
+        section(ui, "Pixel probe", true, |ui| self.probe.ui(ui));
+        let curves = self.energy_curves();
+        let incidence = self.incidence_for_lobe();
+        section(ui, "Energy: albedo a(θ)", true, |ui| {
+            self.energy
+                .ui(ui, &curves, incidence.as_ref().map(|(t, s)| (*t, s.as_str())))
+        });
+        let settings_a = Viewport::render_settings(
+            &self.state.settings,
+            &self.state.split,
+            Half::A,
+            self.viewport_size,
+        );
+        section(ui, "Reference and error", true, |ui| {
+            if let Some(command) = self.reference.ui(ui, &settings_a, self.viewport_size) {
+                self.queue.push(command);
+            }
+        });
+        section(ui, "Timings", false, |ui| {
+            super::super::timings::ui(ui, &self.clock, self.gpu.as_ref())
+        });
+    }
+
+    /// The BRDF of the material settings; both halves' when the split view
+    /// compares normalizations.
+    fn energy_curves(&self) -> Vec<Curve> {
+        let split = &self.state.split;
+        let halves: &[(Half, &str)] =
+            if split.enabled && split.comparison.axis == ComparisonAxis::Normalization {
+                &[(Half::A, "A: "), (Half::B, "B: ")]
+            } else {
+                &[(Half::A, "")]
+            };
+        halves
+            .iter()
+            .map(|&(half, name)| {
+                let m = Viewport::settings_for(&self.state.settings, split, half).material;
+                Curve {
+                    name: name.into(),
+                    key: EnergyKey {
+                        k: m.k as f64,
+                        m: m.m as f64,
+                        norm: m.norm,
+                    },
+                }
+            })
+            .collect()
+    }
+
+    /// θ_i for the lobe plot: at the probed point, else from the light to
+    /// the scene's centre on its floor (normal +Y).
+    fn incidence_for_lobe(&self) -> Option<(f64, String)> {
+        if let Some(t) = &self.probe.terms {
+            return Some((
+                t.cos_theta.clamp(-1.0, 1.0).acos().to_degrees(),
+                "at the probed point".into(),
+            ));
+        }
+        let bounds = self.scene.bounds();
+        if bounds.is_empty() {
+            return None;
+        }
+        let mut centre = bounds.center().as_dvec3();
+        centre.y = bounds.min.y as f64;
+        let to_light = self.state.settings.light.position.as_dvec3() - centre;
+        let cos = to_light.normalize_or_zero().y;
+        Some((
+            cos.clamp(-1.0, 1.0).acos().to_degrees(),
+            "light to scene centre, n = +Y".into(),
+        ))
+    }
+}

@@ -1,0 +1,60 @@
+//! The lab in an egui_kittest harness, on our own wgpu device: shared by the
+//! app's UI tests.
+#![allow(dead_code)]
+
+use egui_kittest::{Harness, wgpu::WgpuTestRenderer};
+use lumlab::app::{LabApp, LaunchOptions, Preloaded};
+use std::sync::Arc;
+use std::time::Duration;
+
+pub const SIZE: egui::Vec2 = egui::vec2(1280.0, 800.0);
+
+/// The lab on our own device (the adapter's limits and features), with a
+/// kittest renderer sharing it so native textures can be drawn.
+pub fn harness() -> Harness<'static, LabApp> {
+    let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
+    setup.instance_descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+    setup.device_descriptor = Arc::new(lumlab::gpu::context::device_descriptor);
+    let render_state = egui_kittest::wgpu::create_render_state(
+        egui_wgpu::WgpuSetup::CreateNew(setup),
+        egui_wgpu::RendererOptions::PREDICTABLE,
+    );
+    let app = LabApp::new(
+        Some(render_state.clone()),
+        None,
+        &LaunchOptions::default(),
+        Preloaded {
+            settings: None,
+            scene: None,
+        },
+        Arc::default(),
+    )
+    .expect("the app starts on a wgpu device");
+    let mut harness = Harness::builder()
+        .with_size(SIZE)
+        .renderer(WgpuTestRenderer::from_render_state(render_state))
+        .with_render_cursor(false)
+        .build_ui_state(
+            |ui, app: &mut LabApp| {
+                // The whole window, as eframe gives it (kittest adds a margin).
+                let whole = ui.ctx().content_rect();
+                let mut root = ui.new_child(egui::UiBuilder::new().max_rect(whole));
+                app.show(&mut root);
+            },
+            app,
+        );
+    harness.run();
+    harness
+}
+
+/// Steps until `done` holds (async readbacks), failing after a few seconds.
+pub fn step_until(harness: &mut Harness<'_, LabApp>, what: &str, done: impl Fn(&LabApp) -> bool) {
+    for _ in 0..300 {
+        harness.step();
+        if done(harness.state()) {
+            return;
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    panic!("timed out waiting for {what}");
+}
