@@ -4,15 +4,17 @@
 use super::View;
 use super::widgets::{derived, log_slider_with_zero, quantity};
 use crate::physics::radiometry;
+use crate::scene::SceneScale;
 use crate::settings::LightSettings;
 
-/// The largest power the slider offers (W); the settings file allows more.
-pub const MAX_POWER_W: f64 = 1e6;
+/// The largest power the slider offers on the built-in scene (W); the
+/// settings file allows more.
+const MAX_POWER_W: f32 = 1e6;
 
 pub struct LightPanel<'a> {
     pub light: &'a mut LightSettings,
-    /// The largest radius the slider offers (m): the scene's scale decides.
-    pub max_radius_m: f32,
+    /// The scene's scale: the sliders' ranges and drag speeds follow it.
+    pub scale: SceneScale,
 }
 
 impl View for LightPanel<'_> {
@@ -29,11 +31,19 @@ impl View for LightPanel<'_> {
                 "Centre of the light (m). Drag the yellow gizmo in the image: \
                  parallel to the image, or Ctrl+drag for the height.",
             );
-            for (axis, value) in ["x", "y", "z"].into_iter().zip(position.as_mut()) {
+            // The built-in scene's ±10 km, moved with the scene.
+            let reach = self.scale.length(1e4);
+            let anchor = self.scale.anchor;
+            for ((axis, value), centre) in ["x", "y", "z"]
+                .into_iter()
+                .zip(position.as_mut())
+                .zip(anchor.to_array())
+            {
+                let range = (centre - reach)..=(centre + reach);
                 ui.add(
                     egui::DragValue::new(value)
-                        .speed(0.02)
-                        .range(-1e4..=1e4)
+                        .speed(self.scale.length(0.02))
+                        .range(range.clone())
                         .prefix(format!("{axis} "))
                         .suffix(" m"),
                 )
@@ -48,8 +58,8 @@ impl View for LightPanel<'_> {
             ui,
             label.id,
             power_w,
-            0.01,
-            MAX_POWER_W,
+            self.scale.power(0.01) as f64,
+            self.scale.power(MAX_POWER_W) as f64,
             " W",
             "Φ (W), scaled by the colour. I = Φ / 4π; E = I cos θ / r²",
         );
@@ -65,7 +75,7 @@ impl View for LightPanel<'_> {
              (soft shadows with the PCSS filter).",
         );
         ui.add(
-            egui::Slider::new(radius_m, 0.0..=self.max_radius_m)
+            egui::Slider::new(radius_m, 0.0..=self.scale.max_light_radius_m())
                 .suffix(" m")
                 .custom_formatter(|x, _| super::widgets::number(x)),
         )

@@ -2,14 +2,15 @@
 
 use super::View;
 use super::widgets::{number, warning};
+use crate::scene::SceneScale;
 use crate::settings::{BiasMode, BiasSettings, Filter, ShadowSettings};
 
 pub struct ShadowPanel<'a> {
     pub shadow: &'a mut ShadowSettings,
     /// The light's radius R (m): PCSS sizes its penumbra from it.
     pub light_radius_m: &'a mut f32,
-    /// The largest radius its slider offers (m).
-    pub max_light_radius_m: f32,
+    /// The scene's scale: the radius and bias sliders' ranges follow it.
+    pub scale: SceneScale,
     /// The adapter's largest texture side (texels).
     pub max_texture_side: u32,
     /// Why the last frame used a smaller map than asked, if it did.
@@ -103,7 +104,7 @@ impl View for ShadowPanel<'_> {
                 }
                 Filter::Pcss => {
                     ui.add(
-                        egui::Slider::new(self.light_radius_m, 0.0..=self.max_light_radius_m)
+                        egui::Slider::new(self.light_radius_m, 0.0..=self.scale.max_light_radius_m())
                             .text("light R")
                             .suffix(" m")
                             .custom_formatter(|x, _| number(x)),
@@ -138,7 +139,7 @@ impl View for ShadowPanel<'_> {
                         );
                 }
             }
-            bias_ui(ui, bias);
+            bias_ui(ui, bias, self.scale);
         });
     }
 }
@@ -184,7 +185,7 @@ fn resolution_ui(
     }
 }
 
-fn bias_ui(ui: &mut egui::Ui, bias: &mut BiasSettings) {
+fn bias_ui(ui: &mut egui::Ui, bias: &mut BiasSettings, scale: SceneScale) {
     let BiasSettings {
         mode,
         depth_m,
@@ -207,9 +208,9 @@ fn bias_ui(ui: &mut egui::Ui, bias: &mut BiasSettings) {
     });
     let depth = |ui: &mut egui::Ui, depth_m: &mut f32| {
         ui.add(
-            egui::Slider::new(depth_m, 0.0..=2.0)
+            egui::Slider::new(depth_m, 0.0..=scale.length(2.0))
                 .logarithmic(true)
-                .smallest_positive(1e-5)
+                .smallest_positive(scale.length(1e-5) as f64)
                 .text("D")
                 .suffix(" m")
                 .custom_formatter(|x, _| number(x)),

@@ -148,7 +148,7 @@ impl LabApp {
         section(ui, "Light", true, |ui| {
             LightPanel {
                 light: &mut settings.light,
-                max_radius_m: self.scene.scale.max_light_radius_m(),
+                scale: self.scene.scale,
             }
             .ui(ui)
         });
@@ -162,7 +162,7 @@ impl LabApp {
             ShadowPanel {
                 shadow: &mut settings.shadow,
                 light_radius_m: &mut settings.light.radius_m,
-                max_light_radius_m: self.scene.scale.max_light_radius_m(),
+                scale: self.scene.scale,
                 max_texture_side: max_side,
                 resolution_note: note,
             }
