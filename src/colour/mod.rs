@@ -7,12 +7,12 @@
 //! lecture's shortcut — one RGB triplet for the light, one for the material,
 //! multiplied — lands from that spectral result (ΔE2000).
 //!
-//! - [`spectrum`]: the sampled spectrum, products, Planck's law;
-//! - [`data`]: the published tables (CMFs, CIE illuminants, ColorChecker);
-//! - [`tristimulus`]: spectrum → XYZ, XYZ ↔ linear sRGB, XYZ → CIE Lab;
-//! - [`delta_e`]: CIEDE2000;
-//! - [`uplift`]: a smooth reflectance for an RGB colour (Jakob & Hanika 2019);
-//! - [`chart`]: the ColorChecker under an illuminant, spectral against RGB.
+//! - [`spectrum`] — the sampled spectrum, products, Planck's law;
+//! - [`data`] — the published tables (CMFs, CIE illuminants, ColorChecker);
+//! - [`tristimulus`] — spectrum → XYZ, XYZ ↔ linear sRGB, XYZ → CIE Lab;
+//! - [`delta_e`] — CIEDE2000;
+//! - [`uplift`] — a smooth reflectance for an RGB colour (Jakob & Hanika 2019);
+//! - [`chart`] — the ColorChecker under an illuminant, spectral against RGB.
 //!
 //! Pure functions: no GPU, no UI, no files (the tables are compiled in).
 
