@@ -74,9 +74,9 @@ def main():
         "cie1931_2deg.csv",
         [
             "CIE 1931 2 degree standard observer colour-matching functions x_bar, y_bar, z_bar.",
-            "Source: CIE 015:2018 Colorimetry, 4th ed., doi:10.25039/TR.015.2018, and CIE 018:2019",
-            "(CIE 1931 colour-matching functions, 2 degree observer, doi:10.25039/CIE.DS.xvudnb9b),",
-            "1 nm table sampled every 5 nm.",
+            "Source: CIE 015:2018 Colorimetry, 4th ed., doi:10.25039/TR.015.2018 (the CIE 1931",
+            "standard observer's 1 nm table, as distributed by CVRL, cvrl.ioo.ucl.ac.uk, 'Older CIE",
+            "standards'), sampled every 5 nm.",
         ],
         ["x_bar", "y_bar", "z_bar"],
         [cmfs.signals[c] for c in ("x_bar", "y_bar", "z_bar")],
@@ -86,7 +86,7 @@ def main():
         [
             "Relative spectral power of CIE illuminants D65, A, FL2, FL11 and LED-B3 (S(560 nm) = 100 for D65 and A).",
             "Source: CIE 015:2018 Colorimetry, 4th ed., doi:10.25039/TR.015.2018, its 5 nm tables",
-            "(D65 and A also in ISO 11664-2:2007 / CIE S 014-2/E:2006).",
+            "(D65, A, FL2 and FL11 as in the CIE 15:2004 tables; LED-B3 is new in CIE 015:2018).",
         ],
         ILLUMINANTS,
         [colour.SDS_ILLUMINANTS[n] for n in ILLUMINANTS],

@@ -97,7 +97,7 @@ mod tests {
 
     #[test]
     fn perfect_white_under_d65_is_the_cie_white_point() {
-        // CIE 015:2018 Table 3: D65, 2° observer: X = 95.047, Y = 100, Z = 108.883.
+        // CIE 015:2018, white point of D65, 2° observer: X = 95.047, Y = 100, Z = 108.883.
         let w = white_xyz(&Illuminant::D65.spectrum());
         assert!(
             (w - DVec3::new(95.047, 100.0, 108.883)).abs().max_element() < 0.1,
@@ -107,7 +107,7 @@ mod tests {
 
     #[test]
     fn perfect_white_under_a_is_the_cie_white_point() {
-        // CIE 015:2018 Table 3: A, 2° observer: X = 109.850, Y = 100, Z = 35.585.
+        // CIE 015:2018, white point of A, 2° observer: X = 109.850, Y = 100, Z = 35.585.
         let w = white_xyz(&Illuminant::A.spectrum());
         assert!(
             (w - DVec3::new(109.850, 100.0, 35.585)).abs().max_element() < 0.1,
