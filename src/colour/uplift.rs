@@ -160,4 +160,27 @@ mod tests {
             assert!(r.spectrum().0.iter().all(|v| (0.0..=1.0).contains(v)));
         }
     }
+
+    #[test]
+    fn uplifted_chart_under_a_beats_the_rgb_product() {
+        // The point of an uplift: from a patch's RGB alone, a smooth spectrum
+        // predicts its colour under tungsten light better than RGB × RGB.
+        use crate::colour::chart::{compare_chart, mean_and_max, patch_linear_srgb};
+        use crate::colour::{patch_reflectance, white_xyz};
+        let a = Illuminant::A.spectrum();
+        let white = white_xyz(&a);
+        let uplift_mean = (0..crate::colour::PATCH_COUNT)
+            .map(|p| {
+                let uplifted = reflectance_xyz(&a, &uplift_linear_srgb(patch_linear_srgb(p)).spectrum());
+                let measured = reflectance_xyz(&a, &patch_reflectance(p));
+                delta_e2000(lab(uplifted, white), lab(measured, white))
+            })
+            .sum::<f64>()
+            / crate::colour::PATCH_COUNT as f64;
+        let (rgb_mean, _) = mean_and_max(&compare_chart(Illuminant::A));
+        assert!(
+            uplift_mean < 0.5 * rgb_mean,
+            "uplift {uplift_mean}, RGB product {rgb_mean}"
+        );
+    }
 }
