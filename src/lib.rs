@@ -11,6 +11,7 @@ mod named;
 
 pub mod app;
 pub mod cli;
+pub mod colour;
 pub mod gpu;
 pub mod image_io;
 pub mod output;

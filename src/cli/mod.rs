@@ -5,6 +5,7 @@
 //! one line on stderr; output files are written atomically.
 
 mod args;
+mod colour;
 mod energy;
 mod info;
 mod reference;
@@ -62,6 +63,8 @@ impl Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// Spectral colour of the ColorChecker under an illuminant, against the lecture's RGB product (ΔE2000).
+    Colour(colour::ColourArgs),
     /// Directional albedo a(θ) of the BRDF: the energy-conservation table.
     Energy(energy::EnergyArgs),
     /// Facts of a scene: counts, bounds, objects, cameras, repairs.
@@ -83,6 +86,7 @@ pub fn main() -> ExitCode {
         Err(e) => return usage_error(e),
     };
     let result = cli.launch_options().and_then(|options| match &cli.command {
+        Some(Command::Colour(args)) => colour::run(args),
         Some(Command::Energy(args)) => energy::run(args),
         Some(Command::Info(args)) => info::run(args),
         Some(Command::Render(args)) => render::run(args),
