@@ -40,6 +40,7 @@ pub struct Settings {
     pub material: MaterialSettings,
     pub shadow: ShadowSettings,
     pub view: ViewSettings,
+    pub ground: GroundSettings,
 }
 
 /// Size of the rendered image (pixels) for the command line and the report.
@@ -319,7 +320,47 @@ impl Default for ViewSettings {
     }
 }
 
+named_enum! {
+    /// Whether the lab adds a shadow-receiving ground under a loaded model.
+    pub enum GroundMode {
+        /// Under a model that has none (the built-in scene has its own).
+        Auto = "auto",
+        /// Always.
+        On = "on",
+        /// Never: the file's own geometry only.
+        Off = "off",
+    }
+}
+
+/// The ground the lab adds under a model (see `scene::framing`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct GroundSettings {
+    pub mode: GroundMode,
+    /// Its diffuse/specular mix k.
+    pub k: f32,
+    /// Its Blinn-Phong exponent m.
+    pub m: f32,
+}
+
+impl Default for GroundSettings {
+    /// Neutral and mostly diffuse, as the built-in scene's ground.
+    fn default() -> Self {
+        Self {
+            mode: GroundMode::Auto,
+            k: 0.9,
+            m: 16.0,
+        }
+    }
+}
+
 impl Settings {
+    /// Positions (m) are allowed within this of the origin: a far "sun"
+    /// at 1.5·10¹¹ m included.
+    pub const MAX_COORDINATE_M: f32 = 1e12;
+    /// The largest light power (W): the Sun's 3.8·10²⁶ W included.
+    pub const MAX_POWER_W: f32 = 1e32;
+
     /// The default settings moved to a scene of `scale`: the light, the
     /// camera and the bias where the built-in scene has them, scaled. The
     /// built-in scale gives [`Settings::default`] exactly.
@@ -371,8 +412,9 @@ impl Settings {
     /// Checks every value against its allowed range.
     pub fn validate(&self) -> Result<(), SettingsError> {
         let c = &self.camera;
-        check_vec("camera.eye", c.eye, -1e7, 1e7)?;
-        check_vec("camera.target", c.target, -1e7, 1e7)?;
+        let far = Self::MAX_COORDINATE_M;
+        check_vec("camera.eye", c.eye, -far, far)?;
+        check_vec("camera.target", c.target, -far, far)?;
         if (c.eye - c.target).length() < 1e-6 {
             return Err(SettingsError::OutOfRange {
                 field: "camera.target",
@@ -384,9 +426,9 @@ impl Settings {
         check_int("image.width", self.image.width, 1, 16384)?;
         check_int("image.height", self.image.height, 1, 16384)?;
         let l = &self.light;
-        check_vec("light.position", l.position, -1e7, 1e7)?;
-        check("light.power_w", l.power_w, 0.0, 1e12)?;
-        check("light.radius_m", l.radius_m, 0.0, 1e6)?;
+        check_vec("light.position", l.position, -far, far)?;
+        check("light.power_w", l.power_w, 0.0, Self::MAX_POWER_W)?;
+        check("light.radius_m", l.radius_m, 0.0, far)?;
         check_vec("light.color", l.color, 0.0, 1e6)?;
         let m = &self.material;
         check("material.k", m.k, 0.0, 1.0)?;
@@ -413,10 +455,12 @@ impl Settings {
         check_int("shadow.pcss_blocker_samples", s.pcss_blocker_samples, 4, 64)?;
         check_int("shadow.vsm_blur_texels", s.vsm_blur_texels, 0, 16)?;
         check("shadow.vsm_bleed_reduction", s.vsm_bleed_reduction, 0.0, 0.99)?;
-        check("shadow.bias.depth_m", s.bias.depth_m, 0.0, 1e3)?;
+        check("shadow.bias.depth_m", s.bias.depth_m, 0.0, far)?;
         check("shadow.bias.slope", s.bias.slope, 0.0, 1e3)?;
         check("shadow.bias.normal_texels", s.bias.normal_texels, 0.0, 1e3)?;
         check("view.exposure_ev", self.view.exposure_ev, -30.0, 30.0)?;
+        check("ground.k", self.ground.k, 0.0, 1.0)?;
+        check("ground.m", self.ground.m, 0.0, 1e6)?;
         Ok(())
     }
 }

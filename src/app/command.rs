@@ -6,8 +6,10 @@
 
 use super::state::{PanelState, SplitState};
 use crate::presets::Preset;
-use crate::scene::{Camera, SceneScale};
+use crate::scene::framing::frame_all;
+use crate::scene::{Aabb, Camera, SceneScale};
 use crate::settings::{DebugView, Settings};
+use glam::Vec3;
 use std::path::PathBuf;
 
 /// One thing the user (or a script) asks of the lab.
@@ -32,6 +34,15 @@ pub enum Command {
     StepView(i8),
     /// The camera back to the scene's own view: one undo step.
     ResetView,
+    /// The camera moved along its direction until the model fills the view.
+    FrameAll,
+    /// The camera of the scene file with this index (`--camera gltf:N`).
+    UseSceneCamera(usize),
+    /// The orbit turns around this point from now on (a double-click).
+    SetPivot(Vec3),
+    /// The exposure set from the image: a high percentile of the lit
+    /// pixels' luminance is shown near white.
+    AutoExposure,
     Undo,
     Redo,
     /// Loads a glTF/GLB on a thread; the current scene stays until it succeeds.
@@ -57,19 +68,23 @@ pub enum Command {
 }
 
 /// What a command needs to know of the scene shown.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SceneView {
     /// The scene's own view, where Reset view goes.
     pub home: Camera,
     /// How the lab's lengths map onto the scene.
     pub scale: SceneScale,
+    /// The model's bounds (without an added ground), for Frame all.
+    pub bounds: Aabb,
+    /// The cameras the scene file defines.
+    pub cameras: Vec<Camera>,
 }
 
 impl Command {
     /// The settings a command leaves, or None when it does more than change
     /// the settings. Pure, so that the tour and the tests can predict a
     /// command's effect.
-    pub fn settings_after(&self, settings: &Settings, scene: SceneView) -> Option<Settings> {
+    pub fn settings_after(&self, settings: &Settings, scene: &SceneView) -> Option<Settings> {
         let mut s = settings.clone();
         match self {
             Self::SetSettings(new) => return Some((**new).clone()),
@@ -89,6 +104,14 @@ impl Command {
                 s.view.mode = all[(i + *step as i64).rem_euclid(n) as usize];
             }
             Self::ResetView => s.camera = scene.home,
+            Self::FrameAll => s.camera = frame_all(&s.camera, &scene.bounds),
+            Self::UseSceneCamera(i) => s.camera = *scene.cameras.get(*i)?,
+            Self::SetPivot(p) => {
+                // Keep the eye; a pivot on the eye would leave no direction.
+                if p.distance(s.camera.eye) > 1e-6 * (1.0 + p.length()) {
+                    s.camera.target = *p;
+                }
+            }
             _ => return None,
         }
         Some(s)
@@ -103,6 +126,8 @@ mod tests {
         SceneView {
             home: Camera::default(),
             scale: SceneScale::BUILT_IN,
+            bounds: crate::scene::default_scene().model_bounds(),
+            cameras: vec![Camera::default()],
         }
     }
 
@@ -110,9 +135,9 @@ mod tests {
     fn stepping_views_wraps_both_ways() {
         let s = Settings::default();
         let last = *DebugView::ALL.last().unwrap();
-        let back = Command::StepView(-1).settings_after(&s, built_in()).unwrap();
+        let back = Command::StepView(-1).settings_after(&s, &built_in()).unwrap();
         assert_eq!(back.view.mode, last);
-        let forth = Command::StepView(1).settings_after(&back, built_in()).unwrap();
+        let forth = Command::StepView(1).settings_after(&back, &built_in()).unwrap();
         assert_eq!(forth.view.mode, s.view.mode);
     }
 
@@ -121,7 +146,7 @@ mod tests {
         let mut s = Settings::default();
         s.camera.eye.x += 3.0;
         s.light.power_w = 7.0;
-        let after = Command::ResetView.settings_after(&s, built_in()).unwrap();
+        let after = Command::ResetView.settings_after(&s, &built_in()).unwrap();
         assert_eq!(after.camera, Camera::default());
         assert_eq!(after.light.power_w, 7.0);
     }

@@ -27,7 +27,8 @@ use super::{LaunchOptions, Preloaded, shortcuts};
 use crate::presets::Half;
 use crate::reference::Reference;
 use crate::scene::Scene;
-use crate::settings::Settings;
+use crate::scene::framing::with_ground;
+use crate::settings::{GroundSettings, Settings};
 use jobs::{Jobs, Script};
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
@@ -43,7 +44,11 @@ struct Status {
 pub struct LabApp {
     state: State,
     gpu: Option<GpuViews>,
+    /// The scene drawn: the file's, with the ground the settings ask for.
     scene: Arc<Scene>,
+    /// The scene as loaded, and the ground settings `scene` was made with.
+    file_scene: Arc<Scene>,
+    ground: GroundSettings,
     scene_name: String,
     undo: UndoStack,
     probe: Probe,
@@ -129,6 +134,9 @@ impl LabApp {
         // The same rule as a scene opened later: its own view, unless the
         // settings were saved for it.
         adopt_scene(&mut state.settings, path.as_deref(), &scene);
+        let ground = state.settings.ground;
+        let file_scene = Arc::new(scene);
+        let scene = Arc::new(with_ground((*file_scene).clone(), &ground));
         let gpu = render_state.map(|rs| GpuViews::new(rs, &scene));
         if gpu.is_none() {
             return Err("eframe started without the wgpu renderer".into());
@@ -138,7 +146,9 @@ impl LabApp {
             undo: UndoStack::new(&state.settings),
             state,
             gpu,
-            scene: Arc::new(scene),
+            scene,
+            file_scene,
+            ground,
             scene_name: path.as_deref().map_or_else(|| "built-in".into(), display_name),
             probe: Probe::default(),
             tracer: None,
@@ -272,6 +282,7 @@ impl LabApp {
         egui::Panel::bottom("status bar").show(ui, |ui| self.status_bar(ui));
         self.side_panels(ui);
         self.apply_queued(&ctx);
+        self.sync_ground();
         let response = egui::CentralPanel::no_frame()
             .show(ui, |ui| self.viewport(ui))
             .inner;
@@ -302,22 +313,23 @@ impl LabApp {
     /// What commands need to know of the scene shown.
     fn scene_view(&self) -> SceneView {
         SceneView {
-            home: self.scene.cameras.first().map(|c| c.camera).unwrap_or_default(),
+            home: self.scene.home_camera(),
             scale: self.scene.scale,
+            bounds: self.scene.model_bounds(),
+            cameras: self.scene.cameras.iter().map(|c| c.camera).collect(),
         }
     }
 }
 
-/// Makes `settings` show `scene` (at `path`; None: built-in): its own view,
-/// the first camera of the file, unless the settings were saved for this
-/// very scene (they then carry the view the user left). The one rule for a
-/// scene opened at start-up, from the Files panel, by drag and drop or
-/// with a settings file.
+/// Makes `settings` show `scene` (at `path`; None: built-in): its home
+/// view and its light (`scene::framing::adopt`), unless the settings were
+/// saved for this very scene (they then carry the view and light the user
+/// left). The one rule for a scene opened at start-up, from the Files
+/// panel, by drag and drop or with a settings file; the command line
+/// follows it too.
 fn adopt_scene(settings: &mut Settings, path: Option<&Path>, scene: &Scene) {
-    if settings.scene.as_deref() != path
-        && let Some(first) = scene.cameras.first()
-    {
-        settings.camera = first.camera;
+    if settings.scene.as_deref() != path {
+        crate::scene::framing::adopt(settings, scene);
     }
     settings.scene = path.map(Path::to_path_buf);
 }

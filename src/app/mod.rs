@@ -23,6 +23,7 @@ mod light;
 mod material;
 mod probe;
 mod reference;
+mod scene_panel;
 mod shadow;
 mod shortcuts;
 mod state;

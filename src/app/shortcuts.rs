@@ -60,6 +60,16 @@ pub static SHORTCUTS: &[Shortcut] = &[
         command: Command::ResetView,
     },
     Shortcut {
+        keys: &[key(NONE, Key::F)],
+        does: "frame all: the model fills the view",
+        command: Command::FrameAll,
+    },
+    Shortcut {
+        keys: &[key(NONE, Key::E)],
+        does: "auto exposure from the image",
+        command: Command::AutoExposure,
+    },
+    Shortcut {
         keys: &[key(NONE, Key::S)],
         does: "split view A | B on/off",
         command: Command::ToggleSplit,
@@ -103,6 +113,7 @@ pub const GESTURES: &[(&str, &str)] = &[
     ("Shift + drag / middle drag", "pan"),
     ("Wheel", "zoom"),
     ("Click", "probe the pixel (every term of L = f_r · E · V)"),
+    ("Double-click", "orbit around the point under the cursor"),
     ("Drag the yellow light", "move the light parallel to the image"),
     ("Ctrl + drag the light", "move the light up and down"),
 ];

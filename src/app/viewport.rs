@@ -43,6 +43,8 @@ pub struct ViewportResponse {
     pub rect: Option<egui::Rect>,
     /// A pixel clicked this frame.
     pub clicked: Option<ProbePixel>,
+    /// A pixel double-clicked this frame (the orbit's new pivot).
+    pub double_clicked: Option<ProbePixel>,
     /// Which halves were rendered this frame.
     pub rendered: [bool; 2],
     /// The camera, light or divider is being dragged.
@@ -210,9 +212,7 @@ impl Viewport<'_> {
             }
         }
         let wipe_x = rect.min.x + rect.width() * split.wipe.clamp(0.0, 1.0);
-        if response.clicked()
-            && let Some(pos) = response.interact_pointer_pos()
-        {
+        let pixel_at = |pos: Pos2| {
             let local = (pos - rect.min) * ppp;
             let pixel = (
                 (local.x.max(0.0) as u32).min(size.0 - 1),
@@ -223,7 +223,14 @@ impl Viewport<'_> {
             } else {
                 Half::A
             };
-            out.clicked = Some(ProbePixel { half, pixel, size });
+            ProbePixel { half, pixel, size }
+        };
+        if let Some(pos) = response.interact_pointer_pos() {
+            if response.double_clicked() {
+                out.double_clicked = Some(pixel_at(pos));
+            } else if response.clicked() {
+                out.clicked = Some(pixel_at(pos));
+            }
         }
 
         // Render (only what changed) and show.

@@ -1,7 +1,7 @@
 //! Value parsers and the shared options of the commands that render.
 
 use crate::physics::Normalization;
-use crate::settings::{DebugView, Filter, Settings};
+use crate::settings::{DebugView, Filter, GroundMode, Settings};
 use anyhow::Context;
 use glam::Vec3;
 use std::path::PathBuf;
@@ -104,6 +104,10 @@ fn filter(text: &str) -> Result<Filter, String> {
     text.parse()
 }
 
+fn ground(text: &str) -> Result<GroundMode, String> {
+    text.parse()
+}
+
 fn view(text: &str) -> Result<DebugView, String> {
     text.parse()
 }
@@ -117,7 +121,7 @@ fn exponent(text: &str) -> Result<f32, String> {
 }
 
 fn non_negative(text: &str) -> Result<f32, String> {
-    number_in(text, 0.0, 1e12).map(|v| v as f32)
+    number_in(text, 0.0, Settings::MAX_POWER_W as f64).map(|v| v as f32)
 }
 
 fn exposure(text: &str) -> Result<f32, String> {
@@ -181,19 +185,40 @@ pub struct SceneOptions {
     /// Turn shadows off (V = 1).
     #[arg(long)]
     pub no_shadows: bool,
+    /// A shadow-receiving ground under a loaded model: auto (when it has
+    /// none) | on | off.
+    #[arg(long, value_name = "auto|on|off", value_parser = ground)]
+    pub ground: Option<GroundMode>,
 }
 
 impl SceneOptions {
     /// The settings file (if any) with every given flag applied, validated.
     /// A `gltf:N` camera is returned apart: it needs the loaded scene.
     pub fn settings(&self) -> anyhow::Result<(Settings, Option<usize>)> {
+        let (mut s, _) = self.base()?;
+        let gltf_camera = self.apply_flags(&mut s)?;
+        Ok((s, gltf_camera))
+    }
+
+    /// The settings file (or the defaults) naming the scene to draw, and
+    /// whether they were saved for that very scene (they then carry its
+    /// view and light; otherwise the scene's own are used).
+    pub fn base(&self) -> anyhow::Result<(Settings, bool)> {
         let mut s = match &self.settings {
             Some(path) => Settings::load(path)?,
             None => Settings::default(),
         };
+        let saved =
+            self.settings.is_some() && self.scene.as_ref().is_none_or(|p| s.scene.as_ref() == Some(p));
         if let Some(scene) = &self.scene {
             s.scene = Some(scene.clone());
         }
+        Ok((s, saved))
+    }
+
+    /// Applies every given flag to `s` and validates it; returns the
+    /// `gltf:N` camera asked for, which needs the loaded scene.
+    pub fn apply_flags(&self, s: &mut Settings) -> anyhow::Result<Option<usize>> {
         let mut gltf_camera = None;
         match self.camera {
             Some(CameraChoice::Explicit {
@@ -240,8 +265,9 @@ impl SceneOptions {
         }
         s.view.mode = self.view.unwrap_or(s.view.mode);
         s.view.exposure_ev = self.exposure.unwrap_or(s.view.exposure_ev);
+        s.ground.mode = self.ground.unwrap_or(s.ground.mode);
         s.validate().context("invalid settings")?;
-        Ok((s, gltf_camera))
+        Ok(gltf_camera)
     }
 }
 

@@ -22,10 +22,18 @@ pub struct RenderArgs {
     pub adapter_info: bool,
 }
 
-/// The settings with a `gltf:N` camera resolved against the loaded scene.
+/// The settings and the scene they draw. A loaded scene, unless the
+/// settings file was saved for it, is framed and lit from its own bounds
+/// (the flags still override); a `gltf:N` camera is resolved against it;
+/// the ground the settings ask for is added.
 pub fn load(options: &SceneOptions) -> anyhow::Result<(Settings, Scene)> {
-    let (mut settings, gltf_camera) = options.settings()?;
+    let (mut settings, saved) = options.base()?;
     let scene = crate::scene::for_settings(&settings)?;
+    if settings.scene.is_some() && !saved {
+        crate::scene::framing::adopt(&mut settings, &scene);
+    }
+    let gltf_camera = options.apply_flags(&mut settings)?;
+
     if let Some(n) = gltf_camera {
         let camera = scene.cameras.get(n).ok_or_else(|| {
             anyhow::anyhow!(
@@ -36,6 +44,7 @@ pub fn load(options: &SceneOptions) -> anyhow::Result<(Settings, Scene)> {
         settings.camera = camera.camera;
         settings.validate().context("camera from the scene file")?;
     }
+    let scene = crate::scene::framing::with_ground(scene, &settings.ground);
     Ok((settings, scene))
 }
 

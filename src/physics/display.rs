@@ -35,9 +35,44 @@ pub fn display_byte(radiance: f64, exposure_ev: f64) -> u8 {
     (srgb_encode(expose(radiance, exposure_ev)) * 255.0).round() as u8
 }
 
+/// The share of lit pixels auto exposure keeps below white.
+pub const AUTO_EXPOSURE_PERCENTILE: f64 = 0.95;
+/// Where that percentile is shown (linear, before the sRGB transfer).
+pub const AUTO_EXPOSURE_TARGET: f64 = 0.8;
+
+/// The exposure (EV) that shows the 95th percentile of `luminances` (the
+/// lit pixels' luminance, W/m²/sr) at 0.8 linear: bright enough to read,
+/// highlights kept. None when nothing is lit (or nothing is finite).
+pub fn auto_exposure_ev(luminances: &[f64]) -> Option<f64> {
+    let mut lit: Vec<f64> = luminances
+        .iter()
+        .copied()
+        .filter(|l| l.is_finite() && *l > 0.0)
+        .collect();
+    if lit.is_empty() {
+        return None;
+    }
+    let rank = ((lit.len() - 1) as f64 * AUTO_EXPOSURE_PERCENTILE).round() as usize;
+    let (_, high, _) = lit.select_nth_unstable_by(rank, f64::total_cmp);
+    Some((AUTO_EXPOSURE_TARGET / *high).log2().clamp(-30.0, 30.0))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn auto_exposure_shows_the_95th_percentile_at_0_8() {
+        let lum: Vec<f64> = (1..=100).map(|i| i as f64 * 1e-3).collect();
+        let ev = auto_exposure_ev(&lum).unwrap();
+        // The 95th percentile of 0.001..0.1 is 0.095.
+        assert!((expose(0.095, ev) - 0.8).abs() < 1e-3 * 0.8, "{ev}");
+        assert_eq!(auto_exposure_ev(&[0.0, f64::NAN]), None);
+        // A million times brighter (a far sun): the same displayed image.
+        let far: Vec<f64> = lum.iter().map(|l| l * 1e6).collect();
+        let ev_far = auto_exposure_ev(&far).unwrap();
+        assert!((expose(0.095e6, ev_far) - 0.8).abs() < 1e-3);
+    }
 
     #[test]
     fn srgb_round_trips_and_hits_known_values() {

@@ -188,6 +188,7 @@ pub fn load_embedded() -> Scene {
         Ok(mut scene) => {
             scene.cameras = self::scene().cameras;
             scene.scale = super::SceneScale::BUILT_IN;
+            scene.designed_view = Some(Camera::default());
             scene
         }
         Err(e) => {

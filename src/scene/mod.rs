@@ -8,6 +8,7 @@ pub mod bounds;
 pub mod camera;
 pub mod default_scene;
 pub mod facts;
+pub mod framing;
 pub mod gltf;
 pub mod scale;
 pub mod shapes;
@@ -114,6 +115,9 @@ pub struct Scene {
     /// How the lab's lengths map onto this scene: the built-in scale for the
     /// built-in scene and scenes built in code, the bounds' for a file.
     pub scale: SceneScale,
+    /// A view designed with the scene (the built-in scene's); none: the
+    /// model is framed from its bounds.
+    pub designed_view: Option<Camera>,
 }
 
 /// One mesh primitive instance, in world space.
@@ -211,6 +215,21 @@ impl Scene {
     /// World bounds of every object.
     pub fn bounds(&self) -> Aabb {
         self.objects.iter().fold(Aabb::EMPTY, |b, o| b.union(&o.bounds))
+    }
+
+    /// World bounds of the model: every object but the ground the lab adds.
+    pub fn model_bounds(&self) -> Aabb {
+        self.objects
+            .iter()
+            .filter(|o| o.name != framing::GROUND_NAME)
+            .fold(Aabb::EMPTY, |b, o| b.union(&o.bounds))
+    }
+
+    /// The view the scene opens with and Reset view returns to: the
+    /// built-in scene's designed view, else the model framed.
+    pub fn home_camera(&self) -> Camera {
+        self.designed_view
+            .unwrap_or_else(|| framing::framed_camera(&self.model_bounds(), Camera::DEFAULT_FOVY_DEG))
     }
 
     pub fn triangle_count(&self) -> usize {

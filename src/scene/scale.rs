@@ -30,9 +30,10 @@ impl SceneScale {
         unit: 1.0,
         anchor: Vec3::ZERO,
     };
-    /// Radius of the built-in scene's bounding sphere (m): a scene whose
-    /// bounding sphere is r has `unit` = r / this (checked by a test).
-    pub const BUILT_IN_RADIUS_M: f32 = 8.58;
+    /// Radius of the bounding sphere of the built-in scene's objects,
+    /// without their ground (m): a model whose bounding sphere is r plays
+    /// their part, with `unit` = r / this (checked by a test).
+    pub const BUILT_IN_MODEL_RADIUS_M: f32 = 3.76;
 
     /// The closest the eye may orbit to its target, in built-in metres.
     const MIN_ORBIT_DISTANCE: f64 = 0.05;
@@ -43,10 +44,10 @@ impl SceneScale {
     /// The default constant depth bias, in built-in metres.
     pub const DEFAULT_BIAS: f32 = 0.005;
 
-    /// The scale of a scene bounded by `bounds`: its bounding sphere's
-    /// radius against the built-in scene's, anchored at the centre of its
-    /// floor (the bounds' lowest height). An empty or degenerate scene gets
-    /// the built-in scale.
+    /// The scale of a model bounded by `bounds`: its bounding sphere's
+    /// radius against the built-in scene's objects', anchored at the centre
+    /// of its floor (the bounds' lowest height). An empty or degenerate
+    /// scene gets the built-in scale.
     pub fn of_bounds(bounds: &Aabb) -> Self {
         let radius = 0.5 * bounds.extent().length();
         if bounds.is_empty() || !radius.is_finite() || radius <= 0.0 {
@@ -54,7 +55,7 @@ impl SceneScale {
         }
         let centre = bounds.center();
         Self {
-            unit: radius / Self::BUILT_IN_RADIUS_M,
+            unit: radius / Self::BUILT_IN_MODEL_RADIUS_M,
             anchor: Vec3::new(centre.x, bounds.min.y, centre.z),
         }
     }
@@ -94,11 +95,17 @@ mod tests {
 
     #[test]
     fn the_built_in_scene_has_the_built_in_scale() {
-        let bounds = crate::scene::default_scene().bounds();
-        let radius = 0.5 * bounds.extent().length();
+        let scene = crate::scene::default_scene();
+        let objects = scene
+            .objects
+            .iter()
+            .filter(|o| o.name != "ground")
+            .fold(Aabb::EMPTY, |b, o| b.union(&o.bounds));
+        assert!(objects.extent().x < 10.0, "the ground is left out");
+        let radius = 0.5 * objects.extent().length();
         assert!(
-            (radius / SceneScale::BUILT_IN_RADIUS_M - 1.0).abs() < 1e-3,
-            "the built-in scene's radius is {radius} m"
+            (radius / SceneScale::BUILT_IN_MODEL_RADIUS_M - 1.0).abs() < 1e-2,
+            "the built-in objects' radius is {radius} m"
         );
         assert_eq!(crate::scene::default_scene().scale, SceneScale::BUILT_IN);
         let p = Vec3::new(2.5, 6.0, 2.0);
@@ -108,7 +115,12 @@ mod tests {
 
     #[test]
     fn a_scene_a_thousand_times_smaller_scales_every_length() {
-        let built_in = crate::scene::default_scene().bounds();
+        // A cube whose bounding sphere is the built-in objects'.
+        let h = SceneScale::BUILT_IN_MODEL_RADIUS_M / 3f32.sqrt();
+        let built_in = Aabb {
+            min: Vec3::splat(-h),
+            max: Vec3::splat(h),
+        };
         let offset = Vec3::new(3.0, -2.0, 1.0);
         let small = Aabb {
             min: built_in.min * 1e-3 + offset,

@@ -7,6 +7,7 @@ use super::super::viewport::Viewport;
 use super::{LabApp, adopt_scene, chosen, display_name};
 use crate::presets::Half;
 use crate::scene::Scene;
+use crate::scene::framing::with_ground;
 use crate::settings::Settings;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -20,9 +21,12 @@ impl LabApp {
             | Command::ApplyPreset(_)
             | Command::ShowView(_)
             | Command::StepView(_)
-            | Command::ResetView => {
+            | Command::ResetView
+            | Command::FrameAll
+            | Command::UseSceneCamera(_)
+            | Command::SetPivot(_) => {
                 let scene = self.scene_view();
-                if let Some(after) = command.settings_after(&self.state.settings, scene) {
+                if let Some(after) = command.settings_after(&self.state.settings, &scene) {
                     self.change_settings(&command, after);
                 }
             }
@@ -66,6 +70,7 @@ impl LabApp {
                     Err(e) => self.say(crate::cli::one_line(&e), true),
                 }
             }
+            Command::AutoExposure => self.start_auto_exposure(),
             Command::StartReference => {
                 if !self.reference.is_running() {
                     self.start_reference(ctx);
@@ -154,17 +159,33 @@ impl LabApp {
         self.undo.checkpoint(&self.state.settings);
         adopt_scene(&mut self.state.settings, path.as_deref(), &scene);
         self.undo.checkpoint(&self.state.settings);
+        self.file_scene = Arc::new(scene);
+        self.scene_name = name;
+        self.redraw_scene();
+        self.say(text, false);
+    }
+
+    /// Rebuilds the drawn scene when the ground settings changed.
+    pub(super) fn sync_ground(&mut self) {
+        if self.state.settings.ground != self.ground {
+            self.redraw_scene();
+        }
+    }
+
+    /// The drawn scene made anew from the file's and the ground settings;
+    /// what was computed for the old one goes.
+    fn redraw_scene(&mut self) {
+        self.ground = self.state.settings.ground;
+        let scene = with_ground((*self.file_scene).clone(), &self.ground);
         if let Some(gpu) = &mut self.gpu {
             gpu.set_scene(&scene);
         }
         self.scene = Arc::new(scene);
         self.tracer = None;
-        self.scene_name = name;
         self.reference.clear();
         self.reference_generation += 1;
         self.probe = Default::default();
         self.jobs.pending_probe = None;
-        self.say(text, false);
     }
 
     /// Loads a scene on a thread; the current one stays until it succeeds.

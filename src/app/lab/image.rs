@@ -98,6 +98,16 @@ impl LabApp {
             self.viewport_size = response.size;
             self.viewport_rect = response.rect.unwrap_or(egui::Rect::NOTHING);
         }
+        if let Some(p) = response.double_clicked {
+            // The orbit's pivot: the point under the cursor, if any.
+            let settings = Viewport::render_settings(&self.state.settings, &self.state.split, p.half, p.size);
+            let tracer = self.tracer.get_or_insert_with(|| Reference::new(&self.scene));
+            let (x, y) = (p.pixel.0 as f64 + 0.5, p.pixel.1 as f64 + 0.5);
+            let options = crate::reference::ReferenceOptions::DEFAULT;
+            if let Some(hit) = tracer.trace_pixel(&settings, &options, x, y) {
+                self.emit(Command::SetPivot(hit.position.as_vec3()));
+            }
+        }
         if let Some(pixel) = response.clicked {
             self.probe.pixel = Some(pixel);
             self.refresh_probe();

@@ -41,6 +41,8 @@ pub(super) struct Jobs {
     scene_load: Option<Receiver<SceneLoad>>,
     pub(super) pending_probe: Option<PendingProbe>,
     pub(super) pending_frame: Option<PendingFrame>,
+    /// The image read back for auto exposure.
+    pending_exposure: Option<PendingFrame>,
     screenshot_tx: Sender<Arc<egui::ColorImage>>,
     screenshot_rx: Receiver<Arc<egui::ColorImage>>,
     screenshot_path: Option<PathBuf>,
@@ -53,6 +55,7 @@ impl Default for Jobs {
             scene_load: None,
             pending_probe: None,
             pending_frame: None,
+            pending_exposure: None,
             screenshot_tx,
             screenshot_rx,
             screenshot_path: None,
@@ -115,6 +118,16 @@ impl LabApp {
                 ReadState::Failed => self.jobs.pending_frame = None,
             }
         }
+        if let Some(pending) = &mut self.jobs.pending_exposure {
+            match pending.poll() {
+                ReadState::Waiting => {}
+                ReadState::Ready(frame) => {
+                    self.jobs.pending_exposure = None;
+                    self.set_exposure_from(&frame);
+                }
+                ReadState::Failed => self.jobs.pending_exposure = None,
+            }
+        }
         if self.reference.poll() {
             self.reference_generation += 1;
             self.say("CPU reference ready: the error view compares with it", false);
@@ -131,6 +144,36 @@ impl LabApp {
         }
         while let Ok(image) = self.jobs.screenshot_rx.try_recv() {
             self.save_screenshot(&image, ctx);
+        }
+    }
+
+    /// Reads half A's image back for [`Command::AutoExposure`].
+    pub(super) fn start_auto_exposure(&mut self) {
+        self.jobs.pending_exposure = self.gpu.as_ref().and_then(GpuViews::request_frame);
+        if self.jobs.pending_exposure.is_none() {
+            self.say("auto exposure: no image yet", true);
+        }
+    }
+
+    /// The exposure that shows the lit pixels' bright end near white.
+    fn set_exposure_from(&mut self, frame: &super::super::gpu_view::FrameTexels) {
+        let lit: Vec<f64> = frame
+            .quantity
+            .iter()
+            .zip(&frame.aux)
+            .filter(|(_, aux)| aux[3] > 0.0)
+            .map(|(q, _)| crate::reference::luminance([q[0] as f64, q[1] as f64, q[2] as f64]))
+            .collect();
+        match crate::physics::display::auto_exposure_ev(&lit) {
+            Some(ev) => {
+                let mut settings = self.state.settings.clone();
+                settings.view.exposure_ev = ev as f32;
+                self.undo.checkpoint(&self.state.settings);
+                self.state.settings = settings;
+                self.undo.checkpoint(&self.state.settings);
+                self.say(format!("auto exposure: {ev:+.2} EV (Ctrl+Z to undo)"), false);
+            }
+            None => self.say("auto exposure: nothing lit in the image", true),
         }
     }
 
@@ -204,7 +247,11 @@ impl LabApp {
     /// Repaints soon while background work is on its way; otherwise only on input.
     pub(super) fn schedule_repaint(&mut self, ctx: &egui::Context) {
         let gpu_waiting = self.gpu.as_mut().is_some_and(GpuViews::poll);
-        if gpu_waiting || self.jobs.pending_probe.is_some() || self.jobs.pending_frame.is_some() {
+        if gpu_waiting
+            || self.jobs.pending_probe.is_some()
+            || self.jobs.pending_frame.is_some()
+            || self.jobs.pending_exposure.is_some()
+        {
             ctx.request_repaint_after(Duration::from_millis(16));
         }
         if self.reference.is_running() || self.jobs.scene_load.is_some() {

@@ -7,6 +7,7 @@ use super::super::command::Command;
 use super::super::energy::{Curve, EnergyKey};
 use super::super::light::LightPanel;
 use super::super::material::MaterialPanel;
+use super::super::scene_panel::ScenePanel;
 use super::super::shadow::ShadowPanel;
 use super::super::view::ViewPanel;
 use super::super::viewport::Viewport;
@@ -137,6 +138,16 @@ impl LabApp {
         });
         let mut settings = self.state.settings.clone();
         let mut split = self.state.split;
+        section(ui, "Scene", true, |ui| {
+            let panel = ScenePanel {
+                scene: &self.file_scene,
+                name: &self.scene_name,
+                ground: &mut settings.ground,
+            };
+            if let Some(command) = panel.ui(ui) {
+                self.queue.push(command);
+            }
+        });
         let (max_side, note) = match &self.gpu {
             Some(gpu) => (
                 gpu.capabilities().max_texture_side,

@@ -276,6 +276,7 @@ impl Loader<'_, '_, '_> {
             warnings: self.warnings,
             source: Some(source),
             scale: super::SceneScale::of_bounds(&bounds),
+            designed_view: None,
         })
     }
 
