@@ -13,6 +13,7 @@ pub mod app;
 pub mod cli;
 pub mod gpu;
 pub mod image_io;
+pub mod input;
 pub mod output;
 pub mod physics;
 pub mod plot;

@@ -9,6 +9,7 @@ pub mod camera;
 pub mod default_scene;
 pub mod facts;
 pub mod gltf;
+pub mod plausibility;
 pub mod shapes;
 pub mod stress;
 
