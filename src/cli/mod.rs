@@ -57,10 +57,10 @@ impl Cli {
         };
         let any = options.settings.is_some() || options.scene.is_some() || options.is_scripted();
         if any && self.command.is_some() {
-            anyhow::bail!(
+            return Err(usage(
                 "--settings, --scene, --screenshot and --quit-after-frames before a command apply to the \
-                 window only; put a command's options after its name (e.g. 'lumlab render --settings FILE')"
-            );
+                 window only; put a command's options after its name (e.g. 'lumlab render --settings FILE')",
+            ));
         }
         Ok(options)
     }
