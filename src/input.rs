@@ -53,7 +53,10 @@ fn check_regular(metadata: &std::fs::Metadata) -> std::io::Result<()> {
     } else {
         "a device, FIFO or socket"
     };
-    Err(Error::new(ErrorKind::InvalidInput, format!("not a regular file ({what})")))
+    Err(Error::new(
+        ErrorKind::InvalidInput,
+        format!("not a regular file ({what})"),
+    ))
 }
 
 fn too_large(limit: u64, what: &str) -> Error {
@@ -99,7 +102,10 @@ mod tests {
         // Sparse: 1 GiB that takes no disk and would take a while to read.
         std::fs::File::create(&path).unwrap().set_len(1 << 30).unwrap();
         let error = read_bounded(&path, 1 << 20, "a settings file").unwrap_err();
-        assert_eq!(error.to_string(), "larger than the 1 MiB limit for a settings file");
+        assert_eq!(
+            error.to_string(),
+            "larger than the 1 MiB limit for a settings file"
+        );
         std::fs::write(&path, b"abc").unwrap();
         assert_eq!(read_bounded(&path, 3, "x").unwrap(), b"abc");
         assert!(read_bounded(&path, 2, "x").is_err());

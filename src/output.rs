@@ -71,7 +71,9 @@ pub fn resolve(path: &Path) -> Result<PathBuf, OutputError> {
             _ => return Ok(current),
         }
     }
-    Err(OutputError::LinkLoop { path: path.to_owned() })
+    Err(OutputError::LinkLoop {
+        path: path.to_owned(),
+    })
 }
 
 /// The folder a file is in ("." for a bare name).
@@ -95,8 +97,16 @@ pub fn check_writable(path: &Path) -> Result<PathBuf, OutputError> {
         });
     }
     match std::fs::metadata(&target) {
-        Ok(m) if m.is_dir() => return Err(OutputError::IsFolder { path: path.to_owned() }),
-        Ok(m) if m.permissions().readonly() => return Err(OutputError::ReadOnly { path: path.to_owned() }),
+        Ok(m) if m.is_dir() => {
+            return Err(OutputError::IsFolder {
+                path: path.to_owned(),
+            });
+        }
+        Ok(m) if m.permissions().readonly() => {
+            return Err(OutputError::ReadOnly {
+                path: path.to_owned(),
+            });
+        }
         _ => {}
     }
     // The only sure test of a folder's write permission is to try; the
@@ -111,7 +121,9 @@ pub fn check_writable(path: &Path) -> Result<PathBuf, OutputError> {
 
 /// A new temporary file beside `target`, removed when dropped.
 fn temporary_file(target: &Path) -> std::io::Result<tempfile::NamedTempFile> {
-    let name = target.file_name().map_or("output".into(), |n| n.to_string_lossy());
+    let name = target
+        .file_name()
+        .map_or("output".into(), |n| n.to_string_lossy());
     tempfile::Builder::new()
         .prefix(&format!(".{name}."))
         .suffix(PARTIAL_SUFFIX)
@@ -146,12 +158,16 @@ fn write(path: &Path, bytes: &[u8], interruptible: bool) -> std::io::Result<()> 
     file.write_all(bytes)?;
     if let Some(existing) = existing {
         let mode = existing.permissions().mode() & 0o7777;
-        file.as_file().set_permissions(std::fs::Permissions::from_mode(mode))?;
+        file.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(mode))?;
     }
     file.as_file().sync_all()?;
     if interruptible && interrupted() {
         // Dropping the temporary file removes it: the folder stays as it was.
-        return Err(std::io::Error::new(std::io::ErrorKind::Interrupted, "interrupted"));
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::Interrupted,
+            "interrupted",
+        ));
     }
     file.persist(&target).map_err(|e| e.error)?;
     Ok(())
@@ -208,16 +224,29 @@ mod tests {
         assert_eq!(std::fs::read(&target).unwrap(), b"through");
         let looped = dir.path().join("loop");
         std::os::unix::fs::symlink("loop", &looped).unwrap();
-        assert!(matches!(check_writable(&looped), Err(OutputError::LinkLoop { .. })));
+        assert!(matches!(
+            check_writable(&looped),
+            Err(OutputError::LinkLoop { .. })
+        ));
     }
 
     #[test]
     fn bad_destinations_are_named_before_any_work() {
         let dir = tempfile::tempdir().unwrap();
         let missing = dir.path().join("no/such/a.png");
-        assert!(matches!(check_writable(&missing), Err(OutputError::NoFolder { .. })));
-        assert!(matches!(check_writable(dir.path()), Err(OutputError::IsFolder { .. })));
+        assert!(matches!(
+            check_writable(&missing),
+            Err(OutputError::NoFolder { .. })
+        ));
+        assert!(matches!(
+            check_writable(dir.path()),
+            Err(OutputError::IsFolder { .. })
+        ));
         assert!(check_writable(&dir.path().join("new.png")).is_ok());
-        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "the probe is removed");
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            0,
+            "the probe is removed"
+        );
     }
 }

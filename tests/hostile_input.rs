@@ -53,7 +53,11 @@ fn assert_refused(out: &Output, code: i32, mentions: &str) {
     let lines = errors(out);
     assert_eq!(out.status.code(), Some(code), "{lines:?}");
     assert_eq!(lines.len(), 1, "not one line: {lines:?}");
-    assert!(lines[0].contains(mentions), "'{}' does not mention {mentions}", lines[0]);
+    assert!(
+        lines[0].contains(mentions),
+        "'{}' does not mention {mentions}",
+        lines[0]
+    );
 }
 
 fn names_in(dir: &Path) -> Vec<String> {
@@ -82,7 +86,15 @@ fn the_same_mistake_gets_the_same_answer_from_every_command() {
     assert_refused(&run(&["report", "--size", "8x8"]), 2, "--out");
     // A bad output is named before a long reference would start.
     let start = Instant::now();
-    let slow = ["--size", "640x360", "--light-radius", "0.3", "--light-samples", "4096", "--yes"];
+    let slow = [
+        "--size",
+        "640x360",
+        "--light-radius",
+        "0.3",
+        "--light-samples",
+        "4096",
+        "--yes",
+    ];
     let out = run(&[&["reference"][..], &slow, &["--out", &path("no/a.png")]].concat());
     assert_refused(&out, 2, "does not exist");
     assert!(start.elapsed() < Duration::from_secs(10), "{:?}", start.elapsed());
@@ -94,8 +106,21 @@ fn sizes_beyond_the_machine_are_one_line_not_a_panic() {
     let dir = tempfile::tempdir().unwrap();
     let png = dir.path().join("big.png");
     let png = png.to_str().unwrap();
-    assert_refused(&run(&["render", "--size", "16384x16384", "--out", png]), 2, "--size 16384x16384");
-    let huge = ["reference", "--size", "16384x16384", "--spp", "65536", "--yes", "--out", png];
+    assert_refused(
+        &run(&["render", "--size", "16384x16384", "--out", png]),
+        2,
+        "--size 16384x16384",
+    );
+    let huge = [
+        "reference",
+        "--size",
+        "16384x16384",
+        "--spp",
+        "65536",
+        "--yes",
+        "--out",
+        png,
+    ];
     assert_refused(&run(&huge), 2, "lower --size");
     let dear = ["reference", "--size", "4000x4000", "--spp", "1024", "--out", png];
     assert_refused(&run(&dear), 2, "--yes");
@@ -109,7 +134,10 @@ fn endless_and_special_files_are_refused_at_once() {
     let png = png.to_str().unwrap();
     let fast = Duration::from_secs(30);
     for flag in ["--scene", "--settings"] {
-        let out = run_within(lumlab().args(["reference", flag, "/dev/zero", "--out", png]), fast);
+        let out = run_within(
+            lumlab().args(["reference", flag, "/dev/zero", "--out", png]),
+            fast,
+        );
         assert_refused(&out, 1, "not a regular file");
     }
     let sweep = ["report", "--sweep", "/dev/zero", "--out", png];
@@ -126,7 +154,10 @@ fn endless_and_special_files_are_refused_at_once() {
     // A settings file of 64 MiB (sparse: no disk) stops at the 1 MiB limit.
     let big = dir.path().join("big.toml");
     std::fs::File::create(&big).unwrap().set_len(64 << 20).unwrap();
-    let out = run_within(lumlab().args(["reference", "--settings", big.to_str().unwrap(), "--out", png]), fast);
+    let out = run_within(
+        lumlab().args(["reference", "--settings", big.to_str().unwrap(), "--out", png]),
+        fast,
+    );
     assert_refused(&out, 1, "1 MiB limit");
     assert_eq!(names_in(dir.path()), ["big.toml", "device.gltf"]);
 }
@@ -139,23 +170,47 @@ fn an_interrupted_report_leaves_the_folder_as_it_was() {
     let out = dir.path().join("report");
     // A reference of several seconds: the interrupt lands in the middle.
     let mut child = lumlab()
-        .args(["report", "--size", "320x180", "--light-radius", "0.3", "--light-samples", "256"])
+        .args([
+            "report",
+            "--size",
+            "320x180",
+            "--light-radius",
+            "0.3",
+            "--light-samples",
+            "256",
+        ])
         .args(["--out", out.to_str().unwrap()])
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
     let start = Instant::now();
-    while !names_in(dir.path()).iter().any(|n| n.contains("lumlab-report-partial")) {
-        assert!(child.try_wait().unwrap().is_none(), "the report ended before the interrupt");
-        assert!(start.elapsed() < Duration::from_secs(60), "no staging folder appeared");
+    while !names_in(dir.path())
+        .iter()
+        .any(|n| n.contains("lumlab-report-partial"))
+    {
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the report ended before the interrupt"
+        );
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "no staging folder appeared"
+        );
         std::thread::sleep(Duration::from_millis(20));
     }
     std::thread::sleep(Duration::from_millis(300));
-    let killed = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
     assert!(killed.success());
     let stop = Instant::now();
     let output = child.wait_with_output().unwrap();
-    assert!(stop.elapsed() < Duration::from_secs(20), "slow to stop: {:?}", stop.elapsed());
+    assert!(
+        stop.elapsed() < Duration::from_secs(20),
+        "slow to stop: {:?}",
+        stop.elapsed()
+    );
     assert_eq!(output.status.code(), Some(130), "{:?}", errors(&output));
     assert_eq!(names_in(dir.path()), before);
 }
@@ -181,7 +236,11 @@ fn outputs_get_the_permissions_any_program_gives_them() {
 
     std::fs::set_permissions(&png, std::fs::Permissions::from_mode(0o444)).unwrap();
     let before = std::fs::read(&png).unwrap();
-    assert_refused(&run(&["reference", "--size", "16x9", "--out", shown]), 2, "read-only");
+    assert_refused(
+        &run(&["reference", "--size", "16x9", "--out", shown]),
+        2,
+        "read-only",
+    );
     assert_eq!(std::fs::read(&png).unwrap(), before);
 
     // Through a link: the link stays, its target is written.
@@ -205,13 +264,21 @@ fn repairs_and_impossible_lights_are_said() {
     for command in ["reference", "render"] {
         let out = run(&[&[command][..], &cutting, &["--allow-impossible", "--out", png]].concat());
         assert!(out.status.success(), "{command}: {:?}", errors(&out));
-        let warned = errors(&out).iter().any(|l| l.starts_with("lumlab: warning: the sphere light"));
+        let warned = errors(&out)
+            .iter()
+            .any(|l| l.starts_with("lumlab: warning: the sphere light"));
         assert!(warned, "{command}: {:?}", errors(&out));
     }
 
     // A zero-area triangle beside a good square: dropped, and said.
     let (mut doc, _) = Doc::simple(
-        &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [2.0, 2.0, 2.0]],
+        &[
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 2.0, 2.0],
+        ],
         None,
         4,
     );
@@ -219,7 +286,16 @@ fn repairs_and_impossible_lights_are_said() {
     doc.json["meshes"][0]["primitives"][0]["indices"] = indices.into();
     let scene = doc.write_external(dir.path(), "repaired");
     let view = ["--camera", "0.5,0.5,3:0.5,0.5,0:45", "--light", "0.5,0.5,2"];
-    let out = run(&[&["reference", "--size", "16x9", "--scene", scene.to_str().unwrap()][..], &view, &["--out", png]].concat());
+    let out = run(&[
+        &["reference", "--size", "16x9", "--scene", scene.to_str().unwrap()][..],
+        &view,
+        &["--out", png],
+    ]
+    .concat());
     assert!(out.status.success(), "{:?}", errors(&out));
-    assert!(errors(&out).iter().any(|l| l.starts_with("lumlab: warning:")), "{:?}", errors(&out));
+    assert!(
+        errors(&out).iter().any(|l| l.starts_with("lumlab: warning:")),
+        "{:?}",
+        errors(&out)
+    );
 }

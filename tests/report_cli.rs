@@ -177,7 +177,10 @@ fn a_small_sweep_writes_the_csv_the_plot_the_images_and_the_page() {
     std::fs::write(out.join("notes.txt"), "the user's").unwrap();
     let again = run_report(dir.path(), &out);
     assert!(again.status.success(), "{}", stderr(&again));
-    assert_eq!(std::fs::read_to_string(out.join("notes.txt")).unwrap(), "the user's");
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "the user's"
+    );
     assert_eq!(names_in(dir.path()), ["report", "sweep.toml"]);
 }
 
@@ -244,5 +247,8 @@ fn bad_input_is_one_line_and_leaves_nothing() {
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(stderr(&out).contains(".lumlab-report marker"), "{}", stderr(&out));
     assert_eq!(names_in(&foreign), ["cat.jpg", "report.csv"]);
-    assert_eq!(std::fs::read_to_string(foreign.join("report.csv")).unwrap(), "my own table");
+    assert_eq!(
+        std::fs::read_to_string(foreign.join("report.csv")).unwrap(),
+        "my own table"
+    );
 }

@@ -295,7 +295,13 @@ mod tests {
             }
         );
         assert_eq!(camera("gltf:1").unwrap(), CameraChoice::Gltf(1));
-        for bad in ["0,2,5:0,0,0", "0,2:0,0,0:45", "0,2,5:0,0,0:200", "gltf:x", "1,1,1:1,1,1:45"] {
+        for bad in [
+            "0,2,5:0,0,0",
+            "0,2:0,0,0:45",
+            "0,2,5:0,0,0:200",
+            "gltf:x",
+            "1,1,1:1,1,1:45",
+        ] {
             assert!(camera(bad).is_err(), "{bad}");
         }
     }

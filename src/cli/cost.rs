@@ -66,7 +66,9 @@ pub fn check_cpu(what: &str, estimate: Estimate, yes: bool) -> anyhow::Result<()
         human_bytes(estimate.bytes)
     );
     if estimate.seconds > REFUSE_SECONDS || memory.is_some_and(|m| estimate.bytes > m) {
-        let machine = memory.map_or(String::new(), |m| format!(", this machine has {}", human_bytes(m)));
+        let machine = memory.map_or(String::new(), |m| {
+            format!(", this machine has {}", human_bytes(m))
+        });
         return Err(usage(format!(
             "{numbers} (limits: {}{machine}); lower --size, --spp or --light-samples",
             duration(REFUSE_SECONDS)
@@ -152,7 +154,12 @@ mod tests {
             seconds: 1e9,
             bytes: 1 << 20,
         };
-        assert!(check_cpu("x", absurd, true).unwrap_err().to_string().contains("days"));
+        assert!(
+            check_cpu("x", absurd, true)
+                .unwrap_err()
+                .to_string()
+                .contains("days")
+        );
     }
 
     #[test]
@@ -169,7 +176,14 @@ mod tests {
         assert!((more.seconds / base.seconds - 2.0).abs() < 1e-9);
         settings.image.width = 16384;
         settings.image.height = 16384;
-        let huge = reference(&settings, &ReferenceOptions { spp: 65536, ..options }, 0);
+        let huge = reference(
+            &settings,
+            &ReferenceOptions {
+                spp: 65536,
+                ..options
+            },
+            0,
+        );
         assert!(check_cpu("x", huge, true).is_err());
     }
 
@@ -178,6 +192,11 @@ mod tests {
         let limits = wgpu::Limits::default();
         assert!(check_gpu(&limits, "test", (1280, 720)).is_ok());
         let side = limits.max_texture_dimension_2d + 1;
-        assert!(check_gpu(&limits, "test", (side, 16)).unwrap_err().to_string().contains("texels a side"));
+        assert!(
+            check_gpu(&limits, "test", (side, 16))
+                .unwrap_err()
+                .to_string()
+                .contains("texels a side")
+        );
     }
 }

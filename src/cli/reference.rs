@@ -101,11 +101,15 @@ pub fn render_with_progress(
         }
         bar
     });
-    let result = watch(&control, || reference.render(settings, options, &control), |done| {
-        if let Some(bar) = &bar {
-            bar.set_position(done as u64);
-        }
-    });
+    let result = watch(
+        &control,
+        || reference.render(settings, options, &control),
+        |done| {
+            if let Some(bar) = &bar {
+                bar.set_position(done as u64);
+            }
+        },
+    );
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }

@@ -68,7 +68,17 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         }
     };
     let control = RenderControl::default();
-    let work = || report::run(&gpu, &scene, &settings, &points, &options, &control, &mut progress);
+    let work = || {
+        report::run(
+            &gpu,
+            &scene,
+            &settings,
+            &points,
+            &options,
+            &control,
+            &mut progress,
+        )
+    };
     let report = super::reference::watch(&control, work, |_| {});
     if let Some(bar) = &bar {
         bar.finish_and_clear();

@@ -15,7 +15,8 @@ use std::path::{Component, Path, PathBuf};
 
 /// The marker file: what the report wrote, one relative path a line.
 pub const MARKER: &str = ".lumlab-report";
-const MARKER_HEADER: &str = "# written by lumlab report: the files below are replaced by the next report here";
+const MARKER_HEADER: &str =
+    "# written by lumlab report: the files below are replaced by the next report here";
 /// What a staging folder's name ends with.
 pub const STAGING_SUFFIX: &str = ".lumlab-report-partial";
 
@@ -74,7 +75,9 @@ impl ReportFolder {
                 .tempfile_in(&resolved)
                 .map_err(|e| FolderError::NotWritable(shown.clone(), e))?;
         }
-        let name = resolved.file_name().map_or("report".into(), |n| n.to_string_lossy());
+        let name = resolved
+            .file_name()
+            .map_or("report".into(), |n| n.to_string_lossy());
         let staging = tempfile::Builder::new()
             .prefix(&format!(".{name}."))
             .suffix(STAGING_SUFFIX)
@@ -199,7 +202,11 @@ mod tests {
         report_into(&out, &["report.csv", "images/a.png"]);
         let marker = std::fs::read_to_string(out.join(MARKER)).unwrap();
         assert!(marker.contains("report.csv\nimages/a.png") || marker.contains("images/a.png\nreport.csv"));
-        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1, "no staging left");
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            1,
+            "no staging left"
+        );
     }
 
     #[test]
@@ -219,7 +226,10 @@ mod tests {
     fn a_folder_without_the_marker_is_refused_even_with_a_report_csv() {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("report.csv"), "someone's").unwrap();
-        assert!(matches!(ReportFolder::prepare(dir.path()), Err(FolderError::Foreign(_))));
+        assert!(matches!(
+            ReportFolder::prepare(dir.path()),
+            Err(FolderError::Foreign(_))
+        ));
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
     }
 

@@ -119,12 +119,11 @@ pub fn parse(text: &str, base: &Settings) -> Result<Vec<SweepPoint>, SweepError>
 /// Reads and parses a sweep file.
 pub fn load(path: &Path, base: &Settings) -> Result<Vec<SweepPoint>, SweepError> {
     let limit = crate::input::SWEEP_LIMIT_BYTES;
-    let text = crate::input::read_text_bounded(path, limit, "a sweep file").map_err(|source| {
-        SweepError::Read {
+    let text =
+        crate::input::read_text_bounded(path, limit, "a sweep file").map_err(|source| SweepError::Read {
             path: path.to_owned(),
             source,
-        }
-    })?;
+        })?;
     parse(&text, base).map_err(|e| match e {
         SweepError::Invalid(message) => SweepError::Invalid(format!("{}: {message}", path.display())),
         other => other,
@@ -358,8 +357,14 @@ mod tests {
     #[test]
     fn an_astronomical_cross_product_is_refused_before_it_is_expanded() {
         // 2^60 combinations in a few hundred bytes: expanding it would never end.
-        let axis = format!("[{}]", vec!["512"; 2].join(","));
-        let keys = ["resolution", "pcf_size", "poisson_samples", "vsm_blur_texels", "filter"];
+        let axis = "[512, 512]";
+        let keys = [
+            "resolution",
+            "pcf_size",
+            "poisson_samples",
+            "vsm_blur_texels",
+            "filter",
+        ];
         let mut text = String::from("[cross]\n");
         for i in 0..60 {
             text += &format!("{}_{i} = {axis}\n", keys[i % keys.len()]);
@@ -367,6 +372,11 @@ mod tests {
         let error = parse(&text, &Settings::default()).unwrap_err().to_string();
         assert!(error.contains("1152921504606846976 configurations"), "{error}");
         let list = "[[config]]\nfilter = \"pcf\"\n".repeat(MAX_POINTS as usize + 1);
-        assert!(parse(&list, &Settings::default()).unwrap_err().to_string().contains("at most 1000"));
+        assert!(
+            parse(&list, &Settings::default())
+                .unwrap_err()
+                .to_string()
+                .contains("at most 1000")
+        );
     }
 }

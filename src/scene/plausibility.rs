@@ -37,7 +37,11 @@ const MAX_NAMED: usize = 3;
 pub fn impossible_setups(scene: &Scene, settings: &Settings) -> Vec<String> {
     let light = settings.light.position.as_dvec3();
     let radius = settings.light.radius_m as f64;
-    let kind = if radius > 0.0 { "sphere light" } else { "point light" };
+    let kind = if radius > 0.0 {
+        "sphere light"
+    } else {
+        "point light"
+    };
     let mut warnings = Vec::new();
 
     let enclosing: Vec<&str> = scene
@@ -58,7 +62,11 @@ pub fn impossible_setups(scene: &Scene, settings: &Settings) -> Vec<String> {
             .objects
             .iter()
             .filter(|o| o.bounds.distance_to(settings.light.position) as f64 <= radius)
-            .filter_map(|o| nearest_distance(o, light).filter(|&d| d < radius).map(|d| (o.name.as_str(), d)))
+            .filter_map(|o| {
+                nearest_distance(o, light)
+                    .filter(|&d| d < radius)
+                    .map(|d| (o.name.as_str(), d))
+            })
             .collect();
         let names: Vec<&str> = cut.iter().map(|(name, _)| *name).collect();
         warnings.extend(named(&names, |name| {
@@ -84,7 +92,10 @@ pub fn impossible_setups(scene: &Scene, settings: &Settings) -> Vec<String> {
 fn named(names: &[&str], line: impl Fn(&str) -> String) -> Vec<String> {
     let mut lines: Vec<String> = names.iter().take(MAX_NAMED).map(|n| line(n)).collect();
     if names.len() > MAX_NAMED {
-        lines.push(format!("… and {} more object(s) like it", names.len() - MAX_NAMED));
+        lines.push(format!(
+            "… and {} more object(s) like it",
+            names.len() - MAX_NAMED
+        ));
     }
     lines
 }
@@ -192,7 +203,10 @@ mod tests {
     #[test]
     fn the_default_set_up_is_possible() {
         let scene = super::super::default_scene();
-        assert_eq!(impossible_setups(&scene, &Settings::default()), Vec::<String>::new());
+        assert_eq!(
+            impossible_setups(&scene, &Settings::default()),
+            Vec::<String>::new()
+        );
     }
 
     #[test]
@@ -209,7 +223,10 @@ mod tests {
             .expect("the default scene has a closed object");
         at(&mut settings, solid.bounds.center().to_array(), 0.0);
         let lines = impossible_setups(&scene, &settings);
-        assert!(lines.iter().any(|l| l.contains("inside the closed object")), "{lines:?}");
+        assert!(
+            lines.iter().any(|l| l.contains("inside the closed object")),
+            "{lines:?}"
+        );
 
         // Just above the ground, a sphere light 1 m wide reaches into it.
         let ground_top = scene.bounds().min.y;

@@ -49,12 +49,13 @@ const FOVY_RANGE_DEG: (f64, f64) = (1.0, 179.0);
 
 /// Loads a `.gltf` or `.glb` file; relative URIs resolve beside it.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let bytes = crate::input::read_bounded(path, crate::input::SCENE_LIMIT_BYTES, "a scene").map_err(
-        |source| SceneError::Read {
-            path: path.to_owned(),
-            source,
-        },
-    )?;
+    let bytes =
+        crate::input::read_bounded(path, crate::input::SCENE_LIMIT_BYTES, "a scene").map_err(|source| {
+            SceneError::Read {
+                path: path.to_owned(),
+                source,
+            }
+        })?;
     load_slice(&bytes, path, path.parent())
 }
 
@@ -500,7 +501,9 @@ impl Loader<'_, '_, '_> {
         };
         let what = resources::describe("image", index, image.uri.as_deref());
         let bytes = match (&image.uri, image.buffer_view) {
-            (Some(uri), _) => std::borrow::Cow::Owned(resources::read_uri(uri, self.base_dir, resources::Kind::Image)?),
+            (Some(uri), _) => {
+                std::borrow::Cow::Owned(resources::read_uri(uri, self.base_dir, resources::Kind::Image)?)
+            }
             (None, Some(view)) => {
                 std::borrow::Cow::Borrowed(self.data.view(view.value()).map_err(|e| e.to_string())?.0)
             }

@@ -21,14 +21,12 @@ pub(super) fn load_buffers<'a>(
     for (i, buffer) in root.buffers.iter().enumerate() {
         let what = describe("buffer", i, buffer.uri.as_deref());
         let data = match (&buffer.uri, bin) {
-            (Some(uri), _) => {
-                Cow::Owned(
-                    read_uri(uri, base_dir, Kind::Buffer).map_err(|reason| LoadProblem::MissingData {
-                        what: what.clone(),
-                        reason,
-                    })?,
-                )
-            }
+            (Some(uri), _) => Cow::Owned(read_uri(uri, base_dir, Kind::Buffer).map_err(|reason| {
+                LoadProblem::MissingData {
+                    what: what.clone(),
+                    reason,
+                }
+            })?),
             // Only the first buffer may stand for the GLB's binary chunk.
             (None, Some(bin)) if i == 0 => Cow::Borrowed(bin),
             (None, _) => {
@@ -145,21 +143,32 @@ mod tests {
         assert!(has_scheme("file:///tmp/a.bin"));
         assert!(!has_scheme("a%20b.bin") && !has_scheme("dir/a.bin"));
         assert!(read_uri("https://example.com/a.bin", Some(Path::new(".")), Kind::Buffer).is_err());
-        assert!(read_uri("a.bin", None, Kind::Buffer).unwrap_err().contains("embedded"));
+        assert!(
+            read_uri("a.bin", None, Kind::Buffer)
+                .unwrap_err()
+                .contains("embedded")
+        );
     }
 
     #[test]
     fn percent_encoded_paths_are_decoded() {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("a b.bin"), [7u8]).unwrap();
-        assert_eq!(read_uri("a%20b.bin", Some(dir.path()), Kind::Buffer).unwrap(), [7]);
+        assert_eq!(
+            read_uri("a%20b.bin", Some(dir.path()), Kind::Buffer).unwrap(),
+            [7]
+        );
         let missing = read_uri("nope.bin", Some(dir.path()), Kind::Buffer).unwrap_err();
         assert!(missing.contains("nope.bin"), "{missing}");
     }
 
     #[test]
     fn a_uri_naming_a_device_fails_fast() {
-        let dev = read_uri("../../../../../../../../dev/zero", Some(Path::new("/tmp")), Kind::Buffer);
+        let dev = read_uri(
+            "../../../../../../../../dev/zero",
+            Some(Path::new("/tmp")),
+            Kind::Buffer,
+        );
         assert!(dev.unwrap_err().contains("not a regular file"));
     }
 }
