@@ -88,9 +88,13 @@ pub fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return usage_error(e),
     };
-    if cli.command.is_some()
-        && let Err(e) = interrupt::install()
-    {
+    // The commands that write files stop cleanly on an interrupt; the others
+    // keep the default (end at once), as they leave nothing behind.
+    let writes = matches!(
+        cli.command,
+        Some(Command::Render(_) | Command::Reference(_) | Command::Report(_) | Command::Energy(_))
+    );
+    if writes && let Err(e) = interrupt::install() {
         eprintln!("lumlab: error: cannot install the interrupt handler: {e}");
         return ExitCode::from(1);
     }

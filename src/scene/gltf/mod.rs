@@ -654,14 +654,19 @@ impl Loader<'_, '_, '_> {
                     continue;
                 }
             };
-            let fovy_deg = fovy_deg.clamp(FOVY_RANGE_DEG.0, FOVY_RANGE_DEG.1);
+            let clamped = fovy_deg.clamp(FOVY_RANGE_DEG.0, FOVY_RANGE_DEG.1);
+            if clamped != fovy_deg {
+                self.warn(format!(
+                    "camera '{name}': a {fovy_deg:.3}° field of view is outside 1° … 179°; {clamped}° used"
+                ));
+            }
             let distance_m = target_distance(&root.nodes[instance.node].extras).unwrap_or(1.0);
             cameras.push(SceneCamera {
                 name,
                 camera: Camera {
                     eye: eye.as_vec3(),
                     target: (eye + forward * distance_m).as_vec3(),
-                    fovy_deg: fovy_deg as f32,
+                    fovy_deg: clamped as f32,
                 },
             });
         }
