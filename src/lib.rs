@@ -14,6 +14,7 @@ pub mod cli;
 pub mod colour;
 pub mod gpu;
 pub mod image_io;
+pub mod input;
 pub mod output;
 pub mod physics;
 pub mod plot;

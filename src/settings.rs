@@ -377,9 +377,12 @@ impl Settings {
 
     /// Reads, parses and validates a settings file.
     pub fn load(path: &Path) -> Result<Self, SettingsError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SettingsError::Read {
-            path: path.to_owned(),
-            source,
+        let limit = crate::input::SETTINGS_LIMIT_BYTES;
+        let text = crate::input::read_text_bounded(path, limit, "a settings file").map_err(|source| {
+            SettingsError::Read {
+                path: path.to_owned(),
+                source,
+            }
         })?;
         let settings = Self::from_toml(&text).map_err(|message| SettingsError::Parse {
             path: path.to_owned(),

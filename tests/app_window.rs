@@ -185,6 +185,6 @@ fn a_bad_scene_or_screenshot_path_is_refused_before_the_window_opens() {
     let mut command = Command::new(BIN);
     command.args(["--screenshot", "x.png", "energy"]);
     let output = run(command);
-    assert_eq!(output.status.code(), Some(1));
+    assert_eq!(output.status.code(), Some(2), "a misplaced flag is a usage error");
     assert!(String::from_utf8_lossy(&output.stderr).contains("after its name"));
 }

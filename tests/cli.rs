@@ -93,7 +93,7 @@ fn energy_rejects_bad_input_in_one_line() {
     assert_fails(&["energy", "--norm", "foo"], 2, "none|ndf|approx|exact");
     assert_fails(
         &["energy", "--plot", "/no/such/dir/x.png"],
-        1,
+        2,
         "/no/such/dir/x.png",
     );
 }
@@ -151,25 +151,36 @@ fn render_rejects_bad_input_without_leaving_files() {
         "--filter",
     );
     assert_fails(&["render", "--size", "0x10", "--out", &out("a.png")], 2, "--size");
+    // Every value the command line gets wrong is a usage error (2).
     assert_fails(
         &["render", "--bias", "slope:1", "--out", &out("a.png")],
-        1,
-        "bias",
+        2,
+        "--bias",
     );
     assert_fails(
         &["render", "--shadow-res", "100", "--out", &out("a.png")],
-        1,
-        "shadow.resolution",
+        2,
+        "--shadow-res",
+    );
+    assert_fails(
+        &["render", "--pcf-size", "4", "--out", &out("a.png")],
+        2,
+        "--pcf-size",
+    );
+    assert_fails(
+        &["render", "--light", "1e13,0,0", "--out", &out("a.png")],
+        2,
+        "light.position",
     );
     assert_fails(
         &["render", "--camera", "gltf:3", "--out", &out("a.png")],
-        1,
+        2,
         "camera",
     );
-    assert_fails(&["render", "--out", &out("a.jpg")], 1, ".png or .exr");
+    assert_fails(&["render", "--out", &out("a.jpg")], 2, ".png or .exr");
     assert_fails(
         &["render", "--out", "/no/such/dir/a.png"],
-        1,
+        2,
         "/no/such/dir/a.png",
     );
     assert_fails(

@@ -170,12 +170,17 @@ fn a_small_sweep_writes_the_csv_the_plot_the_images_and_the_page() {
         assert!((a0 - 1.0).abs() < 1e-5, "{line}");
     }
 
-    // Run again into the same folder: the earlier report is replaced, and
-    // nothing temporary stays beside it.
-    std::fs::write(out.join("stale.txt"), "from the first run").unwrap();
+    // Run again into the same folder: the earlier report's files are
+    // replaced, the user's own file there stays, and nothing temporary stays
+    // beside it.
+    assert!(names_in(&out).contains(&".lumlab-report".to_string()));
+    std::fs::write(out.join("notes.txt"), "the user's").unwrap();
     let again = run_report(dir.path(), &out);
     assert!(again.status.success(), "{}", stderr(&again));
-    assert!(!out.join("stale.txt").exists());
+    assert_eq!(
+        std::fs::read_to_string(out.join("notes.txt")).unwrap(),
+        "the user's"
+    );
     assert_eq!(names_in(dir.path()), ["report", "sweep.toml"]);
 }
 
@@ -223,7 +228,7 @@ fn bad_input_is_one_line_and_leaves_nothing() {
             inside_file.to_str().unwrap(),
         ],
         dir.path(),
-        "does not exist",
+        "is not a folder",
     );
     // A folder with someone else's files is not overwritten.
     let foreign = dir.path().join("photos");
@@ -235,4 +240,15 @@ fn bad_input_is_one_line_and_leaves_nothing() {
         "not empty",
     );
     assert_eq!(names_in(&foreign), ["cat.jpg"]);
+    // Nor is one that merely has a report.csv: only the marker a report
+    // writes makes a folder the report's own.
+    std::fs::write(foreign.join("report.csv"), "my own table").unwrap();
+    let out = lumlab(&["report", "--size", "32x18", "--out", foreign.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains(".lumlab-report marker"), "{}", stderr(&out));
+    assert_eq!(names_in(&foreign), ["cat.jpg", "report.csv"]);
+    assert_eq!(
+        std::fs::read_to_string(foreign.join("report.csv")).unwrap(),
+        "my own table"
+    );
 }

@@ -519,12 +519,15 @@ fn cameras_are_reduced_to_eye_target_and_vertical_fov() {
     let side = &scene.cameras[0];
     assert_eq!(side.name, "side");
     assert!((side.camera.eye - Vec3::new(1.0, 2.0, 3.0)).length() < 1e-6);
-    assert!((side.camera.target - Vec3::new(0.0, 2.0, 3.0)).length() < 1e-6);
+    // The orbit target lies ahead at the depth of the scene's centre (not a
+    // fixed metre): the square's centre x = 0.5 is 0.5 m ahead along −X.
+    let centre = scene.bounds().center();
+    assert!((side.camera.target - Vec3::new(centre.x, 2.0, 3.0)).length() < 1e-6);
     assert!((side.camera.fovy_deg - 0.5f32.to_degrees()).abs() < 1e-4);
     // Orthographic: the perspective view that shows its height 2·ymag at
     // the distance of the scene's centre (3 m away).
     let front = &scene.cameras[1].camera;
-    assert!((front.target - Vec3::new(0.5, 0.5, 2.0)).length() < 1e-6);
+    assert!((front.target - Vec3::new(0.5, 0.5, centre.z)).length() < 1e-6);
     assert!((front.fovy_deg - 2.0 * (1.0f32 / 3.0).atan().to_degrees()).abs() < 1e-3);
     assert!(has_warning(&scene, "orthographic"), "{:?}", scene.warnings);
 }

@@ -5,6 +5,10 @@
 //! unit normals, indices in range). Inputs that once broke it live in
 //! `tests/data/fuzz/` and are replayed first.
 //!
+//! The settings file and the report's sweep file get the same treatment:
+//! mutated values and bytes give a valid result or a one-line error, fast,
+//! and a sweep never expands past its bound.
+//!
 //! More cases: `LUMLAB_FUZZ_CASES=100000 cargo test --release --test scene_fuzz`.
 
 mod scene_support;
@@ -286,5 +290,139 @@ proptest! {
             doc.bin[i] = value;
         }
         check(&if glb { doc.glb() } else { doc.gltf_embedded() })?;
+    }
+}
+
+/// Values put in place of a settings or sweep value: wrong types, edges,
+/// NaN, huge arrays.
+fn edge_toml_values() -> Vec<toml::Value> {
+    use toml::Value as V;
+    vec![
+        V::Integer(0),
+        V::Integer(-1),
+        V::Integer(65537),
+        V::Integer(i64::MAX),
+        V::Float(f64::NAN),
+        V::Float(f64::INFINITY),
+        V::Float(-0.0),
+        V::Float(1e30),
+        V::String(String::new()),
+        V::String("pcf".into()),
+        V::String("slope:1e40,2".into()),
+        V::Boolean(true),
+        V::Array(Vec::new()),
+        V::Array((0..64).map(|i| V::Integer(256 + i)).collect()),
+        V::Table(toml::Table::new()),
+    ]
+}
+
+/// Key paths to every value of a TOML tree (array elements by index).
+fn toml_paths(value: &toml::Value, at: &mut Vec<String>, out: &mut Vec<Vec<String>>) {
+    match value {
+        toml::Value::Table(table) => {
+            for (key, v) in table {
+                at.push(key.clone());
+                out.push(at.clone());
+                toml_paths(v, at, out);
+                at.pop();
+            }
+        }
+        toml::Value::Array(items) => {
+            for (i, v) in items.iter().enumerate() {
+                at.push(i.to_string());
+                out.push(at.clone());
+                toml_paths(v, at, out);
+                at.pop();
+            }
+        }
+        _ => {}
+    }
+}
+
+fn toml_slot<'a>(mut value: &'a mut toml::Value, path: &[String]) -> Option<&'a mut toml::Value> {
+    for key in path {
+        value = match value {
+            toml::Value::Table(t) => t.get_mut(key)?,
+            toml::Value::Array(a) => a.get_mut(key.parse::<usize>().ok()?)?,
+            _ => return None,
+        };
+    }
+    Some(value)
+}
+
+/// `text` with values replaced and bytes overwritten.
+fn mutate_toml(text: &str, values: &[(Index, Index)], bytes: &[(Index, u8)]) -> String {
+    let mut tree: toml::Value = toml::from_str(text).expect("the seed is valid TOML");
+    let mut paths = Vec::new();
+    toml_paths(&tree, &mut Vec::new(), &mut paths);
+    let edges = edge_toml_values();
+    for (at, value) in values {
+        let path = &paths[at.index(paths.len())];
+        if let Some(slot) = toml_slot(&mut tree, path) {
+            *slot = edges[value.index(edges.len())].clone();
+        }
+    }
+    let mut out = toml::to_string(&tree).unwrap_or_default().into_bytes();
+    for (at, byte) in bytes {
+        if !out.is_empty() {
+            let i = at.index(out.len());
+            out[i] = *byte;
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+fn check_one_line(message: &str) -> Result<(), TestCaseError> {
+    prop_assert!(!message.is_empty() && !message.contains('\n'), "{message:?}");
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: cases() / 3, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// The settings file: parsed and validated, or one line naming the problem.
+    #[test]
+    fn settings_mutations(
+        values in prop::collection::vec((any::<Index>(), any::<Index>()), 0..4),
+        bytes in prop::collection::vec((any::<Index>(), any::<u8>()), 0..3),
+    ) {
+        use lumlab::settings::Settings;
+        let text = mutate_toml(&Settings::default().to_toml(), &values, &bytes);
+        let start = Instant::now();
+        match Settings::from_toml(&text) {
+            Err(message) => check_one_line(&message)?,
+            Ok(settings) => match settings.validate() {
+                Err(e) => check_one_line(&e.to_string())?,
+                // What validates survives a round trip through the file.
+                Ok(()) => prop_assert_eq!(Settings::from_toml(&settings.to_toml()).ok(), Some(settings)),
+            },
+        }
+        prop_assert!(start.elapsed() < Duration::from_secs_f64(MAX_LOAD_S));
+    }
+
+    /// The sweep file: a bounded list of valid configurations, or one line.
+    #[test]
+    fn sweep_mutations(
+        values in prop::collection::vec((any::<Index>(), any::<Index>()), 0..5),
+        bytes in prop::collection::vec((any::<Index>(), any::<u8>()), 0..3),
+    ) {
+        use lumlab::report::sweep;
+        use lumlab::settings::Settings;
+        let seed = format!("{}\n[[config]]\nfilter = \"pcf\"\npcf_size = 5\n", sweep::DEFAULT_SWEEP);
+        let text = mutate_toml(&seed, &values, &bytes);
+        let base = Settings::default();
+        let start = Instant::now();
+        match sweep::parse(&text, &base) {
+            Err(e) => check_one_line(&e.to_string())?,
+            Ok(points) => {
+                prop_assert!(!points.is_empty() && points.len() as u64 <= sweep::MAX_POINTS);
+                for point in points {
+                    let mut settings = base.clone();
+                    settings.shadow = point.shadow;
+                    prop_assert!(settings.validate().is_ok(), "{}", point.label);
+                }
+            }
+        }
+        prop_assert!(start.elapsed() < Duration::from_secs_f64(MAX_LOAD_S));
     }
 }

@@ -1,8 +1,7 @@
 //! Value parsers and the shared options of the commands that render.
 
 use crate::physics::Normalization;
-use crate::settings::{DebugView, Filter, GroundMode, Settings};
-use anyhow::Context;
+use crate::settings::{BiasSettings, DebugView, Filter, GroundMode, Settings, ShadowSettings};
 use glam::Vec3;
 use std::path::PathBuf;
 
@@ -89,11 +88,37 @@ pub fn camera(text: &str) -> Result<CameraChoice, String> {
             "'{text}' is not EYE:TARGET:FOVY_DEG (e.g. 0,2,5:0,0,0:45) or gltf:N"
         ));
     };
+    let (eye, target) = (vec3(eye)?, vec3(target)?);
+    if eye.distance(target) < 1e-6 {
+        return Err(format!("'{text}': the target must differ from the eye"));
+    }
     Ok(CameraChoice::Explicit {
-        eye: vec3(eye)?,
-        target: vec3(target)?,
+        eye,
+        target,
         fovy_deg: number_in(fovy, 1.0, 179.0).map_err(|e| format!("field of view {e}"))? as f32,
     })
+}
+
+/// A shadow-map side the settings allow (the device may clamp it further).
+fn shadow_res(text: &str) -> Result<u32, String> {
+    let (min, max) = (ShadowSettings::MIN_RESOLUTION, ShadowSettings::MAX_RESOLUTION);
+    match text.trim().parse::<u32>() {
+        Ok(v) if (min..=max).contains(&v) => Ok(v),
+        _ => Err(format!("'{text}' is not a whole number in {min} … {max}")),
+    }
+}
+
+fn pcf_size(text: &str) -> Result<u32, String> {
+    match text.trim().parse::<u32>() {
+        Ok(v) if ShadowSettings::PCF_SIZES.contains(&v) => Ok(v),
+        _ => Err(format!("'{text}' is not one of 3, 5, 7, 9")),
+    }
+}
+
+/// The bias text, checked now and applied onto the settings' bias later.
+fn bias(text: &str) -> Result<String, String> {
+    BiasSettings::default().parse_onto(text)?;
+    Ok(text.to_owned())
 }
 
 fn normalization(text: &str) -> Result<Normalization, String> {
@@ -164,17 +189,17 @@ pub struct SceneOptions {
     /// Lobe normalization: none|ndf|approx|exact.
     #[arg(long, value_name = "NAME", value_parser = normalization)]
     pub norm: Option<Normalization>,
-    /// Shadow-map resolution (texels), clamped to the device limit.
-    #[arg(long, value_name = "N")]
+    /// Shadow-map resolution (texels, 256 … 65536), clamped to the device limit and memory budget.
+    #[arg(long, value_name = "N", value_parser = shadow_res)]
     pub shadow_res: Option<u32>,
     /// Shadow filter: none|hw2x2|pcf|poisson|pcss|vsm|evsm.
     #[arg(long, value_name = "NAME", value_parser = filter)]
     pub filter: Option<Filter>,
     /// PCF kernel size: 3|5|7|9.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", value_parser = pcf_size)]
     pub pcf_size: Option<u32>,
     /// Depth bias: auto | constant:D | slope:D,S | normal:N (D in m, N in texels).
-    #[arg(long, value_name = "MODE")]
+    #[arg(long, value_name = "MODE", value_parser = bias)]
     pub bias: Option<String>,
     /// What to show: shaded|depth|visibility|ndotl|irradiance|brdf|diffuse|specular|texel-density|frustum|ref-visibility|error.
     #[arg(long, value_name = "NAME", value_parser = view)]
@@ -189,11 +214,20 @@ pub struct SceneOptions {
     /// none) | on | off.
     #[arg(long, value_name = "auto|on|off", value_parser = ground)]
     pub ground: Option<GroundMode>,
+    /// Go ahead with CPU work estimated above the confirmation threshold (minutes or gigabytes).
+    #[arg(long)]
+    pub yes: bool,
+    /// Draw a physically impossible set-up anyway (a light inside an object, a sphere light cutting a
+    /// surface or holding the camera), where the GPU and the reference disagree.
+    #[arg(long)]
+    pub allow_impossible: bool,
 }
 
 impl SceneOptions {
-    /// The settings file (if any) with every given flag applied, validated.
-    /// A `gltf:N` camera is returned apart: it needs the loaded scene.
+    /// The settings file (if any) with every given flag applied, validated:
+    /// a bad file is a runtime error, a flag that makes the whole invalid a
+    /// usage error. A `gltf:N` camera is returned apart: it needs the loaded
+    /// scene.
     pub fn settings(&self) -> anyhow::Result<(Settings, Option<usize>)> {
         let (mut s, _) = self.base()?;
         let gltf_camera = self.apply_flags(&mut s)?;
@@ -258,7 +292,7 @@ impl SceneOptions {
             shadow.bias = shadow
                 .bias
                 .parse_onto(bias)
-                .map_err(|e| anyhow::anyhow!("--bias {e}"))?;
+                .map_err(|e| super::usage(format!("--bias {e}")))?;
         }
         if self.no_shadows {
             shadow.enabled = false;
@@ -266,7 +300,8 @@ impl SceneOptions {
         s.view.mode = self.view.unwrap_or(s.view.mode);
         s.view.exposure_ev = self.exposure.unwrap_or(s.view.exposure_ev);
         s.ground.mode = self.ground.unwrap_or(s.ground.mode);
-        s.validate().context("invalid settings")?;
+        s.validate()
+            .map_err(|e| super::usage(format!("invalid settings: {e}")))?;
         Ok(gltf_camera)
     }
 }
@@ -286,7 +321,13 @@ mod tests {
             }
         );
         assert_eq!(camera("gltf:1").unwrap(), CameraChoice::Gltf(1));
-        for bad in ["0,2,5:0,0,0", "0,2:0,0,0:45", "0,2,5:0,0,0:200", "gltf:x"] {
+        for bad in [
+            "0,2,5:0,0,0",
+            "0,2:0,0,0:45",
+            "0,2,5:0,0,0:200",
+            "gltf:x",
+            "1,1,1:1,1,1:45",
+        ] {
             assert!(camera(bad).is_err(), "{bad}");
         }
     }

@@ -86,6 +86,9 @@ fn format(text: &str) -> Result<EnergyFormat, String> {
 }
 
 pub fn run(args: &EnergyArgs) -> anyhow::Result<()> {
+    if let Some(path) = &args.plot {
+        super::render::check_out("--plot", path)?;
+    }
     let rows = albedo_table(&args.norm.0, &args.m.0, args.k, &args.angles.0);
     if let Some(path) = &args.plot {
         write_plot(path, &args.norm.0, &args.m.0, args.k)?;

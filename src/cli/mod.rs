@@ -1,13 +1,19 @@
 //! The command line: `lumlab [COMMAND]`. Without a command the lab opens.
 //!
 //! Every command reads the same [`Settings`](crate::settings::Settings): a `--settings FILE` first, then
-//! the flags on top. Usage errors exit with 2, runtime errors with 1, each as
-//! one line on stderr; output files are written atomically.
+//! the flags on top. Usage errors (the command line asks for what cannot be
+//! done as given: a bad or missing flag, a value out of range, an unusable
+//! output path, work beyond the machine or above the cost threshold without
+//! `--yes`) exit with 2, runtime errors (a file that cannot be read, no GPU,
+//! a failed write) with 1, an interrupt with 130, each as one line on
+//! stderr; output files are written atomically.
 
 mod args;
 mod colour;
+mod cost;
 mod energy;
 mod info;
+pub mod interrupt;
 mod reference;
 mod render;
 mod report;
@@ -52,10 +58,10 @@ impl Cli {
         };
         let any = options.settings.is_some() || options.scene.is_some() || options.is_scripted();
         if any && self.command.is_some() {
-            anyhow::bail!(
+            return Err(usage(
                 "--settings, --scene, --screenshot and --quit-after-frames before a command apply to the \
-                 window only; put a command's options after its name (e.g. 'lumlab render --settings FILE')"
-            );
+                 window only; put a command's options after its name (e.g. 'lumlab render --settings FILE')",
+            ));
         }
         Ok(options)
     }
@@ -85,6 +91,16 @@ pub fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => return usage_error(e),
     };
+    // The commands that write files stop cleanly on an interrupt; the others
+    // keep the default (end at once), as they leave nothing behind.
+    let writes = matches!(
+        cli.command,
+        Some(Command::Render(_) | Command::Reference(_) | Command::Report(_) | Command::Energy(_))
+    );
+    if writes && let Err(e) = interrupt::install() {
+        eprintln!("lumlab: error: cannot install the interrupt handler: {e}");
+        return ExitCode::from(1);
+    }
     let result = cli.launch_options().and_then(|options| match &cli.command {
         Some(Command::Colour(args)) => colour::run(args),
         Some(Command::Energy(args)) => energy::run(args),
@@ -97,11 +113,30 @@ pub fn main() -> ExitCode {
     });
     match result {
         Ok(()) => ExitCode::SUCCESS,
+        Err(_) if crate::output::interrupted() => {
+            eprintln!("lumlab: {}", interrupt::Interrupted);
+            ExitCode::from(interrupt::EXIT_CODE as u8)
+        }
         Err(e) => {
             eprintln!("lumlab: error: {}", one_line(&e));
-            ExitCode::from(1)
+            if e.chain().any(|c| c.is::<Usage>()) {
+                ExitCode::from(2)
+            } else {
+                ExitCode::from(1)
+            }
         }
     }
+}
+
+/// A usage error: the command line asks for what cannot be done as given
+/// (exit 2). Wrapped around any error, at any depth of its chain.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct Usage(pub String);
+
+/// `Err(Usage)` with a message.
+pub fn usage(message: impl Into<String>) -> anyhow::Error {
+    Usage(message.into()).into()
 }
 
 /// Help and version print as clap formats them; any other parse error is
@@ -113,18 +148,31 @@ fn usage_error(e: clap::Error) -> ExitCode {
         return ExitCode::SUCCESS;
     }
     let text = e.to_string();
-    let first = text
-        .lines()
-        .find(|l| !l.trim().is_empty())
-        .unwrap_or("invalid arguments");
-    eprintln!("lumlab: {}", first.trim());
+    let mut lines = text.lines().skip_while(|l| l.trim().is_empty());
+    let mut message = lines.next().unwrap_or("invalid arguments").trim().to_owned();
+    if e.kind() == ErrorKind::MissingRequiredArgument {
+        // clap lists the missing flags on the lines below: name them.
+        for flag in lines.take_while(|l| l.starts_with(' ') && !l.trim().is_empty()) {
+            message = format!("{message} {}", flag.trim());
+        }
+    }
+    eprintln!("lumlab: {message}");
     ExitCode::from(2)
 }
 
-/// An error and its causes on one line.
+/// An error and its causes on one line; a cause that the message already
+/// quotes (as `cannot read '{path}': {source}` does) is not repeated.
 pub fn one_line(e: &anyhow::Error) -> String {
-    e.chain()
-        .map(|c| c.to_string().replace('\n', " "))
-        .collect::<Vec<_>>()
-        .join(": ")
+    let mut line = String::new();
+    for cause in e.chain() {
+        let text = cause.to_string().replace('\n', " ");
+        if line.contains(&text) {
+            continue;
+        }
+        if !line.is_empty() {
+            line += ": ";
+        }
+        line += &text;
+    }
+    line
 }

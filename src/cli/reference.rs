@@ -49,7 +49,7 @@ impl Sampling {
 }
 
 /// The output path, refused at parse time unless it ends in .png or .exr.
-fn output_path(text: &str) -> Result<PathBuf, String> {
+pub(super) fn output_path(text: &str) -> Result<PathBuf, String> {
     let path = PathBuf::from(text);
     ImageFormat::of_path(&path).map_err(|e| e.to_string())?;
     Ok(path)
@@ -57,7 +57,11 @@ fn output_path(text: &str) -> Result<PathBuf, String> {
 
 pub fn run(args: &ReferenceArgs) -> anyhow::Result<()> {
     let format = ImageFormat::of_path(&args.out)?;
+    super::render::check_out("--out", &args.out)?;
     let (settings, scene) = super::render::load(&args.scene)?;
+    let options = args.sampling.options();
+    let estimate = super::cost::reference(&settings, &options, scene.triangle_count());
+    super::cost::check_cpu("the reference", estimate, args.scene.yes)?;
     let start = Instant::now();
     let reference = Reference::new(&scene);
     let build = start.elapsed();
@@ -67,7 +71,7 @@ pub fn run(args: &ReferenceArgs) -> anyhow::Result<()> {
             reference.skipped_triangles()
         );
     }
-    let image = render_with_progress(&reference, &settings, &args.sampling.options())?;
+    let image = render_with_progress(&reference, &settings, &options)?;
     match format {
         ImageFormat::Png => write_png_rgba8(
             &args.out,
@@ -79,37 +83,59 @@ pub fn run(args: &ReferenceArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Renders on this thread's pool while the main thread draws a progress bar,
-/// only when stderr is a terminal.
+/// Renders on the thread pool while this thread draws a progress bar (when
+/// stderr is a terminal) and passes an interrupt on as a cancel.
 pub fn render_with_progress(
     reference: &Reference,
     settings: &Settings,
     options: &ReferenceOptions,
 ) -> anyhow::Result<ReferenceImage> {
     let control = RenderControl::default();
-    if !std::io::stderr().is_terminal() {
-        return Ok(reference.render(settings, options, &control)?);
+    let bar = std::io::stderr().is_terminal().then(|| {
+        let pixels = settings.image.width as u64 * settings.image.height as u64;
+        let bar = indicatif::ProgressBar::new(pixels);
+        if let Ok(style) = indicatif::ProgressStyle::with_template(
+            "reference {bar:40} {percent:>3}%  {elapsed_precise} (about {eta} left)",
+        ) {
+            bar.set_style(style);
+        }
+        bar
+    });
+    let result = watch(
+        &control,
+        || reference.render(settings, options, &control),
+        |done| {
+            if let Some(bar) = &bar {
+                bar.set_position(done as u64);
+            }
+        },
+    );
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
     }
-    let pixels = settings.image.width as u64 * settings.image.height as u64;
-    let bar = indicatif::ProgressBar::new(pixels);
-    if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "reference {bar:40} {percent:>3}%  {elapsed_precise} (about {eta} left)",
-    ) {
-        bar.set_style(style);
-    }
+    super::interrupt::check()?;
+    Ok(result??)
+}
+
+/// Runs `work` on another thread; every 50 ms this one reports the pixels
+/// done and turns an interrupt into a cancel of `control`.
+pub(super) fn watch<T: Send>(
+    control: &RenderControl,
+    work: impl FnOnce() -> T + Send,
+    mut progress: impl FnMut(usize),
+) -> anyhow::Result<T> {
     let result = std::thread::scope(|s| {
-        let worker = s.spawn(|| reference.render(settings, options, &control));
+        let worker = s.spawn(work);
         while !worker.is_finished() {
-            bar.set_position(control.pixels_done.load(Ordering::Relaxed) as u64);
-            std::thread::sleep(Duration::from_millis(100));
+            if crate::output::interrupted() {
+                control.cancel();
+            }
+            progress(control.pixels_done.load(Ordering::Relaxed));
+            std::thread::sleep(Duration::from_millis(50));
         }
         worker.join()
     });
-    bar.finish_and_clear();
-    match result {
-        Ok(rendered) => Ok(rendered?),
-        Err(_) => anyhow::bail!("the reference render stopped unexpectedly"),
-    }
+    result.map_err(|_| anyhow::anyhow!("the reference render stopped unexpectedly"))
 }
 
 /// One line: size, light, time, rays and the noise estimate.

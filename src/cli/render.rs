@@ -8,14 +8,14 @@ use crate::reference::{Reference, ReferenceOptions};
 use crate::scene::Scene;
 use crate::settings::{DebugView, Settings};
 use anyhow::Context;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneOptions,
     /// Output image: .png (displayed) or .exr (linear values).
-    #[arg(long, value_name = "FILE.png|FILE.exr")]
+    #[arg(long, value_name = "FILE.png|FILE.exr", value_parser = super::reference::output_path)]
     pub out: PathBuf,
     /// Print the GPU adapter used.
     #[arg(long)]
@@ -25,45 +25,72 @@ pub struct RenderArgs {
 /// The settings and the scene they draw. A loaded scene, unless the
 /// settings file was saved for it, is framed and lit from its own bounds
 /// (the flags still override); a `gltf:N` camera is resolved against it;
-/// the ground the settings ask for is added.
+/// the ground the settings ask for is added. The loader's repairs are
+/// printed as warnings, and a physically impossible set-up is refused (or,
+/// with `--allow-impossible`, warned of).
 pub fn load(options: &SceneOptions) -> anyhow::Result<(Settings, Scene)> {
     let (mut settings, saved) = options.base()?;
     let scene = crate::scene::for_settings(&settings)?;
+    for warning in &scene.warnings {
+        eprintln!("lumlab: warning: {warning}");
+    }
     if settings.scene.is_some() && !saved {
         crate::scene::framing::adopt(&mut settings, &scene);
     }
     let gltf_camera = options.apply_flags(&mut settings)?;
-
     if let Some(n) = gltf_camera {
         let camera = scene.cameras.get(n).ok_or_else(|| {
-            anyhow::anyhow!(
+            super::usage(format!(
                 "--camera gltf:{n}: the scene has {} camera(s)",
                 scene.cameras.len()
-            )
+            ))
         })?;
         settings.camera = camera.camera;
         settings.validate().context("camera from the scene file")?;
     }
     let scene = crate::scene::framing::with_ground(scene, &settings.ground);
+    let impossible = crate::scene::plausibility::impossible_setups(&scene, &settings);
+    if options.allow_impossible {
+        for line in &impossible {
+            eprintln!("lumlab: warning: {line}");
+        }
+    } else if !impossible.is_empty() {
+        return Err(super::usage(format!(
+            "{}; the GPU and the reference would disagree (--allow-impossible draws it anyway)",
+            impossible.join("; ")
+        )));
+    }
     Ok((settings, scene))
+}
+
+/// Checks `--out` before any work: a usage error naming the flag.
+pub fn check_out(flag: &str, path: &Path) -> anyhow::Result<PathBuf> {
+    crate::output::check_writable(path).map_err(|e| super::usage(format!("{flag} {e}")))
 }
 
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let format = ImageFormat::of_path(&args.out)?;
+    check_out("--out", &args.out)?;
     let (settings, scene) = load(&args.scene)?;
+    // These views compare with the CPU reference of the same settings.
+    let compare = matches!(settings.view.mode, DebugView::Error | DebugView::RefVisibility);
+    let reference_options = ReferenceOptions::DEFAULT;
+    if compare {
+        let estimate = super::cost::reference(&settings, &reference_options, scene.triangle_count());
+        super::cost::check_cpu("the reference for this view", estimate, args.scene.yes)?;
+    }
     let gpu = GpuContext::headless()?;
     if args.adapter_info {
         eprintln!("adapter: {}", gpu.describe());
     }
+    let size = (settings.image.width, settings.image.height);
+    super::cost::check_gpu(&gpu.device.limits(), &gpu.describe(), size)?;
     let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
-    if matches!(settings.view.mode, DebugView::Error | DebugView::RefVisibility) {
-        // These views compare with the CPU reference of the same settings.
+    if compare {
         let reference = Reference::new(&scene);
-        let image =
-            super::reference::render_with_progress(&reference, &settings, &ReferenceOptions::DEFAULT)?;
+        let image = super::reference::render_with_progress(&reference, &settings, &reference_options)?;
         renderer.set_comparison(Some(image.to_comparison()));
     }
-    let size = (settings.image.width, settings.image.height);
     let report = renderer.render(&settings, size);
     if let Some(note) = &report.resolution_note {
         eprintln!(

@@ -1,15 +1,18 @@
 //! `lumlab report`: the speed-against-error sweep, written as a folder
-//! (CSV, figures, images, index.html). The folder is built beside DIR under a
-//! temporary name and renamed into place only when complete, so a failure
-//! never leaves half a report.
+//! (CSV, figures, images, index.html). The folder is new, empty or an
+//! earlier report's ([`report::folder`]); the report is staged beside it and
+//! moved in only when complete, so a failure or an interrupt never leaves
+//! half a report.
 
 use super::args::SceneOptions;
 use super::reference::Sampling;
 use crate::gpu::GpuContext;
+use crate::reference::RenderControl;
+use crate::report::folder::ReportFolder;
 use crate::report::{self, ReportOptions, Step, sweep};
 use anyhow::Context;
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Debug, clap::Args)]
 pub struct ReportArgs {
@@ -26,24 +29,28 @@ pub struct ReportArgs {
     #[arg(long, value_name = "N", default_value_t = report::DEFAULT_FRAMES as u32,
           value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub frames: u32,
-    /// Output folder: created, or replaced when it holds an earlier report.
+    /// Output folder: new, empty, or an earlier report's (its files are replaced, others kept).
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
 }
 
 pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
+    let folder = ReportFolder::prepare(&args.out).map_err(|e| super::usage(format!("--out {e}")))?;
     let (settings, scene) = super::render::load(&args.scene)?;
     let points = match &args.sweep {
         Some(path) => sweep::load(path, &settings)?,
         None => sweep::parse(sweep::DEFAULT_SWEEP, &settings)?,
     };
-    let staging = Staging::new(&args.out)?;
-    let gpu = GpuContext::headless()?;
     let options = ReportOptions {
         frames: args.frames as usize,
         reference: args.sampling.options(),
         ..ReportOptions::default()
     };
+    let estimate = super::cost::reference(&settings, &options.reference, scene.triangle_count());
+    super::cost::check_cpu("the report's reference", estimate, args.scene.yes)?;
+    let gpu = GpuContext::headless()?;
+    let size = (settings.image.width, settings.image.height);
+    super::cost::check_gpu(&gpu.device.limits(), &gpu.describe(), size)?;
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = indicatif::ProgressBar::new(1);
         if let Ok(style) =
@@ -60,12 +67,27 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
             bar.set_message(step.what);
         }
     };
-    let report = report::run(&gpu, &scene, &settings, &points, &options, &mut progress)?;
+    let control = RenderControl::default();
+    let work = || {
+        report::run(
+            &gpu,
+            &scene,
+            &settings,
+            &points,
+            &options,
+            &control,
+            &mut progress,
+        )
+    };
+    let report = super::reference::watch(&control, work, |_| {});
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
-    report::page::write(&report, staging.path()).context("writing the report")?;
-    staging.commit()?;
+    super::interrupt::check()?;
+    let report = report??;
+    report::page::write(&report, folder.staging()).context("writing the report")?;
+    super::interrupt::check()?;
+    folder.commit()?;
     let best = report
         .configurations
         .iter()
@@ -82,85 +104,4 @@ pub fn run(args: &ReportArgs) -> anyhow::Result<()> {
         args.out.join("index.html").display()
     );
     Ok(())
-}
-
-/// A temporary folder beside the destination, renamed over it on success
-/// (and removed, with everything in it, otherwise).
-struct Staging {
-    dir: tempfile::TempDir,
-    destination: PathBuf,
-}
-
-impl Staging {
-    /// Refuses a destination that is a file, or a folder that holds
-    /// something other than an earlier report.
-    fn new(destination: &Path) -> anyhow::Result<Self> {
-        let shown = destination.display();
-        if destination.exists() {
-            anyhow::ensure!(destination.is_dir(), "--out {shown}: exists and is not a folder");
-            let empty = std::fs::read_dir(destination)
-                .with_context(|| format!("--out {shown}"))?
-                .next()
-                .is_none();
-            anyhow::ensure!(
-                empty || destination.join("report.csv").is_file(),
-                "--out {shown}: the folder is not empty and holds no earlier report; give a new or empty folder"
-            );
-        }
-        let parent = match destination.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p,
-            _ => Path::new("."),
-        };
-        anyhow::ensure!(
-            parent.is_dir(),
-            "--out {shown}: the folder {} does not exist",
-            parent.display()
-        );
-        let dir = tempfile::Builder::new()
-            .prefix(".lumlab-report-")
-            .tempdir_in(parent)
-            .map_err(|e| {
-                anyhow::anyhow!(
-                    "--out {shown}: cannot write in {}: {}",
-                    parent.display(),
-                    e.kind()
-                )
-            })?;
-        Ok(Self {
-            dir,
-            destination: destination.to_owned(),
-        })
-    }
-
-    fn path(&self) -> &Path {
-        self.dir.path()
-    }
-
-    /// Moves the finished report into place; an earlier report there is
-    /// set aside first and removed after.
-    fn commit(self) -> anyhow::Result<()> {
-        let shown = self.destination.display().to_string();
-        let parent = self.dir.path().parent().unwrap_or(Path::new(".")).to_owned();
-        let old = if self.destination.exists() {
-            let aside = tempfile::Builder::new()
-                .prefix(".lumlab-report-old-")
-                .tempdir_in(&parent)
-                .with_context(|| format!("--out {shown}"))?;
-            std::fs::rename(&self.destination, aside.path())
-                .with_context(|| format!("--out {shown}: cannot replace the earlier report"))?;
-            Some(aside)
-        } else {
-            None
-        };
-        let staged = self.dir.keep();
-        if let Err(e) = std::fs::rename(&staged, &self.destination) {
-            let _ = std::fs::remove_dir_all(&staged);
-            if let Some(old) = &old {
-                let _ = std::fs::rename(old.path(), &self.destination);
-            }
-            return Err(anyhow::anyhow!("--out {shown}: {e}"));
-        }
-        drop(old);
-        Ok(())
-    }
 }

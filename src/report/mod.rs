@@ -5,6 +5,7 @@
 //! [`run`] renders and measures; [`page`] writes the CSV, the figures and
 //! the HTML page into a folder.
 
+pub mod folder;
 pub mod metrics;
 pub mod page;
 pub mod sweep;
@@ -12,7 +13,7 @@ pub mod sweep;
 use crate::gpu::timing::PassTimes;
 use crate::gpu::{GpuContext, Renderer};
 use crate::physics::{Normalization, energy};
-use crate::reference::{Reference, ReferenceOptions, RenderControl};
+use crate::reference::{Reference, ReferenceError, ReferenceOptions, RenderControl};
 use crate::scene::Scene;
 use crate::settings::{DebugView, Settings, ShadowSettings};
 use metrics::{Comparison, ErrorMetrics, Frame};
@@ -111,13 +112,16 @@ pub struct Step {
     pub what: String,
 }
 
-/// Renders the reference, every configuration and the normalization rows.
+/// Renders the reference, every configuration and the normalization rows;
+/// `control` counts the reference's pixels, and a cancel through it stops
+/// the work at the next step with [`ReferenceError::Cancelled`].
 pub fn run(
     gpu: &GpuContext,
     scene: &Scene,
     base: &Settings,
     sweep: &[SweepPoint],
     options: &ReportOptions,
+    control: &RenderControl,
     progress: &mut dyn FnMut(Step),
 ) -> anyhow::Result<Report> {
     let start = Instant::now();
@@ -129,17 +133,21 @@ pub fn run(
     let total = 1 + sweep.len() + norms.len() * options.normalization_ms.len();
     let mut step = 0;
     let mut tell = |what: String| {
+        if control.cancel.load(std::sync::atomic::Ordering::Relaxed) {
+            return Err(ReferenceError::Cancelled);
+        }
         progress(Step {
             done: step,
             total,
             what,
         });
         step += 1;
+        Ok(())
     };
 
-    tell("reference (CPU ray tracing)".into());
+    tell("reference (CPU ray tracing)".into())?;
     let reference_start = Instant::now();
-    let reference = Reference::new(scene).render(&base, &options.reference, &RenderControl::default())?;
+    let reference = Reference::new(scene).render(&base, &options.reference, control)?;
     let reference_time = reference_start.elapsed();
 
     let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, scene);
@@ -151,7 +159,7 @@ pub fn run(
     let mut configurations = Vec::with_capacity(sweep.len());
     let mut gpu_timestamps = true;
     for point in sweep {
-        tell(format!("GPU {}", point.label));
+        tell(format!("GPU {}", point.label))?;
         let mut settings = base.clone();
         settings.shadow = point.shadow;
         let (measured, timestamps) =
@@ -169,7 +177,7 @@ pub fn run(
     let mut normalization = Vec::new();
     for &norm in norms {
         for &m in &options.normalization_ms {
-            tell(format!("normalization {norm}, m = {m}"));
+            tell(format!("normalization {norm}, m = {m}"))?;
             normalization.push(normalization_row(&mut renderer, &base, norm, m));
         }
     }

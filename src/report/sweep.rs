@@ -48,6 +48,10 @@ pub enum SweepError {
     Invalid(String),
 }
 
+/// Most configurations a sweep may ask for (each is rendered and timed):
+/// a cross-product's size is computed and checked before it is expanded.
+pub const MAX_POINTS: u64 = 1000;
+
 /// The sweep in `text` applied to `base` (whose other sections stay).
 pub fn parse(text: &str, base: &Settings) -> Result<Vec<SweepPoint>, SweepError> {
     let invalid = |message: String| SweepError::Invalid(message);
@@ -56,6 +60,9 @@ pub fn parse(text: &str, base: &Settings) -> Result<Vec<SweepPoint>, SweepError>
     for (key, value) in &document {
         match (key.as_str(), value) {
             ("config", toml::Value::Array(list)) => {
+                if (tables.len() + list.len()) as u64 > MAX_POINTS {
+                    return Err(too_many((tables.len() + list.len()) as u64));
+                }
                 for (i, item) in list.iter().enumerate() {
                     let table = item
                         .as_table()
@@ -63,7 +70,13 @@ pub fn parse(text: &str, base: &Settings) -> Result<Vec<SweepPoint>, SweepError>
                     tables.push(table.clone());
                 }
             }
-            ("cross", toml::Value::Table(axes)) => tables.extend(cross_product(axes)?),
+            ("cross", toml::Value::Table(axes)) => {
+                let size = cross_size(axes)?;
+                if tables.len() as u64 + size > MAX_POINTS {
+                    return Err(too_many(tables.len() as u64 + size));
+                }
+                tables.extend(cross_product(axes)?);
+            }
             ("config" | "cross", _) => {
                 return Err(invalid(format!(
                     "'{key}' must be {}",
@@ -105,14 +118,34 @@ pub fn parse(text: &str, base: &Settings) -> Result<Vec<SweepPoint>, SweepError>
 
 /// Reads and parses a sweep file.
 pub fn load(path: &Path, base: &Settings) -> Result<Vec<SweepPoint>, SweepError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SweepError::Read {
-        path: path.to_owned(),
-        source,
-    })?;
+    let limit = crate::input::SWEEP_LIMIT_BYTES;
+    let text =
+        crate::input::read_text_bounded(path, limit, "a sweep file").map_err(|source| SweepError::Read {
+            path: path.to_owned(),
+            source,
+        })?;
     parse(&text, base).map_err(|e| match e {
         SweepError::Invalid(message) => SweepError::Invalid(format!("{}: {message}", path.display())),
         other => other,
     })
+}
+
+/// How many combinations the axes make (saturating: an absurd product is
+/// still "too many", never an overflow).
+fn cross_size(axes: &toml::Table) -> Result<u64, SweepError> {
+    axes.iter().try_fold(1u64, |product, (key, values)| match values {
+        toml::Value::Array(values) if values.is_empty() => {
+            Err(SweepError::Invalid(format!("cross.{key} has no values")))
+        }
+        toml::Value::Array(values) => Ok(product.saturating_mul(values.len() as u64)),
+        _ => Ok(product),
+    })
+}
+
+fn too_many(count: u64) -> SweepError {
+    SweepError::Invalid(format!(
+        "the sweep asks for {count} configurations; at most {MAX_POINTS} are allowed"
+    ))
 }
 
 /// Every combination of the axes' values: keys in alphabetical order, the
@@ -319,5 +352,31 @@ mod tests {
         assert!(error("[extra]\na = 1").contains("extra"));
         assert!(error("").contains("no configuration"));
         assert!(!error("[[config").is_empty());
+    }
+
+    #[test]
+    fn an_astronomical_cross_product_is_refused_before_it_is_expanded() {
+        // 2^60 combinations in a few hundred bytes: expanding it would never end.
+        let axis = "[512, 512]";
+        let keys = [
+            "resolution",
+            "pcf_size",
+            "poisson_samples",
+            "vsm_blur_texels",
+            "filter",
+        ];
+        let mut text = String::from("[cross]\n");
+        for i in 0..60 {
+            text += &format!("{}_{i} = {axis}\n", keys[i % keys.len()]);
+        }
+        let error = parse(&text, &Settings::default()).unwrap_err().to_string();
+        assert!(error.contains("1152921504606846976 configurations"), "{error}");
+        let list = "[[config]]\nfilter = \"pcf\"\n".repeat(MAX_POINTS as usize + 1);
+        assert!(
+            parse(&list, &Settings::default())
+                .unwrap_err()
+                .to_string()
+                .contains("at most 1000")
+        );
     }
 }

@@ -10,6 +10,7 @@ pub mod default_scene;
 pub mod facts;
 pub mod framing;
 pub mod gltf;
+pub mod plausibility;
 pub mod scale;
 pub mod shapes;
 pub mod stress;

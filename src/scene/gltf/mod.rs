@@ -49,10 +49,13 @@ const FOVY_RANGE_DEG: (f64, f64) = (1.0, 179.0);
 
 /// Loads a `.gltf` or `.glb` file; relative URIs resolve beside it.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
-    let bytes = std::fs::read(path).map_err(|source| SceneError::Read {
-        path: path.to_owned(),
-        source,
-    })?;
+    let bytes =
+        crate::input::read_bounded(path, crate::input::SCENE_LIMIT_BYTES, "a scene").map_err(|source| {
+            SceneError::Read {
+                path: path.to_owned(),
+                source,
+            }
+        })?;
     load_slice(&bytes, path, path.parent())
 }
 
@@ -500,7 +503,9 @@ impl Loader<'_, '_, '_> {
         };
         let what = resources::describe("image", index, image.uri.as_deref());
         let bytes = match (&image.uri, image.buffer_view) {
-            (Some(uri), _) => std::borrow::Cow::Owned(resources::read_uri(uri, self.base_dir)?),
+            (Some(uri), _) => {
+                std::borrow::Cow::Owned(resources::read_uri(uri, self.base_dir, resources::Kind::Image)?)
+            }
             (None, Some(view)) => {
                 std::borrow::Cow::Borrowed(self.data.view(view.value()).map_err(|e| e.to_string())?.0)
             }
@@ -652,7 +657,12 @@ impl Loader<'_, '_, '_> {
                     continue;
                 }
             };
-            let fovy_deg = fovy_deg.clamp(FOVY_RANGE_DEG.0, FOVY_RANGE_DEG.1);
+            let clamped = fovy_deg.clamp(FOVY_RANGE_DEG.0, FOVY_RANGE_DEG.1);
+            if clamped != fovy_deg {
+                self.warn(format!(
+                    "camera '{name}': a {fovy_deg:.3}° field of view is outside 1° … 179°; {clamped}° used"
+                ));
+            }
             let distance_m = target_distance(&root.nodes[instance.node].extras)
                 .unwrap_or_else(|| orbit_distance(eye, forward, bounds));
             cameras.push(SceneCamera {
@@ -660,7 +670,7 @@ impl Loader<'_, '_, '_> {
                 camera: Camera {
                     eye: eye.as_vec3(),
                     target: (eye + forward * distance_m).as_vec3(),
-                    fovy_deg: fovy_deg as f32,
+                    fovy_deg: clamped as f32,
                 },
             });
         }

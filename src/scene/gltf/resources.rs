@@ -21,14 +21,12 @@ pub(super) fn load_buffers<'a>(
     for (i, buffer) in root.buffers.iter().enumerate() {
         let what = describe("buffer", i, buffer.uri.as_deref());
         let data = match (&buffer.uri, bin) {
-            (Some(uri), _) => {
-                Cow::Owned(
-                    read_uri(uri, base_dir).map_err(|reason| LoadProblem::MissingData {
-                        what: what.clone(),
-                        reason,
-                    })?,
-                )
-            }
+            (Some(uri), _) => Cow::Owned(read_uri(uri, base_dir, Kind::Buffer).map_err(|reason| {
+                LoadProblem::MissingData {
+                    what: what.clone(),
+                    reason,
+                }
+            })?),
             // Only the first buffer may stand for the GLB's binary chunk.
             (None, Some(bin)) if i == 0 => Cow::Borrowed(bin),
             (None, _) => {
@@ -59,9 +57,17 @@ pub(super) fn describe(kind: &str, index: usize, uri: Option<&str>) -> String {
     }
 }
 
+/// What a URI points to, which bounds how much of a file is read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Kind {
+    Buffer,
+    Image,
+}
+
 /// The bytes behind a URI: a base64 data URI, or a path relative to the
-/// scene's folder (percent-encoded, as URIs are).
-pub(super) fn read_uri(uri: &str, base_dir: Option<&Path>) -> Result<Vec<u8>, String> {
+/// scene's folder (percent-encoded, as URIs are), a regular file within
+/// the size limit of its kind.
+pub(super) fn read_uri(uri: &str, base_dir: Option<&Path>, kind: Kind) -> Result<Vec<u8>, String> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let (_media_type, payload) = rest
             .split_once(";base64,")
@@ -78,7 +84,11 @@ pub(super) fn read_uri(uri: &str, base_dir: Option<&Path>) -> Result<Vec<u8>, St
         std::str::from_utf8(&decoded).map_err(|_| "the path is not UTF-8 once decoded".to_string())?;
     let base_dir = base_dir.ok_or("an embedded scene cannot refer to files")?;
     let path = base_dir.join(relative);
-    std::fs::read(&path).map_err(|e| format!("'{}': {e}", path.display()))
+    let (limit, what) = match kind {
+        Kind::Buffer => (crate::input::BUFFER_LIMIT_BYTES, "a buffer"),
+        Kind::Image => (crate::input::IMAGE_LIMIT_BYTES, "an image"),
+    };
+    crate::input::read_bounded(&path, limit, what).map_err(|e| format!("'{}': {e}", path.display()))
 }
 
 /// `scheme:` at the start of a URI (RFC 3986: a letter, then letters,
@@ -118,13 +128,13 @@ mod tests {
     #[test]
     fn data_uris_decode_with_or_without_padding() {
         assert_eq!(
-            read_uri("data:application/octet-stream;base64,AAEC", None).unwrap(),
+            read_uri("data:application/octet-stream;base64,AAEC", None, Kind::Buffer).unwrap(),
             [0, 1, 2]
         );
-        assert_eq!(read_uri("data:;base64,AAE=", None).unwrap(), [0, 1]);
-        assert_eq!(read_uri("data:;base64,AAE", None).unwrap(), [0, 1]);
-        assert!(read_uri("data:text/plain,hello", None).is_err());
-        assert!(read_uri("data:;base64,@@@", None).is_err());
+        assert_eq!(read_uri("data:;base64,AAE=", None, Kind::Buffer).unwrap(), [0, 1]);
+        assert_eq!(read_uri("data:;base64,AAE", None, Kind::Buffer).unwrap(), [0, 1]);
+        assert!(read_uri("data:text/plain,hello", None, Kind::Buffer).is_err());
+        assert!(read_uri("data:;base64,@@@", None, Kind::Buffer).is_err());
     }
 
     #[test]
@@ -132,16 +142,33 @@ mod tests {
         assert!(has_scheme("https://example.com/a.bin"));
         assert!(has_scheme("file:///tmp/a.bin"));
         assert!(!has_scheme("a%20b.bin") && !has_scheme("dir/a.bin"));
-        assert!(read_uri("https://example.com/a.bin", Some(Path::new("."))).is_err());
-        assert!(read_uri("a.bin", None).unwrap_err().contains("embedded"));
+        assert!(read_uri("https://example.com/a.bin", Some(Path::new(".")), Kind::Buffer).is_err());
+        assert!(
+            read_uri("a.bin", None, Kind::Buffer)
+                .unwrap_err()
+                .contains("embedded")
+        );
     }
 
     #[test]
     fn percent_encoded_paths_are_decoded() {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("a b.bin"), [7u8]).unwrap();
-        assert_eq!(read_uri("a%20b.bin", Some(dir.path())).unwrap(), [7]);
-        let missing = read_uri("nope.bin", Some(dir.path())).unwrap_err();
+        assert_eq!(
+            read_uri("a%20b.bin", Some(dir.path()), Kind::Buffer).unwrap(),
+            [7]
+        );
+        let missing = read_uri("nope.bin", Some(dir.path()), Kind::Buffer).unwrap_err();
         assert!(missing.contains("nope.bin"), "{missing}");
+    }
+
+    #[test]
+    fn a_uri_naming_a_device_fails_fast() {
+        let dev = read_uri(
+            "../../../../../../../../dev/zero",
+            Some(Path::new("/tmp")),
+            Kind::Buffer,
+        );
+        assert!(dev.unwrap_err().contains("not a regular file"));
     }
 }
