@@ -10,7 +10,9 @@
 //! turned into an error.
 
 mod accessor;
+mod cameras;
 mod container;
+mod materials;
 mod primitive;
 mod resources;
 pub mod write;
@@ -18,13 +20,10 @@ pub mod write;
 pub use resources::MAX_IMAGE_SIDE;
 pub use write::to_glb;
 
-use super::{
-    Aabb, Camera, LoadProblem, Material, Object, Scene, SceneCamera, SceneError, SourceInfo, Texture,
-};
+use super::{Aabb, LoadProblem, Material, Object, Scene, SceneError, SourceInfo};
 use accessor::Data;
-use glam::{DMat4, DQuat, DVec3, Vec4};
+use glam::{DMat4, DQuat, DVec3};
 use gltf::json::Root;
-use gltf::json::camera::Type as CameraType;
 use gltf::json::mesh::Semantic;
 use gltf::json::validation::Checked;
 use primitive::{LocalPrimitive, Topology};
@@ -40,12 +39,6 @@ pub const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] =
 /// Most triangles a scene may place, all instances counted: beyond this the
 /// flattened scene would not fit in memory (about 100 bytes a triangle).
 pub const MAX_TRIANGLES: usize = 1 << 25;
-
-/// Field of view given to an orthographic camera when the scene gives no
-/// distance to match its magnification with (degrees).
-const FALLBACK_FOVY_DEG: f64 = 45.0;
-/// The lab's field-of-view range (degrees), as the command line accepts it.
-const FOVY_RANGE_DEG: (f64, f64) = (1.0, 179.0);
 
 /// Loads a `.gltf` or `.glb` file; relative URIs resolve beside it.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
@@ -441,106 +434,6 @@ impl Loader<'_, '_, '_> {
         Ok(locals)
     }
 
-    /// Every material of the file, with the base-colour images they use.
-    fn materials(&mut self) -> (Vec<Material>, Vec<Texture>) {
-        let root = self.root;
-        let mut textures = Vec::new();
-        let mut by_image: HashMap<usize, Option<usize>> = HashMap::new();
-        let mut unreadable: Vec<String> = Vec::new();
-        let mut materials = Vec::with_capacity(root.materials.len());
-        for (i, json) in root.materials.iter().enumerate() {
-            let name = json.name.clone().unwrap_or_else(|| format!("material {i}"));
-            let pbr = &json.pbr_metallic_roughness;
-            let factor = Vec4::from_array(pbr.base_color_factor.0);
-            let base_color = if factor.is_finite() {
-                factor.clamp(Vec4::ZERO, Vec4::ONE)
-            } else {
-                self.warn(format!(
-                    "material '{name}': baseColorFactor is not finite; grey used"
-                ));
-                Material::default().base_color
-            };
-            let base_color_texture = pbr.base_color_texture.as_ref().and_then(|info| {
-                let texture = info.index.value();
-                let Some(image) = root.textures.get(texture).map(|t| t.source.value()) else {
-                    unreadable.push(format!("texture {texture} does not exist"));
-                    return None;
-                };
-                *by_image.entry(image).or_insert_with(|| match self.image(image) {
-                    Ok(t) => {
-                        textures.push(t);
-                        Some(textures.len() - 1)
-                    }
-                    Err(reason) => {
-                        unreadable.push(reason);
-                        None
-                    }
-                })
-            });
-            let (k, m) = self.lab_parameters(&name, &json.extras);
-            materials.push(Material {
-                name,
-                base_color,
-                base_color_texture,
-                k,
-                m,
-                double_sided: json.double_sided,
-            });
-        }
-        if let Some(first) = unreadable.first() {
-            self.warn(format!(
-                "{} base-colour textures cannot be used (first: {first}); their base colour factor alone is drawn",
-                unreadable.len()
-            ));
-        }
-        (materials, textures)
-    }
-
-    /// Decodes image `index` (from a URI or a buffer view).
-    fn image(&self, index: usize) -> Result<Texture, String> {
-        let Some(image) = self.root.images.get(index) else {
-            return Err(format!("image {index} does not exist"));
-        };
-        let what = resources::describe("image", index, image.uri.as_deref());
-        let bytes = match (&image.uri, image.buffer_view) {
-            (Some(uri), _) => {
-                std::borrow::Cow::Owned(resources::read_uri(uri, self.base_dir, resources::Kind::Image)?)
-            }
-            (None, Some(view)) => {
-                std::borrow::Cow::Borrowed(self.data.view(view.value()).map_err(|e| e.to_string())?.0)
-            }
-            (None, None) => return Err(format!("{what} has neither uri nor bufferView")),
-        };
-        resources::decode_image(&bytes).map_err(|e| format!("{what}: {e}"))
-    }
-
-    /// The lab's own k and m from a material's extras,
-    /// `{"lumlab": {"k": 0.3, "m": 64}}`, clamped to their ranges.
-    fn lab_parameters(&mut self, name: &str, extras: &gltf::json::Extras) -> (Option<f32>, Option<f32>) {
-        let Some(lab) = lab_extras(extras) else {
-            return (None, None);
-        };
-        let mut read = |key: &str, (lo, hi): (f64, f64)| -> Option<f32> {
-            let value = lab.get(key)?;
-            match value.as_f64().filter(|v| v.is_finite()) {
-                Some(v) if (lo..=hi).contains(&v) => Some(v as f32),
-                Some(v) => {
-                    self.warnings.push(format!(
-                        "material '{name}': lumlab {key} = {v} is outside {lo} … {hi}; clamped"
-                    ));
-                    Some(v.clamp(lo, hi) as f32)
-                }
-                None => {
-                    self.warnings.push(format!(
-                        "material '{name}': lumlab {key} = {value} is not a number; ignored"
-                    ));
-                    None
-                }
-            }
-        };
-        (read("k", (0.0, 1.0)), read("m", (0.0, 1e6)))
-    }
-
     /// One warning per kind of repair, with its count.
     fn report(&mut self, t: &Tally) {
         let lines = [
@@ -600,82 +493,6 @@ impl Loader<'_, '_, '_> {
             ));
         }
     }
-
-    /// The placed cameras in file order, reduced to eye, target (along the
-    /// node's −Z, at the depth of the bounds' centre unless the node's
-    /// extras say `{"lumlab": {"target_distance": 8.6}}`) and vertical field
-    /// of view.
-    fn cameras(&mut self, placed: &[CameraInstance], bounds: &Aabb) -> Vec<SceneCamera> {
-        let root = self.root;
-        let mut order: Vec<&CameraInstance> = placed.iter().collect();
-        order.sort_by_key(|c| (c.camera, c.node));
-        let mut cameras = Vec::new();
-        for instance in order {
-            let json = &root.cameras[instance.camera];
-            let name = json
-                .name
-                .clone()
-                .or_else(|| root.nodes[instance.node].name.clone())
-                .unwrap_or_else(|| format!("camera {}", instance.camera));
-            let eye = instance.world.transform_point3(DVec3::ZERO);
-            let Some(forward) = instance.world.transform_vector3(DVec3::NEG_Z).try_normalize() else {
-                self.warn(format!(
-                    "camera '{name}': its node's transform has no direction; skipped"
-                ));
-                continue;
-            };
-            let fovy_deg = match (json.type_, &json.perspective, &json.orthographic) {
-                (Checked::Valid(CameraType::Perspective), Some(p), _) => {
-                    let deg = (p.yfov as f64).to_degrees();
-                    if deg.is_finite() && deg > 0.0 && deg < 180.0 {
-                        deg
-                    } else {
-                        self.warn(format!(
-                            "camera '{name}': yfov {} is not an angle in (0, π); 45° used",
-                            p.yfov
-                        ));
-                        FALLBACK_FOVY_DEG
-                    }
-                }
-                (Checked::Valid(CameraType::Orthographic), _, Some(o)) => {
-                    // The perspective view that shows the orthographic height
-                    // 2·ymag at the distance of the scene's centre.
-                    let distance = (bounds.center().as_dvec3() - eye).dot(forward);
-                    let ymag = (o.ymag as f64).abs();
-                    let deg = if !bounds.is_empty() && distance > 1e-6 && ymag > 0.0 && ymag.is_finite() {
-                        2.0 * (ymag / distance).atan().to_degrees()
-                    } else {
-                        FALLBACK_FOVY_DEG
-                    };
-                    self.warn(format!(
-                        "camera '{name}' is orthographic: shown in perspective with a {deg:.1}° field of view"
-                    ));
-                    deg
-                }
-                _ => {
-                    self.warn(format!("camera '{name}' has no usable projection; skipped"));
-                    continue;
-                }
-            };
-            let clamped = fovy_deg.clamp(FOVY_RANGE_DEG.0, FOVY_RANGE_DEG.1);
-            if clamped != fovy_deg {
-                self.warn(format!(
-                    "camera '{name}': a {fovy_deg:.3}° field of view is outside 1° … 179°; {clamped}° used"
-                ));
-            }
-            let distance_m = target_distance(&root.nodes[instance.node].extras)
-                .unwrap_or_else(|| orbit_distance(eye, forward, bounds));
-            cameras.push(SceneCamera {
-                name,
-                camera: Camera {
-                    eye: eye.as_vec3(),
-                    target: (eye + forward * distance_m).as_vec3(),
-                    fovy_deg: clamped as f32,
-                },
-            });
-        }
-        cameras
-    }
 }
 
 fn out_of_range(owner: &str, owner_index: usize, kind: &str, index: usize, available: usize) -> LoadProblem {
@@ -725,27 +542,6 @@ fn lab_extras(extras: &gltf::json::Extras) -> Option<serde_json::Map<String, ser
     let raw = extras.as_ref()?;
     let value: serde_json::Value = serde_json::from_str(raw.get()).ok()?;
     value.get("lumlab")?.as_object().cloned()
-}
-
-/// How far ahead of a file's camera its orbit target goes (m): the depth of
-/// the scene's centre along the view, so that orbiting turns around the
-/// model; a tenth of the scene's size when the centre is behind or too near
-/// (1 m for an empty scene).
-fn orbit_distance(eye: DVec3, forward: DVec3, bounds: &Aabb) -> f64 {
-    if bounds.is_empty() {
-        return 1.0;
-    }
-    let size = bounds.extent().as_dvec3().length().max(1e-9);
-    let depth = (bounds.center().as_dvec3() - eye).dot(forward);
-    depth.max(0.1 * size)
-}
-
-/// A camera node's `{"lumlab": {"target_distance": D}}` (m), when positive.
-fn target_distance(extras: &gltf::json::Extras) -> Option<f64> {
-    lab_extras(extras)?
-        .get("target_distance")?
-        .as_f64()
-        .filter(|d| d.is_finite() && *d > 0.0)
 }
 
 /// A node's `{"lumlab": {"casts_shadows": false, "receives_shadows": false}}`;
