@@ -25,6 +25,7 @@ use super::grid::{Answer, Cell, DirectionGrid};
 use super::image::luminance;
 use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
 use crate::physics::brdf::blinn_phong;
+use crate::physics::colour::tint;
 use crate::physics::radiometry::{
     incidence, intensity, point_irradiance, sphere_irradiance, sphere_radiance,
 };
@@ -246,7 +247,7 @@ impl Reference {
             o,
             uv,
             color,
-            tint: color * setup.light_color,
+            tint: tint(color, setup.light_color),
             brdf: BrdfParams {
                 k: own(material.k, setup.k),
                 m: own(material.m, setup.m),
