@@ -522,7 +522,7 @@ impl LabApp {
         let banner = self.reference_banner();
         let caption = self.error_caption();
         if let Some(gpu) = &mut self.gpu {
-            gpu.set_split(self.state.split.enabled, &self.scene);
+            gpu.set_split(self.state.split.enabled);
         }
         Viewport {
             settings: &mut self.state.settings,

@@ -4,6 +4,7 @@
 //! pass), `display` (what people see), `lines` (the frustum overlay).
 
 pub mod binding;
+pub mod capabilities;
 pub mod colormap;
 pub mod context;
 pub mod display;
@@ -15,8 +16,12 @@ pub mod scene_buffers;
 pub mod shade;
 pub mod shaders;
 pub mod shadow;
+pub mod shared;
+pub mod targets;
 pub mod timing;
 pub mod uniforms;
 
+pub use capabilities::Capabilities;
 pub use context::{GpuContext, GpuError};
-pub use renderer::{ComparisonImage, FloatTarget, FrameReport, PendingScale, PendingTexels, Renderer};
+pub use renderer::{ComparisonImage, FrameReport, Renderer};
+pub use targets::{FloatTarget, PendingScale, PendingTexels};
