@@ -251,6 +251,7 @@ impl ShadowPass {
                     resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                         buffer: &layer_index,
                         offset: 0,
+                        // 16: std140 backends (GL) round a uniform block up to 16 bytes.
                         size: wgpu::BufferSize::new(16),
                     }),
                 },
@@ -275,7 +276,7 @@ impl ShadowPass {
             queue.write_buffer(
                 &self.layer_index,
                 DYNAMIC_STRIDE * layer as u64,
-                bytemuck::bytes_of(&[layer, 0, 0, 0]),
+                bytemuck::bytes_of(&layer),
             );
         }
     }
