@@ -2,6 +2,12 @@
 //! The app shows them, the command line writes them, the tests read them back.
 //! One file per pass: `shadow` (depth from the light), `shade` (the camera
 //! pass), `display` (what people see), `lines` (the frustum overlay).
+//! `shared` holds what the views of one scene share (the uploaded scene, the
+//! shadow maps); `renderer` is one view over it, drawing into its `targets`.
+//! Visibility V is a source of its own (settings::Visibility): the camera
+//! pass's `visibility` in shaders/shade.wgsl dispatches on it, today to the
+//! shadow map (shaders/shadow_map.wgsl); the scene's vertex and index
+//! buffers can be read by a compute pass for another source.
 
 pub mod binding;
 pub mod capabilities;

@@ -207,6 +207,8 @@ impl Reference {
         let length = towards.length();
         let tri = &self.triangles[hit.triangle];
         let object = &self.objects[tri.object];
+        // An index out of range was mapped to the default material when the
+        // reference was built; the GPU's materials buffer does the same.
         let material = &self.materials[object.material];
         let [b0, b1, b2] = hit.at.barycentric;
         let [a, b, c] = tri.corners;
@@ -214,6 +216,9 @@ impl Reference {
         let o = -towards / length;
         let face = tri.face_normal;
         let geometric_normal = if face.dot(o) < 0.0 { -face } else { face };
+        // Missing vertex normals are zero: where the interpolated normal
+        // vanishes, the face's own (winding) normal is used, as on the GPU
+        // (shade.wgsl's surface_at); tests/wgsl_parity.rs holds both to it.
         let mut n = tri.flat_normal.unwrap_or_else(|| {
             (tri.normals[0] * b0 + tri.normals[1] * b1 + tri.normals[2] * b2).normalize_or(face)
         });
