@@ -37,9 +37,13 @@ fn single(
     [quantity, aux]
 }
 
-fn frame(renderer: &mut Renderer, settings: &Settings) -> [Vec<[f32; 4]>; 2] {
-    renderer.render(settings, (settings.image.width, settings.image.height));
-    [renderer.read_quantity(), renderer.read_aux()]
+/// A frame's quantity and aux targets, and whether it drew a shadow map.
+fn frame(renderer: &mut Renderer, settings: &Settings) -> ([Vec<[f32; 4]>; 2], bool) {
+    let report = renderer.render(settings, (settings.image.width, settings.image.height));
+    (
+        [renderer.read_quantity(), renderer.read_aux()],
+        report.shadow_redrawn,
+    )
 }
 
 #[test]
@@ -66,8 +70,9 @@ fn a_normalization_split_draws_the_shadow_map_once_per_change() {
             }
             _ => {}
         }
-        let a_frame = frame(&mut a, &a_settings);
-        let b_frame = frame(&mut b, &b_settings);
+        let (a_frame, _) = frame(&mut a, &a_settings);
+        let (b_frame, b_drew) = frame(&mut b, &b_settings);
+        assert!(!b_drew, "{change}: B reads the map A drew");
         assert_eq!(a.shadow_draws(), expected_draws, "{change}");
         assert_eq!(
             b.shadow_draws(),
@@ -85,9 +90,11 @@ fn a_normalization_split_draws_the_shadow_map_once_per_change() {
 
     // Shadow settings that change the map: B draws its own, A keeps its own.
     b_settings.shadow.resolution = 512;
-    let b_frame = frame(&mut b, &b_settings);
+    let (b_frame, b_drew) = frame(&mut b, &b_settings);
+    assert!(b_drew);
     assert_eq!(b.shadow_draws(), 3, "B's own map");
-    let a_frame = frame(&mut a, &a_settings);
+    let (a_frame, a_drew) = frame(&mut a, &a_settings);
+    assert!(!a_drew);
     assert_eq!(a.shadow_draws(), 3, "A's map is still there");
     assert!(
         a_frame == single(&gpu, &scene, &a_settings),
@@ -101,7 +108,8 @@ fn a_normalization_split_draws_the_shadow_map_once_per_change() {
     // One upload for both halves: a new scene reaches B through A.
     let plane = plane_scene(20.0);
     a.set_scene(&plane);
-    let b_frame = frame(&mut b, &b_settings);
+    let (b_frame, b_drew) = frame(&mut b, &b_settings);
+    assert!(b_drew, "a new scene, a new map");
     assert!(
         b_frame == single(&gpu, &plane, &b_settings),
         "B sees the scene A uploaded"

@@ -32,7 +32,8 @@ pub struct ComparisonImage {
 #[derive(Clone, Debug, Default)]
 pub struct FrameReport {
     pub size: (u32, u32),
-    /// This frame drew the shadow map (otherwise it reused the last one).
+    /// This frame drew its shadow map (otherwise it read one already drawn,
+    /// by this view or by another that shares the scene).
     pub shadow_redrawn: bool,
     /// The light's layers; None when shadows are off or nothing is drawn.
     pub layout: Option<ShadowLayout>,
