@@ -200,6 +200,10 @@ fn constants_shared_with_rust_are_defined_once_from_the_rust_values() {
         include_str!("../shaders/shadow_map.wgsl"),
         include_str!("../shaders/display.wgsl"),
         include_str!("../shaders/reduce.wgsl"),
+        include_str!("../shaders/shadow.wgsl"),
+        include_str!("../shaders/blur.wgsl"),
+        include_str!("../shaders/lines.wgsl"),
+        include_str!("../shaders/stability.wgsl"),
     ];
     for name in named.keys().copied().chain(["LUMINANCE_WEIGHTS"]) {
         let declaration = format!("const {name}:");
