@@ -68,8 +68,9 @@ fn surface_at(in: VsOut, front_facing: bool) -> Surface {
     // Missing vertex normals are uploaded as zero: where the interpolated
     // normal vanishes the face's own is used, as the reference does
     // (normalize_or(face) in reference::Reference::new and surface).
+    // (1e-30, not 0: GPUs that flush denormals would make inverseSqrt infinite.)
     let len2 = dot(in.normal, in.normal);
-    s.n = select(face, in.normal * inverseSqrt(len2), len2 > 0.0);
+    s.n = select(face, in.normal * inverseSqrt(len2), len2 > 1e-30);
     if mat.double_sided != 0u && dot(s.n, s.o) < 0.0 {
         s.n = -s.n;
     }
