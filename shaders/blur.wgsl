@@ -1,9 +1,13 @@
 // A separable Gaussian blur of one layer of the moment map (VSM/EVSM): run
 // once along x into a scratch layer, once along y back.
 
+// gpu::uniforms::BlurParamsRaw.
 struct BlurParams {
-    // x, y: the step (1, 0) or (0, 1); z: radius (texels); w: source layer.
-    step_radius_layer: vec4<i32>,
+    // One texel along the blur's direction: (1, 0) or (0, 1).
+    step: vec2<i32>,
+    radius_texels: i32,
+    // The layer blurred.
+    layer: i32,
 }
 
 @group(0) @binding(0) var source: texture_2d_array<f32>;
@@ -17,9 +21,9 @@ fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
 
 @fragment
 fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let step = params.step_radius_layer.xy;
-    let radius = params.step_radius_layer.z;
-    let layer = params.step_radius_layer.w;
+    let step = params.step;
+    let radius = params.radius_texels;
+    let layer = params.layer;
     let size = vec2<i32>(textureDimensions(source));
     let centre = vec2<i32>(position.xy);
     // σ = radius / 2: the kernel ends at two standard deviations.

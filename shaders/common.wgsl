@@ -1,9 +1,9 @@
 // Shared by every pass: the uniform layouts and the physics, mirrored line by
-// line from src/physics/ (brdf.rs, radiometry.rs, display.rs). Keep in step.
-
-const PI: f32 = 3.14159265358979;
-// Light distances are clamped to at least this (m): physics::radiometry::MIN_LIGHT_DISTANCE_M.
-const MIN_LIGHT_DISTANCE_M: f32 = 1e-6;
+// line from src/physics/ (brdf.rs, radiometry.rs, colour.rs, display.rs).
+// Keep in step: tests/wgsl_parity.rs runs these functions on the GPU against
+// the Rust ones. Numeric constants shared with Rust (PI, MIN_LIGHT_DISTANCE_M,
+// the luminance weights, the shadow filters' limits) are not written here:
+// gpu::shaders prepends them, generated from the Rust constants.
 
 // Debug views, in settings::DebugView order.
 const VIEW_SHADED: u32 = 0u;
@@ -34,24 +34,45 @@ const BIAS_CONSTANT: u32 = 1u;
 const BIAS_SLOPE: u32 = 2u;
 const BIAS_NORMAL: u32 = 3u;
 
+// Normalizations N(m), in physics::Normalization order.
+const NORM_NONE: u32 = 0u;
+const NORM_NDF: u32 = 1u;
+const NORM_APPROX: u32 = 2u;
+const NORM_EXACT: u32 = 3u;
+
+// Visibility sources, in settings::Visibility order.
+const VISIBILITY_SHADOW_MAP: u32 = 0u;
+
 // Everything the camera pass needs that changes per frame (gpu::uniforms::GlobalsRaw).
 struct Globals {
     // Eye-relative world position → clip space: clip = view_proj * (p − eye, 1).
     view_proj: mat4x4<f32>,
-    // xyz: light − eye (m); w: sphere radius R (m).
-    light_rel: vec4<f32>,
-    // xyz: the eye (m, world); the camera pass works relative to it.
-    eye: vec4<f32>,
-    // rgb: light colour; w: power Φ (W).
-    light_color_power: vec4<f32>,
-    // x: k, y: m, z: use the scene's own k and m (0/1), w: colour override (0/1).
-    material: vec4<f32>,
-    // rgb: colour override.
-    color_override: vec4<f32>,
-    // x: view, y: normalization, z, w: unused.
-    modes: vec4<u32>,
-    // x, y: image size (px); z, w: unused.
-    viewport: vec4<f32>,
+    // The light's centre relative to the eye (m).
+    light_rel: vec3<f32>,
+    // Sphere light radius R (m); 0 is a point light.
+    light_radius_m: f32,
+    // The eye (m, world); the camera pass works relative to it.
+    eye: vec3<f32>,
+    // Light power Φ (W).
+    light_power_w: f32,
+    // The light's colour (linear RGB factors of Φ).
+    light_color: vec3<f32>,
+    // k where the scene gives none (or scene materials are off).
+    k: f32,
+    // Replaces every material's colour when use_color_override != 0.
+    color_override: vec3<f32>,
+    // m where the scene gives none.
+    m: f32,
+    // VIEW_*.
+    view: u32,
+    // NORM_*.
+    normalization: u32,
+    // VISIBILITY_*: where V comes from.
+    visibility: u32,
+    // Materials' own k and m are used where they give them (0/1).
+    use_scene_materials: u32,
+    // 0/1.
+    use_color_override: u32,
 }
 
 // One shadow-map layer: a perspective frustum from the light (gpu::uniforms::ShadowLayerRaw).
@@ -60,43 +81,93 @@ struct ShadowLayer {
     rotation: mat4x4<f32>,
     // Light view → clip, reversed Z.
     proj: mat4x4<f32>,
-    // left, right, bottom, top: the frustum's extents as tangents (x/z, y/z).
-    tan_bounds: vec4<f32>,
-    // near, far (m), and (a, b) of the stored depth d = a / z + b.
-    depth: vec4<f32>,
+    // The frustum's extents as tangents (x/z, y/z).
+    tan_left: f32,
+    tan_right: f32,
+    tan_bottom: f32,
+    tan_top: f32,
+    // Near and far planes (m).
+    near_m: f32,
+    far_m: f32,
+    // The stored depth d = depth_a / z + depth_b.
+    depth_a: f32,
+    depth_b: f32,
 }
 
 // The shadow map's layout and settings (gpu::uniforms::ShadowRaw).
 struct Shadow {
     layers: array<ShadowLayer, 6>,
-    // x: enabled, y: cube (0/1), z: mask of drawn layers, w: filter.
-    mode: vec4<u32>,
-    // x: PCF size n, y: Poisson samples, z: PCSS blocker samples, w: bias mode.
-    counts: vec4<u32>,
-    // x: Poisson radius (texels), y: bias depth D (m), z: slope S, w: normal offset N (texels).
-    bias: vec4<f32>,
-    // x: resolution (texels), y: VSM bleed reduction, z: EVSM exponent, w: sphere light radius R (m).
-    misc: vec4<f32>,
-    // xyz: the light (m, world), for the shadow pass.
-    light_position: vec4<f32>,
+    // The light's centre (m, world), for the shadow pass.
+    light_position: vec3<f32>,
+    // 0: no shadow map, V = 1.
+    enabled: u32,
+    // Six cube faces (1) or one fitted frustum (0).
+    cube: u32,
+    // Bit i set: layer i was drawn.
+    layer_mask: u32,
+    // FILTER_*.
+    filter_mode: u32,
+    // BIAS_*.
+    bias_mode: u32,
+    // Kernel size n of pcf.
+    pcf_size: u32,
+    // Samples of poisson and of the filtering step of pcss.
+    poisson_samples: u32,
+    // Samples of the blocker search of pcss.
+    pcss_blocker_samples: u32,
+    // Texels per side of every layer.
+    resolution_texels: u32,
+    poisson_radius_texels: f32,
+    // Constant depth bias D (m) of constant and slope.
+    bias_depth_m: f32,
+    // Slope factor S of slope.
+    bias_slope: f32,
+    // Normal offset N (texels) of normal.
+    normal_offset_texels: f32,
+    // The part of Chebyshev's bound cut off by vsm/evsm.
+    vsm_bleed_reduction: f32,
+    // The EVSM warp exponent c.
+    evsm_exponent: f32,
+    // Sphere light radius R (m) for pcss.
+    light_radius_m: f32,
 }
 
 // A material (gpu::uniforms::MaterialRaw).
 struct Material {
     // Linear RGBA base colour factor.
     base_color: vec4<f32>,
-    // x: own k, y: own m, z: has own k (0/1), w: has own m (0/1).
-    params: vec4<f32>,
-    // x: texture layer + 1 (0 = none), y: double sided (0/1).
-    flags: vec4<u32>,
+    own_k: f32,
+    own_m: f32,
+    has_own_k: u32,
+    has_own_m: u32,
+    // Base-colour texture layer + 1 (0 = none).
+    texture_layer_plus_one: u32,
+    // Both faces are shaded (0/1).
+    double_sided: u32,
 }
 
 // How a view is displayed (gpu::uniforms::DisplayParamsRaw).
 struct DisplayParams {
-    // x: view, y: unused, z: unused, w: a comparison image is bound (0/1).
-    modes: vec4<u32>,
-    // x: exposure (EV), y: unused, z, w: image size (px).
-    values: vec4<f32>,
+    // Image size (px).
+    size_px: vec2<f32>,
+    // VIEW_*.
+    view: u32,
+    // A comparison image is bound (0/1).
+    has_comparison: u32,
+    // Exposure (EV).
+    exposure_ev: f32,
+}
+
+// Y of a linear RGB colour (physics::colour::luminance).
+fn luminance(c: vec3<f32>) -> f32 {
+    return dot(c, LUMINANCE_WEIGHTS);
+}
+
+// The colour light of colour `light` takes from a surface of colour `surface`:
+// the RGB product, where a spectral mode would put its tristimulus values
+// (physics::colour::tint).
+fn tint(surface: vec3<f32>, light: vec3<f32>) -> vec3<f32> {
+    return surface * light;
 }
 
 // ln(cos θ) from the gap d = 1 − cos θ: −2 atanh(d / (2 − d)) as a series
@@ -125,9 +196,9 @@ fn lobe(cos_theta: f32, gap: f32, m: f32) -> f32 {
 // N(m) (physics::brdf::Normalization::factor).
 fn norm_factor(norm: u32, m: f32) -> f32 {
     switch norm {
-        case 0u: { return 1.0; }
-        case 1u: { return (m + 1.0) / (2.0 * PI); }
-        case 2u: { return (m + 8.0) / (8.0 * PI); }
+        case NORM_NONE: { return 1.0; }
+        case NORM_NDF: { return (m + 1.0) / (2.0 * PI); }
+        case NORM_APPROX: { return (m + 8.0) / (8.0 * PI); }
         default: { return (m + 2.0) * (m + 4.0) / (8.0 * PI * (exp2(-m / 2.0) + m)); }
     }
 }
@@ -138,6 +209,11 @@ fn blinn_phong(n: vec3<f32>, l: vec3<f32>, o: vec3<f32>, k: f32, m: f32, norm: u
         return vec2<f32>(0.0);
     }
     let diffuse = k / PI;
+    if k >= 1.0 {
+        // Lambert alone: (1 − k) N(m) cos^m θ_h is not evaluated, so that an
+        // N(m) that overflows f32 (m ≳ 10^19 with exact) cannot give 0 · ∞.
+        return vec2<f32>(diffuse, 0.0);
+    }
     let sum = l + o;
     let len2 = dot(sum, sum);
     if !(len2 > 0.0) {

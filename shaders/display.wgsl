@@ -47,10 +47,10 @@ fn missing(position: vec2<f32>) -> vec3<f32> {
 
 // The light's depth map: one layer, or the six cube faces in a 3 × 2 grid.
 fn depth_view(position: vec2<f32>) -> vec3<f32> {
-    let size = params.values.zw;
+    let size = params.size_px;
     var cols = 1.0;
     var rows = 1.0;
-    if shadow.mode.y != 0u {
+    if shadow.cube != 0u {
         cols = 3.0;
         rows = 2.0;
     }
@@ -62,28 +62,23 @@ fn depth_view(position: vec2<f32>) -> vec3<f32> {
     }
     let cell = vec2<u32>(floor(local));
     let layer = cell.y * 3u + cell.x;
-    if (shadow.mode.z & (1u << layer)) == 0u {
+    if (shadow.layer_mask & (1u << layer)) == 0u {
         return missing(position);
     }
-    let res = shadow.misc.x;
-    let texel = vec2<i32>(fract(local) * res);
+    let texel = vec2<i32>(fract(local) * f32(shadow.resolution_texels));
     let d = textureLoad(shadow_depth, texel, i32(layer), 0).x;
     if d <= 0.0 {
         return grey(0.0);
     }
-    let depth = shadow.layers[layer].depth;
-    let z = linear_depth(d, depth.z, depth.w);
+    let f = shadow.layers[layer];
+    let z = linear_depth(d, f.depth_a, f.depth_b);
     // Near is white, far is dark.
-    return grey(1.0 - 0.9 * clamp((z - depth.x) / (depth.y - depth.x), 0.0, 1.0));
-}
-
-fn luminance(c: vec3<f32>) -> f32 {
-    return dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
+    return grey(1.0 - 0.9 * clamp((z - f.near_m) / (f.far_m - f.near_m), 0.0, 1.0));
 }
 
 @fragment
 fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let view = params.modes.x;
+    let view = params.view;
     if view == VIEW_DEPTH {
         return vec4<f32>(depth_view(position.xy), 1.0);
     }
@@ -91,10 +86,10 @@ fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let a = textureLoad(aux, texel, 0);
     if a.w == 0.0 {
         // Background: a quiet grey, darker at the bottom.
-        return vec4<f32>(grey(0.16 + 0.06 * (1.0 - position.y / params.values.w)), 1.0);
+        return vec4<f32>(grey(0.16 + 0.06 * (1.0 - position.y / params.size_px.y)), 1.0);
     }
     let q = textureLoad(quantity, texel, 0).rgb;
-    let has_reference = params.modes.w != 0u;
+    let has_reference = params.has_comparison != 0u;
     var color: vec3<f32>;
     switch view {
         case VIEW_VISIBILITY, VIEW_NDOTL: {
@@ -127,7 +122,7 @@ fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
             }
         }
         default: {
-            color = q * exp2(params.values.x);
+            color = q * exp2(params.exposure_ev);
         }
     }
     return vec4<f32>(color, 1.0);

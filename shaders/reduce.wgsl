@@ -9,10 +9,8 @@
 
 // The value a false-colour view scales by (its largest over the image).
 fn scaled_value(q: vec3<f32>, reference: vec3<f32>) -> f32 {
-    let view = params.modes.x;
-    if view == VIEW_ERROR {
-        let w = vec3<f32>(0.2126, 0.7152, 0.0722);
-        return abs(dot(q, w) - dot(reference, w));
+    if params.view == VIEW_ERROR {
+        return abs(luminance(q) - luminance(reference));
     }
     return q.x;
 }

@@ -1,20 +1,16 @@
 // The camera pass: shades every visible point with the point or sphere light,
-// the BRDF and the shadow map's visibility V, and writes the quantity the
-// chosen view shows (target 0) plus V, texel density, cos θ and coverage (target 1).
-// Positions are relative to the eye for precision far from the origin.
+// the BRDF and the visibility V, and writes the quantity the chosen view shows
+// (target 0) plus V, texel density, cos θ and coverage (target 1). V comes
+// from the source the visibility method selects (`visibility`); the radiance
+// (`view_quantity`) takes it as an input. Positions are relative to the eye
+// for precision far from the origin.
 
 @group(0) @binding(0) var<uniform> globals: Globals;
 @group(0) @binding(1) var<uniform> shadow: Shadow;
 @group(0) @binding(2) var<storage, read> materials: array<Material>;
 @group(0) @binding(3) var base_textures: texture_2d_array<f32>;
 @group(0) @binding(4) var base_sampler: sampler;
-@group(1) @binding(0) var shadow_depth: texture_depth_2d_array;
-@group(1) @binding(1) var shadow_compare: sampler_comparison;
-@group(1) @binding(2) var moments: texture_2d_array<f32>;
-@group(1) @binding(3) var moments_sampler: sampler;
-// The same depth texture read as plain floats: GLSL cannot textureLoad a
-// depth texture, so the software filters read it through this binding.
-@group(1) @binding(4) var shadow_depth_values: texture_2d_array<f32>;
+// Group 1: the visibility source's resources (shadow_map.wgsl).
 
 struct VsIn {
     @location(0) position: vec3<f32>,
@@ -35,7 +31,7 @@ struct VsOut {
 @vertex
 fn vs(in: VsIn) -> VsOut {
     var out: VsOut;
-    out.rel = in.position - globals.eye.xyz;
+    out.rel = in.position - globals.eye;
     out.clip = globals.view_proj * vec4<f32>(out.rel, 1.0);
     out.normal = in.normal;
     out.uv = in.uv;
@@ -43,297 +39,93 @@ fn vs(in: VsIn) -> VsOut {
     return out;
 }
 
-// Where a receiver falls in the shadow map.
-struct Receiver {
-    layer: u32,
-    // Light-view position (m); the view looks down −Z.
-    v: vec3<f32>,
-    // Depth from the light along its view axis (m).
-    z: f32,
-    // Continuous texel coordinates (texel centres at i + 0.5).
-    tc: vec2<f32>,
-    // The normal in light view.
-    n_v: vec3<f32>,
-    // World size of one texel at the receiver's depth (m).
-    texel_m: f32,
-    // tan of the angle between n and l, clamped to the steepest slope handled.
-    tan_theta: f32,
+// The surface at a fragment, as the BRDF sees it.
+struct Surface {
+    // Shading normal (towards the viewer on double-sided materials).
+    n: vec3<f32>,
+    // Unit direction to the eye.
+    o: vec3<f32>,
+    // The facet's own normal, on the side of n: the tangent plane the shadow
+    // map really holds (the interpolated normal of a curved mesh is not that plane).
+    n_geo: vec3<f32>,
+    // BRDF colour c (linear RGB), k and m.
+    c: vec3<f32>,
+    k: f32,
+    m: f32,
 }
 
-// tan 87°: steeper facets are treated as this steep.
-const MAX_SLOPE: f32 = 20.0;
-
-fn choose_layer(p_l: vec3<f32>) -> u32 {
-    if shadow.mode.y == 0u {
-        return 0u;
+// Normals, colour, k and m at the fragment. Uses derivatives: call it in
+// uniform control flow.
+fn surface_at(in: VsOut, front_facing: bool) -> Surface {
+    let mat = materials[in.material];
+    var s: Surface;
+    s.o = normalize(-in.rel);
+    let facet = normalize(cross(dpdx(in.rel), dpdy(in.rel)));
+    let facet_to_eye = select(facet, -facet, dot(facet, s.o) < 0.0);
+    // The face normal of the winding (counter-clockwise, as in the reference):
+    // it is towards the eye exactly on front faces.
+    let face = select(-facet_to_eye, facet_to_eye, front_facing);
+    // Missing vertex normals are uploaded as zero: where the interpolated
+    // normal vanishes the face's own is used, as the reference does
+    // (normalize_or(face) in reference::Reference::new and surface).
+    // (1e-30, not 0: GPUs that flush denormals would make inverseSqrt infinite.)
+    let len2 = dot(in.normal, in.normal);
+    s.n = select(face, in.normal * inverseSqrt(len2), len2 > 1e-30);
+    if mat.double_sided != 0u && dot(s.n, s.o) < 0.0 {
+        s.n = -s.n;
     }
-    // Cube faces in the order +X, −X, +Y, −Y, +Z, −Z.
-    let a = abs(p_l);
-    if a.x >= a.y && a.x >= a.z {
-        return select(1u, 0u, p_l.x > 0.0);
+    s.n_geo = select(facet, -facet, dot(facet, s.n) < 0.0);
+
+    s.k = globals.k;
+    s.m = globals.m;
+    if globals.use_scene_materials != 0u {
+        s.k = select(s.k, mat.own_k, mat.has_own_k != 0u);
+        s.m = select(s.m, mat.own_m, mat.has_own_m != 0u);
     }
-    if a.y >= a.z {
-        return select(3u, 2u, p_l.y > 0.0);
+    s.c = mat.base_color.rgb;
+    if mat.texture_layer_plus_one > 0u {
+        let layer = i32(mat.texture_layer_plus_one - 1u);
+        s.c *= textureSampleLevel(base_textures, base_sampler, in.uv, layer, 0.0).rgb;
     }
-    return select(5u, 4u, p_l.z > 0.0);
-}
-
-fn resolution() -> f32 {
-    return shadow.misc.x;
-}
-
-// Texel coordinates of the direction with tangents t in `layer`.
-fn texel_of_tangent(t: vec2<f32>, layer: u32) -> vec2<f32> {
-    let tb = shadow.layers[layer].tan_bounds;
-    let uv = vec2<f32>((t.x - tb.x) / (tb.y - tb.x), (tb.w - t.y) / (tb.w - tb.z));
-    return uv * resolution();
-}
-
-fn tangent_of_texel(tc: vec2<f32>, layer: u32) -> vec2<f32> {
-    let tb = shadow.layers[layer].tan_bounds;
-    let uv = tc / resolution();
-    return vec2<f32>(tb.x + uv.x * (tb.y - tb.x), tb.w - uv.y * (tb.w - tb.z));
-}
-
-fn make_receiver(p_l: vec3<f32>, n: vec3<f32>, cos_theta: f32) -> Receiver {
-    var r: Receiver;
-    r.layer = choose_layer(p_l);
-    let layer = shadow.layers[r.layer];
-    r.v = (layer.rotation * vec4<f32>(p_l, 0.0)).xyz;
-    r.z = max(-r.v.z, 1e-30);
-    r.tc = texel_of_tangent(r.v.xy / r.z, r.layer);
-    r.n_v = (layer.rotation * vec4<f32>(n, 0.0)).xyz;
-    let tb = layer.tan_bounds;
-    r.texel_m = r.z * max(tb.y - tb.x, tb.w - tb.z) / resolution();
-    let c = clamp(cos_theta, 1e-4, 1.0);
-    r.tan_theta = min(sqrt(1.0 - c * c) / c, MAX_SLOPE);
-    return r;
-}
-
-fn stored_depth(layer: u32, texel: vec2<i32>) -> f32 {
-    let d = textureLoad(shadow_depth_values, texel, i32(layer), 0).x;
-    let depth = shadow.layers[layer].depth;
-    // d = 0 is the cleared far plane: nothing drawn there.
-    return select(linear_depth(d, depth.z, depth.w), 3.0e38, d <= 0.0);
-}
-
-// The receiver's depth predicted at a texel centre: its tangent plane
-// intersected with the light ray through that texel, within the slope limit.
-fn plane_depth(r: Receiver, texel: vec2<i32>) -> f32 {
-    let centre = vec2<f32>(texel) + 0.5;
-    let t = tangent_of_texel(centre, r.layer);
-    let dir = vec3<f32>(t, -1.0);
-    let denom = dot(r.n_v, dir);
-    let reach = MAX_SLOPE * r.texel_m * max(length(centre - r.tc), 0.5);
-    if denom > -1e-6 {
-        return r.z;
+    if globals.use_color_override != 0u {
+        s.c = globals.color_override;
     }
-    return clamp(dot(r.n_v, r.v) / denom, r.z - reach, r.z + reach);
+    return s;
 }
 
-// The depth the receiver is compared with at a texel, per bias mode.
-fn compared_depth(r: Receiver, texel: vec2<i32>) -> f32 {
-    switch shadow.counts.w {
-        case BIAS_AUTO: {
-            // The facet's plane predicts its own depth at texels nearer the
-            // light (where acne comes from); further texels compare with the
-            // receiver's depth so that neighbouring geometry there (a concave
-            // corner) is not taken for an occluder. A small slack covers float
-            // rounding and curvature.
-            return min(plane_depth(r, texel), r.z) - (0.05 * r.texel_m + 1e-5 * r.z);
-        }
-        case BIAS_CONSTANT: {
-            return r.z - shadow.bias.y;
-        }
-        case BIAS_SLOPE: {
-            return r.z - (shadow.bias.y + shadow.bias.z * r.texel_m * r.tan_theta);
-        }
-        default: {
-            // Normal offset: the receiver was already moved along its normal.
-            return r.z;
-        }
-    }
-}
-
-fn in_map(texel: vec2<i32>) -> bool {
-    let res = i32(resolution());
-    return all(texel >= vec2<i32>(0)) && all(texel < vec2<i32>(res));
-}
-
-// The texel a filter reads for one it asks for beyond the edge of a cube
-// face: the edge texel, standing in for the neighbouring face that continues
-// there (counting it lit would leak light along the seams between faces).
-// Beyond a single fitted frustum nothing was drawn: callers count it lit.
-fn texel_in_layer(texel: vec2<i32>) -> vec2<i32> {
-    return clamp(texel, vec2<i32>(0), vec2<i32>(i32(resolution()) - 1));
-}
-
-// 1 when the texel's stored depth does not hide the receiver.
-fn depth_test(r: Receiver, texel: vec2<i32>) -> f32 {
-    if !in_map(texel) && shadow.mode.y == 0u {
+// V(p, q) ∈ [0, 1] from the source globals.visibility selects. A new source
+// (a V texture, a GPU ray tracer) is one more case here; the radiance code
+// does not change. p_l: the point relative to the light.
+fn visibility(p_l: vec3<f32>, s: Surface, incidence: LightIncidence, pixel: vec2<f32>) -> f32 {
+    if shadow.enabled == 0u {
         return 1.0;
     }
-    let t = texel_in_layer(texel);
-    return select(0.0, 1.0, compared_depth(r, t) <= stored_depth(r.layer, t));
-}
-
-// Bilinearly weighted tests of the 2×2 texels around the continuous position tc.
-fn bilinear_test(r: Receiver, tc: vec2<f32>) -> f32 {
-    let c = tc - 0.5;
-    let base = vec2<i32>(floor(c));
-    let f = fract(c);
-    let t00 = depth_test(r, base);
-    let t10 = depth_test(r, base + vec2<i32>(1, 0));
-    let t01 = depth_test(r, base + vec2<i32>(0, 1));
-    let t11 = depth_test(r, base + vec2<i32>(1, 1));
-    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
-}
-
-fn filter_hw2x2(r: Receiver) -> f32 {
-    var z_ref = r.z;
-    switch shadow.counts.w {
-        case BIAS_AUTO: {
-            // The four texels lie up to one texel away: one texel of slope.
-            z_ref = r.z - (r.texel_m * r.tan_theta + 0.05 * r.texel_m + 1e-5 * r.z);
-        }
-        case BIAS_CONSTANT: {
-            z_ref = r.z - shadow.bias.y;
-        }
-        case BIAS_SLOPE: {
-            z_ref = r.z - (shadow.bias.y + shadow.bias.z * r.texel_m * r.tan_theta);
-        }
-        default: {}
+    // Attached shadow: the surface faces away from the light.
+    if incidence.cos_theta <= 0.0 {
+        return 0.0;
     }
-    let depth = shadow.layers[r.layer].depth;
-    let d_ref = depth.z / z_ref + depth.w;
-    return textureSampleCompareLevel(shadow_depth, shadow_compare, r.tc / resolution(), i32(r.layer), d_ref);
-}
-
-// n×n bilinear PCF: the average of n×n bilinear tests one texel apart,
-// summed as separable weights over the (n + 1)² texels they touch.
-fn filter_pcf(r: Receiver) -> f32 {
-    let n = i32(shadow.counts.x);
-    let c = r.tc - 0.5;
-    let base = vec2<i32>(floor(c)) - vec2<i32>((n - 1) / 2);
-    let f = fract(c);
-    var sum = 0.0;
-    for (var j = 0; j <= n; j++) {
-        let wy = select(select(1.0, f.y, j == n), 1.0 - f.y, j == 0);
-        for (var i = 0; i <= n; i++) {
-            let wx = select(select(1.0, f.x, i == n), 1.0 - f.x, i == 0);
-            sum += wx * wy * depth_test(r, base + vec2<i32>(i, j));
+    switch globals.visibility {
+        case VISIBILITY_SHADOW_MAP, default: {
+            return shadow_map_visibility(p_l, s.n_geo, incidence.l, pixel);
         }
     }
-    return sum / f32(n * n);
 }
 
-// Interleaved gradient noise: a per-pixel rotation that tiles without pattern.
-fn pixel_angle(pixel: vec2<f32>) -> f32 {
-    return 6.2831853 * fract(52.9829189 * fract(dot(pixel, vec2<f32>(0.06711056, 0.00583715))));
-}
-
-fn rotate(v: vec2<f32>, angle: f32) -> vec2<f32> {
-    let c = cos(angle);
-    let s = sin(angle);
-    return vec2<f32>(c * v.x - s * v.y, s * v.x + c * v.y);
-}
-
-fn filter_poisson(r: Receiver, pixel: vec2<f32>) -> f32 {
-    let count = shadow.counts.y;
-    let angle = pixel_angle(pixel);
-    var sum = 0.0;
-    for (var s = 0u; s < count; s++) {
-        let offset = rotate(POISSON_DISC[s], angle) * shadow.bias.x;
-        sum += depth_test(r, vec2<i32>(floor(r.tc + offset)));
-    }
-    return sum / f32(count);
-}
-
-// Percentage-closer soft shadows for the sphere light of radius R: the
-// blockers' mean depth sizes the penumbra by similar triangles through the
-// light's diameter, w = 2R (z − z_blocker) / z_blocker, and a filter of
-// radius w/2 spreads the edge over w.
-fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
-    let radius_m = shadow.misc.w;
-    if radius_m <= 0.0 {
-        return bilinear_test(r, r.tc);
-    }
-    let layer = shadow.layers[r.layer];
-    let near = layer.depth.x;
-    let angle = pixel_angle(pixel);
-    // Blockers lie between the light and the receiver: the light's disc seen
-    // from the receiver covers at most this many texels at the near plane.
-    let search = clamp(radius_m * (r.z - near) / (r.z * near) / (r.texel_m / r.z), 1.0, 48.0);
-    var blocker_sum = 0.0;
-    var blockers = 0.0;
-    for (var s = 0u; s < shadow.counts.z; s++) {
-        let texel = vec2<i32>(floor(r.tc + rotate(POISSON_DISC[s], angle) * search));
-        if in_map(texel) || shadow.mode.y != 0u {
-            let t = texel_in_layer(texel);
-            let z_s = stored_depth(r.layer, t);
-            if z_s < compared_depth(r, t) {
-                blocker_sum += z_s;
-                blockers += 1.0;
-            }
-        }
-    }
-    if blockers == 0.0 {
-        return 1.0;
-    }
-    let z_blocker = blocker_sum / blockers;
-    let penumbra_m = 2.0 * radius_m * (r.z - z_blocker) / z_blocker;
-    let filter_texels = clamp(0.5 * penumbra_m / r.texel_m, 0.5, 48.0);
-    var sum = 0.0;
-    let count = shadow.counts.y;
-    for (var s = 0u; s < count; s++) {
-        sum += bilinear_test(r, r.tc + rotate(POISSON_DISC[s], angle) * filter_texels);
-    }
-    return sum / f32(count);
-}
-
-// One-sided Chebyshev bound P(z ≤ depth) ≤ σ² / (σ² + (t − μ)²), with the
-// part below `bleed` cut off to reduce light bleeding.
-fn chebyshev(m: vec2<f32>, t: f32, min_variance: f32) -> f32 {
-    if t <= m.x {
-        return 1.0;
-    }
-    let variance = max(m.y - m.x * m.x, min_variance);
-    let d = t - m.x;
-    let p = variance / (variance + d * d);
-    let bleed = shadow.misc.y;
-    return clamp((p - bleed) / (1.0 - bleed), 0.0, 1.0);
-}
-
-fn filter_moments(r: Receiver) -> f32 {
-    let depth = shadow.layers[r.layer].depth;
-    let u = clamp((r.z - depth.x) / (depth.y - depth.x), 0.0, 1.0);
-    let m = textureSampleLevel(moments, moments_sampler, r.tc / resolution(), i32(r.layer), 0.0);
-    if shadow.mode.w == FILTER_VSM {
-        return chebyshev(m.xy, u, 1e-6);
-    }
-    // EVSM: both exponential warps of u, the smaller bound wins.
-    let c = shadow.misc.z;
-    let w = 2.0 * u - 1.0;
-    let pos = exp(c * w);
-    let neg = -exp(-c * w);
-    let p_pos = chebyshev(m.xy, pos, 1e-6 * pos * pos);
-    let p_neg = chebyshev(m.zw, neg, 1e-6 * neg * neg);
-    return min(p_pos, p_neg);
-}
-
-// V ∈ [0, 1]: filter weights sum to one only up to rounding.
-fn visibility(r: Receiver, pixel: vec2<f32>) -> f32 {
-    return clamp(filtered_visibility(r, pixel), 0.0, 1.0);
-}
-
-fn filtered_visibility(r: Receiver, pixel: vec2<f32>) -> f32 {
-    switch shadow.mode.w {
-        case FILTER_NONE: { return depth_test(r, vec2<i32>(floor(r.tc))); }
-        case FILTER_HW2X2: { return filter_hw2x2(r); }
-        case FILTER_PCF: { return filter_pcf(r); }
-        case FILTER_POISSON: { return filter_poisson(r, pixel); }
-        case FILTER_PCSS: { return filter_pcss(r, pixel); }
-        default: { return filter_moments(r); }
+// The quantity the chosen view shows, L = tint · (f_d + f_s) E V for
+// `shaded`, given the visibility v from whichever source.
+fn view_quantity(s: Surface, incidence: LightIncidence, v: f32, density: f32) -> vec3<f32> {
+    let e = sphere_irradiance(globals.light_power_w, globals.light_radius_m, incidence.cos_theta, incidence.r);
+    let f = blinn_phong(s.n, incidence.l, s.o, s.k, s.m, globals.normalization);
+    let radiance_scale = tint(s.c, globals.light_color) * e * v;
+    switch globals.view {
+        case VIEW_VISIBILITY: { return vec3<f32>(v); }
+        case VIEW_NDOTL: { return vec3<f32>(max(incidence.cos_theta, 0.0)); }
+        case VIEW_IRRADIANCE: { return vec3<f32>(e * v); }
+        case VIEW_BRDF: { return vec3<f32>(f.x + f.y); }
+        case VIEW_DIFFUSE: { return radiance_scale * f.x; }
+        case VIEW_SPECULAR: { return radiance_scale * f.y; }
+        case VIEW_TEXEL_DENSITY: { return vec3<f32>(density); }
+        default: { return radiance_scale * (f.x + f.y); }
     }
 }
 
@@ -345,73 +137,15 @@ struct FsOut {
 }
 
 @fragment
-fn fs(in: VsOut) -> FsOut {
-    let mat = materials[in.material];
-    var n = normalize(in.normal);
-    let o = normalize(-in.rel);
-    if mat.flags.y != 0u && dot(n, o) < 0.0 {
-        n = -n;
-    }
-
-    let incidence = light_incidence(globals.light_rel.xyz - in.rel, n);
-    let l = incidence.l;
-    let r = incidence.r;
-    let cos_theta = incidence.cos_theta;
-
-    // The facet's own normal: the tangent plane the shadow map really holds
-    // (the interpolated normal of a curved mesh is not that plane).
-    var n_geo = normalize(cross(dpdx(in.rel), dpdy(in.rel)));
-    n_geo = select(n_geo, -n_geo, dot(n_geo, n) < 0.0);
-    // Where the receiver falls in the shadow map; texel density needs
-    // derivatives, so it is computed before any per-pixel branch.
-    let p_l = in.rel - globals.light_rel.xyz;
-    var receiver = make_receiver(p_l, n_geo, dot(n_geo, l));
-    let density = max(length(dpdx(receiver.tc)), length(dpdy(receiver.tc)));
-
-    // V = 0 where the surface faces away from the light (attached shadow).
-    var v = select(0.0, 1.0, cos_theta > 0.0 || shadow.mode.x == 0u);
-    if shadow.mode.x != 0u && cos_theta > 0.0 {
-        let mode = shadow.counts.w;
-        if mode == BIAS_NORMAL || mode == BIAS_AUTO {
-            // Normal offset: N texels (one for auto) along the facet normal
-            // lifts the lookup off its own surface and out of concave corners.
-            let texels = select(1.0, shadow.bias.w, mode == BIAS_NORMAL);
-            receiver = make_receiver(p_l + n_geo * (texels * receiver.texel_m), n_geo, dot(n_geo, l));
-        }
-        v = visibility(receiver, in.clip.xy);
-    }
-
-    var k = globals.material.x;
-    var m = globals.material.y;
-    if globals.material.z > 0.5 {
-        k = select(k, mat.params.x, mat.params.z > 0.5);
-        m = select(m, mat.params.y, mat.params.w > 0.5);
-    }
-    var c = mat.base_color.rgb;
-    if mat.flags.x > 0u {
-        c *= textureSampleLevel(base_textures, base_sampler, in.uv, i32(mat.flags.x - 1u), 0.0).rgb;
-    }
-    if globals.material.w > 0.5 {
-        c = globals.color_override.rgb;
-    }
-
-    let e = sphere_irradiance(globals.light_color_power.w, globals.light_rel.w, cos_theta, r);
-    let f = blinn_phong(n, l, o, k, m, globals.modes.y);
-    let radiance_scale = c * globals.light_color_power.rgb * e * v;
-
-    var q = radiance_scale * (f.x + f.y);
-    switch globals.modes.x {
-        case VIEW_VISIBILITY: { q = vec3<f32>(v); }
-        case VIEW_NDOTL: { q = vec3<f32>(max(cos_theta, 0.0)); }
-        case VIEW_IRRADIANCE: { q = vec3<f32>(e * v); }
-        case VIEW_BRDF: { q = vec3<f32>(f.x + f.y); }
-        case VIEW_DIFFUSE: { q = radiance_scale * f.x; }
-        case VIEW_SPECULAR: { q = radiance_scale * f.y; }
-        case VIEW_TEXEL_DENSITY: { q = vec3<f32>(density); }
-        default: {}
-    }
+fn fs(in: VsOut, @builtin(front_facing) front_facing: bool) -> FsOut {
+    let s = surface_at(in, front_facing);
+    let incidence = light_incidence(globals.light_rel - in.rel, s.n);
+    let p_l = in.rel - globals.light_rel;
+    // Derivatives: before any per-pixel branch.
+    let density = shadow_map_texel_density(p_l, s.n_geo, incidence.l);
+    let v = visibility(p_l, s, incidence, in.clip.xy);
     var out: FsOut;
-    out.quantity = vec4<f32>(q, 1.0);
-    out.aux = vec4<f32>(v, density, max(cos_theta, 0.0), 1.0);
+    out.quantity = vec4<f32>(view_quantity(s, incidence, v, density), 1.0);
+    out.aux = vec4<f32>(v, density, max(incidence.cos_theta, 0.0), 1.0);
     return out;
 }

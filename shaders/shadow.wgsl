@@ -2,8 +2,8 @@
 // Depth only for the depth-test filters; VSM/EVSM also write depth moments.
 
 @group(0) @binding(0) var<uniform> shadow: Shadow;
-// x: the layer drawn (a dynamic offset selects it).
-@group(0) @binding(1) var<uniform> layer_index: vec4<u32>;
+// The layer drawn (a dynamic offset selects it).
+@group(0) @binding(1) var<uniform> layer_index: u32;
 
 struct VsOut {
     @builtin(position) clip: vec4<f32>,
@@ -13,8 +13,8 @@ struct VsOut {
 
 @vertex
 fn vs(@location(0) position: vec3<f32>) -> VsOut {
-    let layer = shadow.layers[layer_index.x];
-    let v = (layer.rotation * vec4<f32>(position - shadow.light_position.xyz, 0.0)).xyz;
+    let layer = shadow.layers[layer_index];
+    let v = (layer.rotation * vec4<f32>(position - shadow.light_position, 0.0)).xyz;
     var out: VsOut;
     out.clip = layer.proj * vec4<f32>(v, 1.0);
     out.depth = -v.z;
@@ -25,12 +25,12 @@ fn vs(@location(0) position: vec3<f32>) -> VsOut {
 // VSM; for EVSM the moments of exp(c w) and −exp(−c w), w = 2u − 1.
 @fragment
 fn fs_moments(in: VsOut) -> @location(0) vec4<f32> {
-    let depth = shadow.layers[layer_index.x].depth;
-    let u = clamp((in.depth - depth.x) / (depth.y - depth.x), 0.0, 1.0);
-    if shadow.mode.w == FILTER_VSM {
+    let f = shadow.layers[layer_index];
+    let u = clamp((in.depth - f.near_m) / (f.far_m - f.near_m), 0.0, 1.0);
+    if shadow.filter_mode == FILTER_VSM {
         return vec4<f32>(u, u * u, 0.0, 0.0);
     }
-    let c = shadow.misc.z;
+    let c = shadow.evsm_exponent;
     let w = 2.0 * u - 1.0;
     let pos = exp(c * w);
     let neg = -exp(-c * w);

@@ -121,6 +121,19 @@ impl Default for MaterialSettings {
 }
 
 named_enum! {
+    /// Where the visibility V(p, q) ∈ [0, 1] of the light comes from: a source
+    /// of its own, beside the shadow map's `Filter`, so that the BRDF and the
+    /// radiance are computed the same whatever gives V.
+    #[derive(Default)]
+    pub enum Visibility {
+        /// The shadow map, filtered by `ShadowSettings::filter`. A GPU
+        /// ray-traced source (`"ray-traced"`) comes with a later issue.
+        #[default]
+        ShadowMap = "shadow-map",
+    }
+}
+
+named_enum! {
     /// How the shadow map's depth tests are filtered into a visibility V ∈ [0, 1].
     pub enum Filter {
         /// One nearest-texel depth test: hard, aliased edges.
@@ -231,6 +244,8 @@ impl BiasSettings {
 pub struct ShadowSettings {
     /// Shadows on; off gives V = 1 everywhere.
     pub enabled: bool,
+    /// Where V comes from (the struct's `serde(default)` lets files without it load).
+    pub visibility: Visibility,
     /// Shadow-map resolution (texels per side), clamped to the device limit.
     pub resolution: u32,
     pub filter: Filter,
@@ -259,6 +274,7 @@ impl Default for ShadowSettings {
     fn default() -> Self {
         Self {
             enabled: true,
+            visibility: Visibility::ShadowMap,
             resolution: 2048,
             filter: Filter::Pcf,
             pcf_size: 3,

@@ -1,11 +1,13 @@
 //! The renderers behind the viewport: one per half of the split view, each
 //! drawing into its own display texture, which egui shows as a native
-//! texture (no CPU round trip). A half re-renders only when what it shows
-//! changed: its settings, the image size, the scene or the reference.
+//! texture (no CPU round trip). B shares A's uploaded scene and, when their
+//! shadow settings give the same map, A's shadow map (`Renderer::sharing`).
+//! A half re-renders only when what it shows changed: its settings, the
+//! image size, the scene or the reference.
 
 use super::probe::{GpuSample, quantity_is_radiance};
+use crate::gpu::Capabilities;
 use crate::gpu::readback::ReadState;
-use crate::gpu::renderer::Capabilities;
 use crate::gpu::timing::PassTimes;
 use crate::gpu::{ComparisonImage, FloatTarget, FrameReport, PendingScale, PendingTexels, Renderer};
 use crate::presets::Half;
@@ -79,7 +81,13 @@ pub struct GpuViews {
 
 impl GpuViews {
     pub fn new(render_state: egui_wgpu::RenderState, scene: &Scene) -> Self {
-        let a = HalfView::new(&render_state, scene, 0);
+        let renderer = Renderer::new(
+            &render_state.adapter,
+            &render_state.device,
+            &render_state.queue,
+            scene,
+        );
+        let a = HalfView::new(renderer, 0);
         let caps = a.renderer.capabilities().clone();
         Self {
             render_state,
@@ -101,21 +109,27 @@ impl GpuViews {
         self.halves[half as usize].as_ref()
     }
 
-    /// Uploads a new scene to every renderer.
+    /// Uploads a new scene, once for both halves (they share it).
     pub fn set_scene(&mut self, scene: &Scene) {
         self.scene_generation += 1;
+        if let Some(a) = &mut self.halves[Half::A as usize] {
+            a.renderer.set_scene(scene);
+        }
         for h in self.halves.iter_mut().flatten() {
-            h.renderer.set_scene(scene);
             h.scene_generation = self.scene_generation;
         }
     }
 
-    /// Creates the B renderer when the split view is on, drops it when off
-    /// (its shadow map can be large).
-    pub fn set_split(&mut self, on: bool, scene: &Scene) {
-        let b = &mut self.halves[Half::B as usize];
+    /// Creates the B renderer when the split view is on, sharing A's scene
+    /// and shadow maps; drops it when off (its own shadow map can be large).
+    pub fn set_split(&mut self, on: bool) {
+        let [a, b] = &mut self.halves;
         match (on, b.is_some()) {
-            (true, false) => *b = Some(HalfView::new(&self.render_state, scene, self.scene_generation)),
+            (true, false) => {
+                if let Some(a) = a {
+                    *b = Some(HalfView::new(a.renderer.sharing(), self.scene_generation));
+                }
+            }
             (false, true) => {
                 if let Some(view) = b.take()
                     && let Some(id) = view.texture
@@ -244,14 +258,9 @@ impl HalfView {
         &self.renderer
     }
 
-    fn new(render_state: &egui_wgpu::RenderState, scene: &Scene, scene_generation: u64) -> Self {
+    fn new(renderer: Renderer, scene_generation: u64) -> Self {
         Self {
-            renderer: Renderer::new(
-                &render_state.adapter,
-                &render_state.device,
-                &render_state.queue,
-                scene,
-            ),
+            renderer,
             shown: None,
             texture: None,
             rendered: None,

@@ -6,7 +6,7 @@
 
 use super::widgets::{number, quantity, rgb, value_row, vector};
 use crate::gpu::ComparisonImage;
-use crate::physics::{Normalization, brdf, radiometry};
+use crate::physics::{Normalization, brdf, colour, radiometry};
 use crate::presets::Half;
 use crate::reference::{Reference, ReferenceOptions};
 use crate::scene::Scene;
@@ -84,7 +84,7 @@ pub struct ProbeTerms {
 impl ProbeTerms {
     /// L / V = c · colour · E · (f_d + f_s) (W/m²/sr): the radiance if fully lit.
     pub fn unshadowed_radiance(&self) -> DVec3 {
-        self.color * self.light_color * (self.irradiance_w_m2 * self.brdf.total())
+        colour::tint(self.color, self.light_color) * (self.irradiance_w_m2 * self.brdf.total())
     }
 }
 

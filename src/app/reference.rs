@@ -76,11 +76,9 @@ pub struct ErrorStats {
     pub pixels: usize,
 }
 
-/// Rec. 709 luminance weights, as the display shader's error view uses.
-const LUMINANCE: [f64; 3] = [0.2126, 0.7152, 0.0722];
-
+/// Y of the first three channels, as the display shader's error view uses.
 fn luminance(rgb: &[f32]) -> f64 {
-    rgb.iter().zip(LUMINANCE).map(|(&c, w)| c as f64 * w).sum()
+    crate::physics::colour::luminance([rgb[0], rgb[1], rgb[2]].map(f64::from))
 }
 
 /// Statistics of L − L_ref where the GPU covered the pixel (aux.w > 0).

@@ -47,6 +47,8 @@ impl View for ShadowPanel<'_> {
     fn ui(&mut self, ui: &mut egui::Ui) {
         let ShadowSettings {
             enabled,
+            // One source for now (the shadow map): its menu comes with the second.
+            visibility: _,
             resolution,
             filter,
             pcf_size,

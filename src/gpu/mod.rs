@@ -2,8 +2,15 @@
 //! The app shows them, the command line writes them, the tests read them back.
 //! One file per pass: `shadow` (depth from the light), `shade` (the camera
 //! pass), `display` (what people see), `lines` (the frustum overlay).
+//! `shared` holds what the views of one scene share (the uploaded scene, the
+//! shadow maps); `renderer` is one view over it, drawing into its `targets`.
+//! Visibility V is a source of its own (settings::Visibility): the camera
+//! pass's `visibility` in shaders/shade.wgsl dispatches on it, today to the
+//! shadow map (shaders/shadow_map.wgsl); the scene's vertex and index
+//! buffers can be read by a compute pass for another source.
 
 pub mod binding;
+pub mod capabilities;
 pub mod colormap;
 pub mod context;
 pub mod display;
@@ -15,8 +22,12 @@ pub mod scene_buffers;
 pub mod shade;
 pub mod shaders;
 pub mod shadow;
+pub mod shared;
+pub mod targets;
 pub mod timing;
 pub mod uniforms;
 
+pub use capabilities::Capabilities;
 pub use context::{GpuContext, GpuError};
-pub use renderer::{ComparisonImage, FloatTarget, FrameReport, PendingScale, PendingTexels, Renderer};
+pub use renderer::{ComparisonImage, FrameReport, Renderer};
+pub use targets::{FloatTarget, PendingScale, PendingTexels};

@@ -3,7 +3,7 @@
 //! one texture array.
 
 use super::uniforms::MaterialRaw;
-use crate::scene::{Aabb, Scene};
+use crate::scene::{Aabb, Material, Scene};
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
 
@@ -70,25 +70,43 @@ impl GpuScene {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         scene: &Scene,
-        caps: &super::renderer::Capabilities,
+        caps: &super::Capabilities,
     ) -> Self {
         let mut vertices = Vec::new();
         let mut indices: Vec<u32> = Vec::new();
         let mut draws = Vec::with_capacity(scene.objects.len());
+        // The materials buffer holds the scene's materials, then the default
+        // one: an object whose index is out of range gets the default, as in
+        // the reference (and `Scene::material_of`).
+        let default_material = Material::default();
+        let fallback = scene.materials.len();
         for object in &scene.objects {
             let mesh = &object.mesh;
-            let material = object.material.min(scene.materials.len().saturating_sub(1)) as u32;
+            let material = if object.material < fallback {
+                object.material
+            } else {
+                fallback
+            } as u32;
             draws.push(Draw {
                 first_index: indices.len() as u32,
                 index_count: mesh.indices.len() as u32,
                 base_vertex: vertices.len() as i32,
             });
             indices.extend_from_slice(&mesh.indices);
-            vertices.extend(mesh.positions.iter().enumerate().map(|(i, p)| Vertex {
-                position: p.to_array(),
-                normal: mesh.normals.get(i).copied().unwrap_or(glam::Vec3::Y).to_array(),
-                uv: mesh.uvs.get(i).copied().unwrap_or_default().to_array(),
-                material,
+            vertices.extend(mesh.positions.iter().enumerate().map(|(i, p)| {
+                Vertex {
+                    position: p.to_array(),
+                    // Missing: zero, which the camera pass replaces by the face
+                    // normal, as the reference does.
+                    normal: mesh
+                        .normals
+                        .get(i)
+                        .copied()
+                        .unwrap_or(glam::Vec3::ZERO)
+                        .to_array(),
+                    uv: mesh.uvs.get(i).copied().unwrap_or_default().to_array(),
+                    material,
+                }
             }));
         }
         let buffer = |label: &str, contents: &[u8], usage: wgpu::BufferUsages| {
@@ -105,43 +123,35 @@ impl GpuScene {
             })
         };
         let (textures, layer_of) = upload_textures(device, queue, scene, caps);
-        let mut materials: Vec<MaterialRaw> = scene
+        let materials: Vec<MaterialRaw> = scene
             .materials
             .iter()
+            .chain([&default_material])
             .map(|m| MaterialRaw {
                 base_color: m.base_color.to_array(),
-                params: [
-                    m.k.unwrap_or(0.0),
-                    m.m.unwrap_or(0.0),
-                    m.k.is_some() as u32 as f32,
-                    m.m.is_some() as u32 as f32,
-                ],
-                flags: [
-                    m.base_color_texture
-                        .and_then(|t| layer_of.get(t).copied())
-                        .map_or(0, |l| l + 1),
-                    m.double_sided as u32,
-                    0,
-                    0,
-                ],
+                own_k: m.k.unwrap_or(0.0),
+                own_m: m.m.unwrap_or(0.0),
+                has_own_k: m.k.is_some() as u32,
+                has_own_m: m.m.is_some() as u32,
+                texture_layer_plus_one: m
+                    .base_color_texture
+                    .and_then(|t| layer_of.get(t).copied())
+                    .map_or(0, |l| l + 1),
+                double_sided: m.double_sided as u32,
+                ..Default::default()
             })
             .collect();
-        if materials.is_empty() {
-            materials.push(MaterialRaw {
-                base_color: [0.8, 0.8, 0.8, 1.0],
-                ..Default::default()
-            });
-        }
         Self {
             vertices: buffer(
                 "scene vertices",
                 bytemuck::cast_slice(&vertices),
-                wgpu::BufferUsages::VERTEX,
+                // STORAGE: a compute pass (a ray-traced visibility) reads the triangles.
+                wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::STORAGE,
             ),
             indices: buffer(
                 "scene indices",
                 bytemuck::cast_slice(&indices),
-                wgpu::BufferUsages::INDEX,
+                wgpu::BufferUsages::INDEX | wgpu::BufferUsages::STORAGE,
             ),
             draws,
             caster_bounds: scene
@@ -190,7 +200,7 @@ fn upload_textures(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     scene: &Scene,
-    caps: &super::renderer::Capabilities,
+    caps: &super::Capabilities,
 ) -> (wgpu::Texture, Vec<u32>) {
     let max_layers = device.limits().max_texture_array_layers as usize;
     let used = &scene.textures[..scene.textures.len().min(max_layers)];

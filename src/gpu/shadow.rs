@@ -16,6 +16,20 @@ pub const MAX_LAYERS: u32 = 6;
 /// Shadow textures (depth, moments and their blur scratch) stay within this.
 pub const MEMORY_BUDGET_BYTES: u64 = 1536 << 20;
 
+// Constants of the camera pass's shadow-map lookup (shaders/shadow_map.wgsl),
+// given to the WGSL by gpu::shaders.
+
+/// tan 87°: steeper facets are biased and offset as if this steep.
+pub const MAX_SLOPE: f32 = 20.0;
+/// The widest radius a filter reaches (texels): PCSS's blocker search and
+/// its penumbra filter are clamped to it.
+pub const MAX_FILTER_RADIUS_TEXELS: f32 = 48.0;
+/// The automatic bias's slack for float rounding and curvature: this many
+/// texels of the receiver's footprint …
+pub const AUTO_BIAS_SLACK_TEXELS: f32 = 0.05;
+/// … plus this fraction of its depth from the light.
+pub const AUTO_BIAS_SLACK_REL: f32 = 1e-5;
+
 /// Which kind of map the filter reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum MapKind {
@@ -237,6 +251,7 @@ impl ShadowPass {
                     resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                         buffer: &layer_index,
                         offset: 0,
+                        // 16: std140 backends (GL) round a uniform block up to 16 bytes.
                         size: wgpu::BufferSize::new(16),
                     }),
                 },
@@ -261,7 +276,7 @@ impl ShadowPass {
             queue.write_buffer(
                 &self.layer_index,
                 DYNAMIC_STRIDE * layer as u64,
-                bytemuck::bytes_of(&[layer, 0, 0, 0]),
+                bytemuck::bytes_of(&layer),
             );
         }
     }
@@ -419,7 +434,9 @@ impl BlurPass {
                 let slot = (2 * layer + direction) as u64;
                 let step = if direction == 0 { [1, 0] } else { [0, 1] };
                 let params = BlurParamsRaw {
-                    step_radius_layer: [step[0], step[1], radius as i32, layer as i32],
+                    step,
+                    radius_texels: radius as i32,
+                    layer: layer as i32,
                 };
                 queue.write_buffer(&self.params, slot * DYNAMIC_STRIDE, bytemuck::bytes_of(&params));
                 let index = 2 * n + direction;

@@ -1,6 +1,7 @@
 //! CPU mirrors of the WGSL uniform and storage structs of `shaders/common.wgsl`.
-//! `#[repr(C)]` + Pod; a test checks each size against naga's layout of the
-//! WGSL struct so padding mistakes cannot hide.
+//! `#[repr(C)]` + Pod, one named field per quantity (enums and flags as u32);
+//! a test checks each size and each field's offset against naga's layout of
+//! the WGSL struct so padding mistakes cannot hide.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -8,24 +9,56 @@ use bytemuck::{Pod, Zeroable};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct GlobalsRaw {
+    /// Eye-relative world position → clip space.
     pub view_proj: [[f32; 4]; 4],
-    pub light_rel: [f32; 4],
-    pub eye: [f32; 4],
-    pub light_color_power: [f32; 4],
-    pub material: [f32; 4],
-    pub color_override: [f32; 4],
-    pub modes: [u32; 4],
-    pub viewport: [f32; 4],
+    /// The light's centre relative to the eye (m).
+    pub light_rel: [f32; 3],
+    /// Sphere light radius R (m); 0 is a point light.
+    pub light_radius_m: f32,
+    /// The eye (m, world).
+    pub eye: [f32; 3],
+    /// Light power Φ (W).
+    pub light_power_w: f32,
+    /// The light's colour (linear RGB factors of Φ).
+    pub light_color: [f32; 3],
+    /// The BRDF's k where the scene gives none (or scene materials are off).
+    pub k: f32,
+    /// The colour that replaces every material's, when `use_color_override`.
+    pub color_override: [f32; 3],
+    /// The Blinn-Phong exponent m where the scene gives none.
+    pub m: f32,
+    /// settings::DebugView code (`VIEW_*`).
+    pub view: u32,
+    /// physics::Normalization code (`NORM_*`).
+    pub normalization: u32,
+    /// settings::Visibility code (`VISIBILITY_*`): where V comes from.
+    pub visibility: u32,
+    /// Materials' own k and m are used where they give them (0/1).
+    pub use_scene_materials: u32,
+    /// `color_override` replaces the materials' colour (0/1).
+    pub use_color_override: u32,
+    pub _padding: [u32; 3],
 }
 
 /// `ShadowLayer`: one frustum of the light.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct ShadowLayerRaw {
+    /// Light-relative world direction → light view (looks down −Z).
     pub rotation: [[f32; 4]; 4],
+    /// Light view → clip, reversed Z.
     pub proj: [[f32; 4]; 4],
-    pub tan_bounds: [f32; 4],
-    pub depth: [f32; 4],
+    /// The frustum's extents as tangents (x/z, y/z).
+    pub tan_left: f32,
+    pub tan_right: f32,
+    pub tan_bottom: f32,
+    pub tan_top: f32,
+    /// Near and far planes (m).
+    pub near_m: f32,
+    pub far_m: f32,
+    /// The stored depth is d = depth_a / z + depth_b (reversed Z).
+    pub depth_a: f32,
+    pub depth_b: f32,
 }
 
 /// `Shadow`: the shadow map's layout and settings.
@@ -33,35 +66,86 @@ pub struct ShadowLayerRaw {
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct ShadowRaw {
     pub layers: [ShadowLayerRaw; 6],
-    pub mode: [u32; 4],
-    pub counts: [u32; 4],
-    pub bias: [f32; 4],
-    pub misc: [f32; 4],
-    pub light_position: [f32; 4],
+    /// The light's centre (m, world), for the shadow pass.
+    pub light_position: [f32; 3],
+    /// A shadow map is drawn and tested (0/1); 0 gives V = 1.
+    pub enabled: u32,
+    /// Six cube faces (1) or one fitted frustum (0).
+    pub cube: u32,
+    /// Bit i set: layer i was drawn.
+    pub layer_mask: u32,
+    /// settings::Filter code (`FILTER_*`).
+    pub filter_mode: u32,
+    /// settings::BiasMode code (`BIAS_*`).
+    pub bias_mode: u32,
+    /// Kernel size n of `pcf`.
+    pub pcf_size: u32,
+    /// Samples of `poisson` and of the filtering step of `pcss`.
+    pub poisson_samples: u32,
+    /// Samples of the blocker search of `pcss`.
+    pub pcss_blocker_samples: u32,
+    /// Texels per side of every layer.
+    pub resolution_texels: u32,
+    /// Radius of the `poisson` disc (texels).
+    pub poisson_radius_texels: f32,
+    /// Constant depth bias D (m) of `constant` and `slope`.
+    pub bias_depth_m: f32,
+    /// Slope factor S of `slope`.
+    pub bias_slope: f32,
+    /// Normal offset N (texels) of `normal`.
+    pub normal_offset_texels: f32,
+    /// The part of Chebyshev's bound cut off by `vsm`/`evsm`.
+    pub vsm_bleed_reduction: f32,
+    /// The EVSM warp exponent c.
+    pub evsm_exponent: f32,
+    /// Sphere light radius R (m) for `pcss`.
+    pub light_radius_m: f32,
+    pub _padding: [u32; 1],
 }
 
 /// `Material`: one entry of the materials storage buffer.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct MaterialRaw {
+    /// Linear RGBA base colour factor.
     pub base_color: [f32; 4],
-    pub params: [f32; 4],
-    pub flags: [u32; 4],
+    /// The material's own k and m, where `has_own_k` / `has_own_m`.
+    pub own_k: f32,
+    pub own_m: f32,
+    pub has_own_k: u32,
+    pub has_own_m: u32,
+    /// Base-colour texture layer + 1; 0 is none.
+    pub texture_layer_plus_one: u32,
+    /// Both faces are shaded (0/1).
+    pub double_sided: u32,
+    pub _padding: [u32; 2],
 }
 
 /// `DisplayParams`: how the display pass shows the view.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct DisplayParamsRaw {
-    pub modes: [u32; 4],
-    pub values: [f32; 4],
+    /// Image size (px).
+    pub size_px: [f32; 2],
+    /// settings::DebugView code (`VIEW_*`).
+    pub view: u32,
+    /// A comparison (reference) image is bound (0/1).
+    pub has_comparison: u32,
+    /// Exposure (EV): the radiance is scaled by 2^EV.
+    pub exposure_ev: f32,
+    pub _padding: [u32; 1],
 }
 
 /// `BlurParams` of `blur.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct BlurParamsRaw {
-    pub step_radius_layer: [i32; 4],
+    /// One texel along the blur's direction: (1, 0) or (0, 1).
+    pub step: [i32; 2],
+    /// Blur radius (texels).
+    pub radius_texels: i32,
+    /// The layer blurred.
+    pub layer: i32,
 }
 
 /// Stride of per-layer uniforms selected with a dynamic offset.

@@ -8,6 +8,7 @@
 //! in W/m²/sr, irradiance in W/m², intensity in W/sr, power in W.
 
 pub mod brdf;
+pub mod colour;
 pub mod display;
 pub mod energy;
 pub mod radiometry;

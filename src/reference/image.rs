@@ -3,13 +3,8 @@
 use crate::physics::display::display_byte;
 use std::time::Duration;
 
-/// Rec. 709 luminance weights: the scalar the noise estimate is given on.
-pub const LUMINANCE: [f64; 3] = [0.2126, 0.7152, 0.0722];
-
-/// Y = 0.2126 R + 0.7152 G + 0.0722 B.
-pub fn luminance(rgb: [f64; 3]) -> f64 {
-    LUMINANCE[0] * rgb[0] + LUMINANCE[1] * rgb[1] + LUMINANCE[2] * rgb[2]
-}
+/// The scalar the noise estimate is given on (`physics::colour`).
+pub use crate::physics::colour::luminance;
 
 /// A rendered reference image; every buffer is row-major, row 0 at the top.
 #[derive(Clone, Debug, PartialEq)]

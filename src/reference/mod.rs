@@ -30,7 +30,7 @@ pub mod sampling;
 mod shading;
 mod texture;
 
-pub use image::{LUMINANCE, NoiseSummary, ReferenceImage, RenderStats, luminance};
+pub use image::{NoiseSummary, ReferenceImage, RenderStats, luminance};
 pub use shading::{SHADOW_OFFSET_REL, STOP_SHORT_REL, ShadingSample};
 
 use crate::scene::{Material, Scene};
@@ -173,9 +173,10 @@ impl Reference {
                 };
                 let corners = corners.map(|p| p.as_dvec3());
                 let face = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
-                // Missing normals: the face's own; missing uvs: zero.
-                let normals =
-                    corner_values(&mesh.normals, ids).map_or([face; 3], |n| n.map(|n| n.as_dvec3()));
+                // A missing vertex normal counts as zero: where the
+                // interpolated normal vanishes, `surface` uses the face's
+                // own (so does the GPU, shade.wgsl's surface_at). Missing uvs: zero.
+                let normals = ids.map(|i| mesh.normals.get(i).map_or(DVec3::ZERO, |n| n.as_dvec3()));
                 let uvs = corner_values(&mesh.uvs, ids).map_or([DVec2::ZERO; 3], |t| t.map(|t| t.as_dvec2()));
                 bvh_triangles.push(BvhTriangle {
                     corners,

@@ -25,6 +25,7 @@ use super::grid::{Answer, Cell, DirectionGrid};
 use super::image::luminance;
 use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
 use crate::physics::brdf::blinn_phong;
+use crate::physics::colour::tint;
 use crate::physics::radiometry::{
     incidence, intensity, point_irradiance, sphere_irradiance, sphere_radiance,
 };
@@ -202,6 +203,8 @@ impl Reference {
         let length = towards.length();
         let tri = &self.triangles[hit.triangle];
         let object = &self.objects[tri.object];
+        // An index out of range was mapped to the default material when the
+        // reference was built; the GPU's materials buffer does the same.
         let material = &self.materials[object.material];
         let [b0, b1, b2] = hit.at.barycentric;
         let [a, b, c] = tri.corners;
@@ -209,6 +212,9 @@ impl Reference {
         let o = -towards / length;
         let face = tri.face_normal;
         let geometric_normal = if face.dot(o) < 0.0 { -face } else { face };
+        // Missing vertex normals are zero: where the interpolated normal
+        // vanishes, the face's own (winding) normal is used, as on the GPU
+        // (shade.wgsl's surface_at); tests/wgsl_parity.rs holds both to it.
         let mut n = tri.flat_normal.unwrap_or_else(|| {
             (tri.normals[0] * b0 + tri.normals[1] * b1 + tri.normals[2] * b2).normalize_or(face)
         });
@@ -242,7 +248,7 @@ impl Reference {
             o,
             uv,
             color,
-            tint: color * setup.light_color,
+            tint: tint(color, setup.light_color),
             brdf: BrdfParams {
                 k: own(material.k, setup.k),
                 m: own(material.m, setup.m),

@@ -19,7 +19,7 @@ impl LabApp {
         let banner = self.reference_banner();
         let caption = self.error_caption();
         if let Some(gpu) = &mut self.gpu {
-            gpu.set_split(self.state.split.enabled, &self.scene);
+            gpu.set_split(self.state.split.enabled);
         }
         let mut settings = self.state.settings.clone();
         let mut split = self.state.split;

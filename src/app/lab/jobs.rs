@@ -162,7 +162,7 @@ impl LabApp {
             .iter()
             .zip(&frame.aux)
             .filter(|(_, aux)| aux[3] > 0.0)
-            .map(|(q, _)| crate::reference::luminance([q[0] as f64, q[1] as f64, q[2] as f64]))
+            .map(|(q, _)| crate::physics::colour::luminance([q[0] as f64, q[1] as f64, q[2] as f64]))
             .collect();
         match crate::physics::display::auto_exposure_ev(&lit) {
             Some(ev) => {

@@ -1,0 +1,328 @@
+// The shadow map as a source of visibility V for the camera pass: where a
+// receiver falls in the map, its bias, and the filters that turn depth tests
+// into V ∈ [0, 1]. shade.wgsl asks `shadow_map_visibility` when the
+// visibility method is the shadow map; nothing here knows the BRDF.
+
+@group(1) @binding(0) var shadow_depth: texture_depth_2d_array;
+@group(1) @binding(1) var shadow_compare: sampler_comparison;
+@group(1) @binding(2) var moments: texture_2d_array<f32>;
+@group(1) @binding(3) var moments_sampler: sampler;
+// The same depth texture read as plain floats: GLSL cannot textureLoad a
+// depth texture, so the software filters read it through this binding.
+@group(1) @binding(4) var shadow_depth_values: texture_2d_array<f32>;
+
+// Where a receiver falls in the shadow map.
+struct Receiver {
+    layer: u32,
+    // Light-view position (m); the view looks down −Z.
+    v: vec3<f32>,
+    // Depth from the light along its view axis (m).
+    z: f32,
+    // Continuous texel coordinates (texel centres at i + 0.5).
+    tc: vec2<f32>,
+    // The normal in light view.
+    n_v: vec3<f32>,
+    // World size of one texel at the receiver's depth (m).
+    texel_m: f32,
+    // tan of the angle between n and l, clamped to the steepest slope handled.
+    tan_theta: f32,
+}
+
+fn choose_layer(p_l: vec3<f32>) -> u32 {
+    if shadow.cube == 0u {
+        return 0u;
+    }
+    // Cube faces in the order +X, −X, +Y, −Y, +Z, −Z.
+    let a = abs(p_l);
+    if a.x >= a.y && a.x >= a.z {
+        return select(1u, 0u, p_l.x > 0.0);
+    }
+    if a.y >= a.z {
+        return select(3u, 2u, p_l.y > 0.0);
+    }
+    return select(5u, 4u, p_l.z > 0.0);
+}
+
+fn resolution() -> f32 {
+    return f32(shadow.resolution_texels);
+}
+
+// Texel coordinates of the direction with tangents t in `layer`.
+fn texel_of_tangent(t: vec2<f32>, layer: u32) -> vec2<f32> {
+    let f = shadow.layers[layer];
+    let uv = vec2<f32>((t.x - f.tan_left) / (f.tan_right - f.tan_left), (f.tan_top - t.y) / (f.tan_top - f.tan_bottom));
+    return uv * resolution();
+}
+
+fn tangent_of_texel(tc: vec2<f32>, layer: u32) -> vec2<f32> {
+    let f = shadow.layers[layer];
+    let uv = tc / resolution();
+    return vec2<f32>(f.tan_left + uv.x * (f.tan_right - f.tan_left), f.tan_top - uv.y * (f.tan_top - f.tan_bottom));
+}
+
+fn make_receiver(p_l: vec3<f32>, n: vec3<f32>, cos_theta: f32) -> Receiver {
+    var r: Receiver;
+    r.layer = choose_layer(p_l);
+    let layer = shadow.layers[r.layer];
+    r.v = (layer.rotation * vec4<f32>(p_l, 0.0)).xyz;
+    r.z = max(-r.v.z, 1e-30);
+    r.tc = texel_of_tangent(r.v.xy / r.z, r.layer);
+    r.n_v = (layer.rotation * vec4<f32>(n, 0.0)).xyz;
+    r.texel_m = r.z * max(layer.tan_right - layer.tan_left, layer.tan_top - layer.tan_bottom) / resolution();
+    let c = clamp(cos_theta, 1e-4, 1.0);
+    r.tan_theta = min(sqrt(1.0 - c * c) / c, MAX_SLOPE);
+    return r;
+}
+
+fn stored_depth(layer: u32, texel: vec2<i32>) -> f32 {
+    let d = textureLoad(shadow_depth_values, texel, i32(layer), 0).x;
+    let f = shadow.layers[layer];
+    // d = 0 is the cleared far plane: nothing drawn there.
+    return select(linear_depth(d, f.depth_a, f.depth_b), 3.0e38, d <= 0.0);
+}
+
+// The receiver's depth predicted at a texel centre: its tangent plane
+// intersected with the light ray through that texel, within the slope limit.
+fn plane_depth(r: Receiver, texel: vec2<i32>) -> f32 {
+    let centre = vec2<f32>(texel) + 0.5;
+    let t = tangent_of_texel(centre, r.layer);
+    let dir = vec3<f32>(t, -1.0);
+    let denom = dot(r.n_v, dir);
+    let reach = MAX_SLOPE * r.texel_m * max(length(centre - r.tc), 0.5);
+    if denom > -1e-6 {
+        return r.z;
+    }
+    return clamp(dot(r.n_v, r.v) / denom, r.z - reach, r.z + reach);
+}
+
+// The automatic bias's slack for float rounding and curvature (m).
+fn auto_bias_slack(r: Receiver) -> f32 {
+    return AUTO_BIAS_SLACK_TEXELS * r.texel_m + AUTO_BIAS_SLACK_REL * r.z;
+}
+
+// The depth the receiver is compared with at a texel, per bias mode.
+fn compared_depth(r: Receiver, texel: vec2<i32>) -> f32 {
+    switch shadow.bias_mode {
+        case BIAS_AUTO: {
+            // The facet's plane predicts its own depth at texels nearer the
+            // light (where acne comes from); further texels compare with the
+            // receiver's depth so that neighbouring geometry there (a concave
+            // corner) is not taken for an occluder. A small slack covers float
+            // rounding and curvature.
+            return min(plane_depth(r, texel), r.z) - auto_bias_slack(r);
+        }
+        case BIAS_CONSTANT: {
+            return r.z - shadow.bias_depth_m;
+        }
+        case BIAS_SLOPE: {
+            return r.z - (shadow.bias_depth_m + shadow.bias_slope * r.texel_m * r.tan_theta);
+        }
+        default: {
+            // Normal offset: the receiver was already moved along its normal.
+            return r.z;
+        }
+    }
+}
+
+fn in_map(texel: vec2<i32>) -> bool {
+    let res = i32(resolution());
+    return all(texel >= vec2<i32>(0)) && all(texel < vec2<i32>(res));
+}
+
+// The texel a filter reads for one it asks for beyond the edge of a cube
+// face: the edge texel, standing in for the neighbouring face that continues
+// there (counting it lit would leak light along the seams between faces).
+// Beyond a single fitted frustum nothing was drawn: callers count it lit.
+fn texel_in_layer(texel: vec2<i32>) -> vec2<i32> {
+    return clamp(texel, vec2<i32>(0), vec2<i32>(i32(resolution()) - 1));
+}
+
+// 1 when the texel's stored depth does not hide the receiver.
+fn depth_test(r: Receiver, texel: vec2<i32>) -> f32 {
+    if !in_map(texel) && shadow.cube == 0u {
+        return 1.0;
+    }
+    let t = texel_in_layer(texel);
+    return select(0.0, 1.0, compared_depth(r, t) <= stored_depth(r.layer, t));
+}
+
+// Bilinearly weighted tests of the 2×2 texels around the continuous position tc.
+fn bilinear_test(r: Receiver, tc: vec2<f32>) -> f32 {
+    let c = tc - 0.5;
+    let base = vec2<i32>(floor(c));
+    let f = fract(c);
+    let t00 = depth_test(r, base);
+    let t10 = depth_test(r, base + vec2<i32>(1, 0));
+    let t01 = depth_test(r, base + vec2<i32>(0, 1));
+    let t11 = depth_test(r, base + vec2<i32>(1, 1));
+    return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
+}
+
+fn filter_hw2x2(r: Receiver) -> f32 {
+    var z_ref = r.z;
+    switch shadow.bias_mode {
+        case BIAS_AUTO: {
+            // The four texels lie up to one texel away: one texel of slope.
+            z_ref = r.z - (r.texel_m * r.tan_theta + auto_bias_slack(r));
+        }
+        case BIAS_CONSTANT: {
+            z_ref = r.z - shadow.bias_depth_m;
+        }
+        case BIAS_SLOPE: {
+            z_ref = r.z - (shadow.bias_depth_m + shadow.bias_slope * r.texel_m * r.tan_theta);
+        }
+        default: {}
+    }
+    let f = shadow.layers[r.layer];
+    let d_ref = f.depth_a / z_ref + f.depth_b;
+    return textureSampleCompareLevel(shadow_depth, shadow_compare, r.tc / resolution(), i32(r.layer), d_ref);
+}
+
+// n×n bilinear PCF: the average of n×n bilinear tests one texel apart,
+// summed as separable weights over the (n + 1)² texels they touch.
+fn filter_pcf(r: Receiver) -> f32 {
+    let n = i32(shadow.pcf_size);
+    let c = r.tc - 0.5;
+    let base = vec2<i32>(floor(c)) - vec2<i32>((n - 1) / 2);
+    let f = fract(c);
+    var sum = 0.0;
+    for (var j = 0; j <= n; j++) {
+        let wy = select(select(1.0, f.y, j == n), 1.0 - f.y, j == 0);
+        for (var i = 0; i <= n; i++) {
+            let wx = select(select(1.0, f.x, i == n), 1.0 - f.x, i == 0);
+            sum += wx * wy * depth_test(r, base + vec2<i32>(i, j));
+        }
+    }
+    return sum / f32(n * n);
+}
+
+// Interleaved gradient noise: a per-pixel rotation that tiles without pattern.
+fn pixel_angle(pixel: vec2<f32>) -> f32 {
+    return 6.2831853 * fract(52.9829189 * fract(dot(pixel, vec2<f32>(0.06711056, 0.00583715))));
+}
+
+fn rotate(v: vec2<f32>, angle: f32) -> vec2<f32> {
+    let c = cos(angle);
+    let s = sin(angle);
+    return vec2<f32>(c * v.x - s * v.y, s * v.x + c * v.y);
+}
+
+fn filter_poisson(r: Receiver, pixel: vec2<f32>) -> f32 {
+    let count = shadow.poisson_samples;
+    let angle = pixel_angle(pixel);
+    var sum = 0.0;
+    for (var s = 0u; s < count; s++) {
+        let offset = rotate(POISSON_DISC[s], angle) * shadow.poisson_radius_texels;
+        sum += depth_test(r, vec2<i32>(floor(r.tc + offset)));
+    }
+    return sum / f32(count);
+}
+
+// Percentage-closer soft shadows for the sphere light of radius R: the
+// blockers' mean depth sizes the penumbra by similar triangles through the
+// light's diameter, w = 2R (z − z_blocker) / z_blocker, and a filter of
+// radius w/2 spreads the edge over w.
+fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
+    let radius_m = shadow.light_radius_m;
+    if radius_m <= 0.0 {
+        return bilinear_test(r, r.tc);
+    }
+    let near = shadow.layers[r.layer].near_m;
+    let angle = pixel_angle(pixel);
+    // Blockers lie between the light and the receiver: the light's disc seen
+    // from the receiver covers at most this many texels at the near plane.
+    let search = clamp(radius_m * (r.z - near) / (r.z * near) / (r.texel_m / r.z), 1.0, MAX_FILTER_RADIUS_TEXELS);
+    var blocker_sum = 0.0;
+    var blockers = 0.0;
+    for (var s = 0u; s < shadow.pcss_blocker_samples; s++) {
+        let texel = vec2<i32>(floor(r.tc + rotate(POISSON_DISC[s], angle) * search));
+        if in_map(texel) || shadow.cube != 0u {
+            let t = texel_in_layer(texel);
+            let z_s = stored_depth(r.layer, t);
+            if z_s < compared_depth(r, t) {
+                blocker_sum += z_s;
+                blockers += 1.0;
+            }
+        }
+    }
+    if blockers == 0.0 {
+        return 1.0;
+    }
+    let z_blocker = blocker_sum / blockers;
+    let penumbra_m = 2.0 * radius_m * (r.z - z_blocker) / z_blocker;
+    let filter_texels = clamp(0.5 * penumbra_m / r.texel_m, 0.5, MAX_FILTER_RADIUS_TEXELS);
+    var sum = 0.0;
+    let count = shadow.poisson_samples;
+    for (var s = 0u; s < count; s++) {
+        sum += bilinear_test(r, r.tc + rotate(POISSON_DISC[s], angle) * filter_texels);
+    }
+    return sum / f32(count);
+}
+
+// One-sided Chebyshev bound P(z ≤ depth) ≤ σ² / (σ² + (t − μ)²), with the
+// part below `bleed` cut off to reduce light bleeding.
+fn chebyshev(m: vec2<f32>, t: f32, min_variance: f32) -> f32 {
+    if t <= m.x {
+        return 1.0;
+    }
+    let variance = max(m.y - m.x * m.x, min_variance);
+    let d = t - m.x;
+    let p = variance / (variance + d * d);
+    let bleed = shadow.vsm_bleed_reduction;
+    return clamp((p - bleed) / (1.0 - bleed), 0.0, 1.0);
+}
+
+fn filter_moments(r: Receiver) -> f32 {
+    let f = shadow.layers[r.layer];
+    let u = clamp((r.z - f.near_m) / (f.far_m - f.near_m), 0.0, 1.0);
+    let m = textureSampleLevel(moments, moments_sampler, r.tc / resolution(), i32(r.layer), 0.0);
+    if shadow.filter_mode == FILTER_VSM {
+        return chebyshev(m.xy, u, 1e-6);
+    }
+    // EVSM: both exponential warps of u, the smaller bound wins.
+    let c = shadow.evsm_exponent;
+    let w = 2.0 * u - 1.0;
+    let pos = exp(c * w);
+    let neg = -exp(-c * w);
+    let p_pos = chebyshev(m.xy, pos, 1e-6 * pos * pos);
+    let p_neg = chebyshev(m.zw, neg, 1e-6 * neg * neg);
+    return min(p_pos, p_neg);
+}
+
+// V ∈ [0, 1]: filter weights sum to one only up to rounding.
+fn filtered_visibility(r: Receiver, pixel: vec2<f32>) -> f32 {
+    return clamp(filter_taps(r, pixel), 0.0, 1.0);
+}
+
+fn filter_taps(r: Receiver, pixel: vec2<f32>) -> f32 {
+    switch shadow.filter_mode {
+        case FILTER_NONE: { return depth_test(r, vec2<i32>(floor(r.tc))); }
+        case FILTER_HW2X2: { return filter_hw2x2(r); }
+        case FILTER_PCF: { return filter_pcf(r); }
+        case FILTER_POISSON: { return filter_poisson(r, pixel); }
+        case FILTER_PCSS: { return filter_pcss(r, pixel); }
+        default: { return filter_moments(r); }
+    }
+}
+
+// Shadow-map texels per pixel at the point p_l (relative to the light) of a
+// facet of normal n_geo lit from l. Uses derivatives: call it in uniform
+// control flow.
+fn shadow_map_texel_density(p_l: vec3<f32>, n_geo: vec3<f32>, l: vec3<f32>) -> f32 {
+    let receiver = make_receiver(p_l, n_geo, dot(n_geo, l));
+    return max(length(dpdx(receiver.tc)), length(dpdy(receiver.tc)));
+}
+
+// V from the shadow map at p_l (relative to the light) on a facet of normal
+// n_geo lit from l (n_geo · l > 0), filtered and biased as the settings say.
+fn shadow_map_visibility(p_l: vec3<f32>, n_geo: vec3<f32>, l: vec3<f32>, pixel: vec2<f32>) -> f32 {
+    var receiver = make_receiver(p_l, n_geo, dot(n_geo, l));
+    let mode = shadow.bias_mode;
+    if mode == BIAS_NORMAL || mode == BIAS_AUTO {
+        // Normal offset: N texels (one for auto) along the facet normal
+        // lifts the lookup off its own surface and out of concave corners.
+        let texels = select(1.0, shadow.normal_offset_texels, mode == BIAS_NORMAL);
+        receiver = make_receiver(p_l + n_geo * (texels * receiver.texel_m), n_geo, dot(n_geo, l));
+    }
+    return filtered_visibility(receiver, pixel);
+}

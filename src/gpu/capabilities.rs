@@ -1,0 +1,63 @@
+//! What a device can do, as the lab uses it: formats, limits, timestamps.
+
+/// What this device can do, as the lab uses it.
+#[derive(Clone, Debug)]
+pub struct Capabilities {
+    /// Adapter name and backend, for people.
+    pub adapter: String,
+    pub max_texture_side: u32,
+    /// The camera pass's float targets: Rgba32Float where renderable.
+    pub hdr_format: wgpu::TextureFormat,
+    /// VSM/EVSM moments: Rgba32Float where renderable and filterable.
+    pub moments_format: wgpu::TextureFormat,
+    pub timestamps: bool,
+    /// The GL backend decides a texture's kind from its layer count.
+    pub gl: bool,
+}
+
+impl Capabilities {
+    pub fn of(adapter: &wgpu::Adapter, device: &wgpu::Device) -> Self {
+        let renderable = |f: wgpu::TextureFormat| {
+            adapter
+                .get_texture_format_features(f)
+                .allowed_usages
+                .contains(wgpu::TextureUsages::RENDER_ATTACHMENT)
+        };
+        let f32_ok = renderable(wgpu::TextureFormat::Rgba32Float);
+        let pick = |ok: bool| {
+            if ok {
+                wgpu::TextureFormat::Rgba32Float
+            } else {
+                wgpu::TextureFormat::Rgba16Float
+            }
+        };
+        Self {
+            adapter: super::context::describe_adapter(adapter),
+            max_texture_side: device.limits().max_texture_dimension_2d,
+            hdr_format: pick(f32_ok),
+            moments_format: pick(f32_ok && device.features().contains(wgpu::Features::FLOAT32_FILTERABLE)),
+            timestamps: device.features().contains(wgpu::Features::TIMESTAMP_QUERY),
+            gl: adapter.get_info().backend == wgpu::Backend::Gl,
+        }
+    }
+
+    /// Layers to allocate for a 2D array of `n`: on GL a single layer makes a
+    /// plain 2D texture and six square layers a cube map, neither of which
+    /// binds as a 2D array, so GL gets one more layer (unused).
+    pub fn array_layers(&self, n: u32) -> u32 {
+        if self.gl && (n == 1 || n.is_multiple_of(6)) {
+            n + 1
+        } else {
+            n
+        }
+    }
+
+    /// The EVSM warp exponent the moment format can hold without overflow.
+    pub fn evsm_exponent(&self) -> f32 {
+        if self.moments_format == wgpu::TextureFormat::Rgba32Float {
+            30.0
+        } else {
+            5.0
+        }
+    }
+}
