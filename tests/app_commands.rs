@@ -12,6 +12,7 @@ use lumlab::settings::{DebugView, Settings};
 use std::sync::Arc;
 
 mod app_support;
+mod scene_support;
 use app_support::harness;
 
 fn last_command(harness: &Harness<'_, LabApp>) -> Option<Command> {
@@ -163,4 +164,29 @@ fn a_preset_button_emits_the_preset_command() {
     harness.get_by_label(preset.title()).click();
     harness.run();
     assert_eq!(last_action(&harness), Some(Command::ApplyPreset(preset)));
+}
+
+#[test]
+fn opening_a_model_frames_it_and_undo_restores_the_view() {
+    let Some(samples) = scene_support::samples::samples_dir() else {
+        eprintln!("no ../shared/gltf-samples: skipped");
+        return;
+    };
+    let path = samples.join("Box/Box.gltf");
+    let framed = lumlab::scene::load(&path).unwrap().home_camera();
+    let mut harness = harness();
+    let before = harness.state().settings().camera;
+    assert_ne!(before, framed);
+    harness.state_mut().emit(Command::OpenScene(Some(path.clone())));
+    app_support::step_until(&mut harness, "the scene to load", |app| {
+        app.settings().scene.as_deref() == Some(path.as_path())
+    });
+    harness.run();
+    assert_eq!(harness.state().settings().camera, framed);
+    // The light moved to the model: above it, on the camera's side.
+    let light = harness.state().settings().light.position;
+    assert!(light.y > 0.5 && light.length() < 10.0, "{light}");
+    harness.key_press_modifiers(Modifiers::COMMAND, egui::Key::Z);
+    harness.run();
+    assert_eq!(harness.state().settings().camera, before);
 }

@@ -20,6 +20,7 @@ mod report;
 mod stability;
 
 pub use args::SceneOptions;
+pub use render::load as load_scene;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
