@@ -145,11 +145,10 @@ pub fn pressed(ctx: &egui::Context) -> Vec<Command> {
         SHORTCUTS
             .iter()
             .filter(|s| {
-                // Every alternative is consumed, so that none falls through
-                // to a later row.
-                s.keys
-                    .iter()
-                    .fold(false, |hit, k| input.consume_shortcut(k) || hit)
+                // Every alternative is consumed (no short circuit), so that
+                // none falls through to a later row.
+                let hits = s.keys.iter().filter(|k| input.consume_shortcut(k)).count();
+                hits > 0
             })
             .map(|s| s.command.clone())
             .collect()
