@@ -190,3 +190,21 @@ fn opening_a_model_frames_it_and_undo_restores_the_view() {
     harness.run();
     assert_eq!(harness.state().settings().camera, before);
 }
+
+#[test]
+fn an_impossible_light_is_said_in_the_status_bar() {
+    let mut harness = harness();
+    assert!(harness.state().impossible_setups().is_empty());
+    let mut s = harness.state().settings().clone();
+    // A sphere light cutting through the ground.
+    s.light.position = glam::Vec3::new(0.0, 0.1, 0.0);
+    s.light.radius_m = 0.5;
+    harness.state_mut().emit(Command::SetSettings(Box::new(s)));
+    harness.run();
+    let lines = harness.state().impossible_setups().to_vec();
+    assert!(!lines.is_empty());
+    assert!(
+        harness.query_all_by_label_contains("Impossible set-up").count() >= 1,
+        "{lines:?}"
+    );
+}

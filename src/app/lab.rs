@@ -72,7 +72,14 @@ pub struct LabApp {
     queue: Vec<Command>,
     /// The last commands applied, newest last.
     applied: VecDeque<Command>,
+    /// Physically impossible parts of the set-up (a light inside an object,
+    /// a sphere light cutting a surface or holding the camera), for the
+    /// light, camera and scene they were computed for.
+    impossible: Option<(PlausibilityKey, Vec<String>)>,
 }
+
+/// What the plausibility check depends on.
+type PlausibilityKey = (glam::Vec3, f32, glam::Vec3, u64);
 
 /// Text sizes readable from the back of a room.
 fn set_style(ctx: &egui::Context) {
@@ -168,6 +175,7 @@ impl LabApp {
             styled: false,
             queue: Vec::new(),
             applied: VecDeque::new(),
+            impossible: None,
         })
     }
 
@@ -291,6 +299,10 @@ impl LabApp {
         self.apply_queued(&ctx);
 
         let busy = ctx.input(|i| i.pointer.any_down()) || ctx.egui_wants_keyboard_input();
+        if !busy {
+            // Not during a drag: the check reads every triangle near the light.
+            self.check_plausibility();
+        }
         let now = ctx.input(|i| i.time);
         if self.undo.observe(&self.state.settings, busy, now) {
             ctx.request_repaint_after(Duration::from_secs_f64(UndoStack::QUIET_S));
@@ -308,6 +320,29 @@ impl LabApp {
             self.applied.push_back(command.clone());
             self.apply(command, ctx);
         }
+    }
+
+    /// Re-checks the set-up when the light, the eye or the scene changed;
+    /// the status bar shows what is impossible.
+    fn check_plausibility(&mut self) {
+        let s = &self.state.settings;
+        let key = (
+            s.light.position,
+            s.light.radius_m,
+            s.camera.eye,
+            self.reference_generation,
+        );
+        if self.impossible.as_ref().is_none_or(|(k, _)| *k != key) {
+            let lines = crate::scene::plausibility::impossible_setups(&self.scene, s);
+            self.impossible = Some((key, lines));
+        }
+    }
+
+    /// The impossible parts of the set-up, one line each (empty: none).
+    pub fn impossible_setups(&self) -> &[String] {
+        self.impossible
+            .as_ref()
+            .map_or(&[], |(_, lines)| lines.as_slice())
     }
 
     /// What commands need to know of the scene shown.

@@ -81,6 +81,19 @@ impl LabApp {
                     ui.label("Drag: orbit · Shift+drag: pan · wheel: zoom · click: probe · F1: help");
                 }
             }
+            if let Some(first) = self.impossible_setups().first() {
+                let more = self.impossible_setups().len() - 1;
+                let text = match more {
+                    0 => format!("Impossible set-up: {first}"),
+                    n => format!("Impossible set-up: {first} (+{n} more)"),
+                };
+                ui.separator();
+                ui.label(RichText::new(text).color(ui.visuals().warn_fg_color))
+                    .on_hover_text(format!(
+                        "{}\nThe GPU and the CPU reference disagree on such a set-up.",
+                        self.impossible_setups().join("\n")
+                    ));
+            }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
                 if let Some(gpu) = &self.gpu {
                     let caps = gpu.capabilities();
