@@ -67,10 +67,6 @@ pub enum LoadProblem {
     InvalidValue { what: String, detail: String },
     #[error("it requires the extension {0}, which the lab does not support")]
     UnsupportedExtension(String),
-    #[error("it defines no scene and no node")]
-    NoScene,
-    #[error("{0}")]
-    NoMesh(String),
     /// Every triangle was degenerate or had a non-finite corner.
     #[error("nothing to draw: {0}")]
     NothingToDraw(String),

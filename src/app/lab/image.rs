@@ -16,7 +16,7 @@ impl LabApp {
     /// become commands.
     pub(super) fn viewport(&mut self, ui: &mut egui::Ui) -> ViewportResponse {
         self.update_comparisons();
-        let banner = self.reference_banner();
+        let banner = self.empty_banner().or_else(|| self.reference_banner());
         let caption = self.error_caption();
         if let Some(gpu) = &mut self.gpu {
             gpu.set_split(self.state.split.enabled);
@@ -76,6 +76,21 @@ impl LabApp {
             super::super::widgets::quantity(stats.rmse, "W/m²/sr"),
             super::super::widgets::number(100.0 * stats.relative)
         ))
+    }
+
+    /// A valid file with nothing to draw says so over the empty image.
+    fn empty_banner(&self) -> Option<String> {
+        if self.file_scene.triangle_count() > 0 {
+            return None;
+        }
+        let why = self
+            .file_scene
+            .warnings
+            .iter()
+            .find(|w| w.starts_with("nothing to draw"))
+            .cloned()
+            .unwrap_or_else(|| "nothing to draw".into());
+        Some(format!("{}: {why}", self.scene_name))
     }
 
     fn reference_banner(&self) -> Option<String> {

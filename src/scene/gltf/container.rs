@@ -108,7 +108,16 @@ fn parse_json(text: &[u8]) -> Result<Root, LoadProblem> {
             ));
         }
     }
-    serde_json::from_slice(text).map_err(|e| LoadProblem::NotGltf(e.to_string()))
+    let mut value: serde_json::Value =
+        serde_json::from_slice(text).map_err(|e| LoadProblem::NotGltf(e.to_string()))?;
+    // glTF allows a scene without `nodes` (an empty scene); the json crate
+    // requires the key, so an absent one is read as empty.
+    if let Some(scenes) = value.get_mut("scenes").and_then(|s| s.as_array_mut()) {
+        for scene in scenes.iter_mut().filter_map(|s| s.as_object_mut()) {
+            scene.entry("nodes").or_insert_with(|| serde_json::json!([]));
+        }
+    }
+    serde_json::from_value(value).map_err(|e| LoadProblem::NotGltf(e.to_string()))
 }
 
 #[cfg(test)]

@@ -149,14 +149,15 @@ impl Loader<'_, '_, '_> {
         let root = self.root;
         let (scene_index, roots) = self.roots()?;
         if root.meshes.is_empty() {
-            return Err(LoadProblem::NoMesh("it defines no mesh".into()));
+            return Ok(self.empty(scene_index, "it defines no mesh".into()));
         }
         let placed = self.walk(&roots)?;
         if placed.meshes.is_empty() {
-            return Err(LoadProblem::NoMesh(match scene_index {
+            let why = match scene_index {
                 Some(i) => format!("scene {i} places no mesh"),
                 None => "no node places a mesh".into(),
-            }));
+            };
+            return Ok(self.empty(scene_index, why));
         }
         let (mut materials, textures) = self.materials();
         let locals = self.primitives(&placed)?;
@@ -276,6 +277,26 @@ impl Loader<'_, '_, '_> {
         })
     }
 
+    /// A valid file with nothing to draw: an empty scene whose warning says
+    /// why (the lab shows it in the viewport; `info` reports 0 triangles).
+    fn empty(mut self, scene: Option<usize>, why: String) -> Scene {
+        let root = self.root;
+        self.warn(format!("nothing to draw: {why}"));
+        Scene {
+            warnings: self.warnings,
+            source: Some(SourceInfo {
+                meshes: root.meshes.len(),
+                primitives: root.meshes.iter().map(|m| m.primitives.len()).sum(),
+                primitives_with_normals: 0,
+                nodes: root.nodes.len(),
+                scenes: root.scenes.len(),
+                scene,
+                undrawn_bounds: Aabb::EMPTY,
+            }),
+            ..Scene::default()
+        }
+    }
+
     /// The scene drawn and its root nodes: the file's default scene, else
     /// scene 0, else (a file without scenes) every node that is no child.
     fn roots(&mut self) -> Result<(Option<usize>, Vec<usize>), LoadProblem> {
@@ -295,7 +316,7 @@ impl Loader<'_, '_, '_> {
             return Ok((Some(i), scene.nodes.iter().map(|n| n.value()).collect()));
         }
         if root.nodes.is_empty() {
-            return Err(LoadProblem::NoScene);
+            return Ok((None, Vec::new()));
         }
         let mut is_child = vec![false; root.nodes.len()];
         for child in root.nodes.iter().flat_map(|n| n.children.iter().flatten()) {
