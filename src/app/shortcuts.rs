@@ -51,8 +51,8 @@ pub static SHORTCUTS: &[Shortcut] = &[
     },
     Shortcut {
         keys: &[key(CMD, Key::O)],
-        does: "open the glTF/GLB in the scene path",
-        command: Command::OpenScene(None),
+        does: "open a glTF/GLB file (file dialog)",
+        command: Command::ChooseFile(super::files::FileAction::OpenScene),
     },
     Shortcut {
         keys: &[key(NONE, Key::R)],

@@ -5,6 +5,7 @@
 //! one line on stderr; output files are written atomically.
 
 mod args;
+mod completions;
 mod energy;
 mod info;
 mod reference;
@@ -62,6 +63,10 @@ impl Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// Print a shell completion script (e.g. `lumlab completions bash > ~/.local/share/bash-completion/completions/lumlab`).
+    Completions(completions::CompletionsArgs),
+    /// Print the man page (e.g. `lumlab manpage > ~/.local/share/man/man1/lumlab.1`).
+    Manpage,
     /// Directional albedo a(θ) of the BRDF: the energy-conservation table.
     Energy(energy::EnergyArgs),
     /// Facts of a scene: counts, bounds, objects, cameras, repairs.
@@ -83,6 +88,8 @@ pub fn main() -> ExitCode {
         Err(e) => return usage_error(e),
     };
     let result = cli.launch_options().and_then(|options| match &cli.command {
+        Some(Command::Completions(args)) => completions::completions(args),
+        Some(Command::Manpage) => completions::manpage(),
         Some(Command::Energy(args)) => energy::run(args),
         Some(Command::Info(args)) => info::run(args),
         Some(Command::Render(args)) => render::run(args),
