@@ -55,12 +55,6 @@ fn wait_for_title(harness: &mut Harness<'_, LabApp>, part: &str) -> String {
     panic!("the window's title never named {part}");
 }
 
-/// A few frames without kittest's accessibility check: egui_file's two
-/// text fields have no accessible name (the crate's, not ours to label).
-fn frames(harness: &mut Harness<'_, LabApp>) {
-    harness.run_steps(4);
-}
-
 /// A file dropped on the window, as eframe hands it over.
 #[derive(Debug)]
 struct Dropped(PathBuf);
@@ -84,18 +78,18 @@ fn the_dialogs_result_opens_the_scene_like_a_dropped_file() {
     harness.state_mut().state_mut().paths.last_folder = Some(dir.path().to_path_buf());
 
     harness.get_by_label("File").click();
-    frames(&mut harness);
+    harness.run();
     harness.get_by_label("Open scene…").click();
-    frames(&mut harness);
+    harness.run();
     assert!(harness.state().file_dialog_open());
     assert!(
         harness.query_by_label_contains("notes.txt").is_none(),
         "the dialog shows only glTF/GLB files"
     );
     harness.get_by_label_contains("box.glb").click();
-    frames(&mut harness);
+    harness.run();
     harness.get_by_label("Open").click();
-    frames(&mut harness);
+    harness.run();
     let from_dialog = opened_scenes(&harness);
     assert_eq!(from_dialog, [Command::OpenScene(Some(path.clone()))]);
     assert_eq!(
@@ -226,22 +220,22 @@ fn saving_over_a_file_asks_first() {
     harness
         .state_mut()
         .emit(Command::ChooseFile(FileAction::SaveSettings));
-    frames(&mut harness);
+    harness.run();
     harness.get_by_label("Save").click();
-    frames(&mut harness);
+    harness.run();
     harness.get_by_label_contains("already exists");
     harness.get_by_label("Cancel").click();
-    frames(&mut harness);
+    harness.run();
     assert_eq!(std::fs::read_to_string(&existing).unwrap(), "# keep me\n");
 
     harness
         .state_mut()
         .emit(Command::ChooseFile(FileAction::SaveSettings));
-    frames(&mut harness);
+    harness.run();
     harness.get_by_label("Save").click();
-    frames(&mut harness);
+    harness.run();
     harness.get_by_label("Replace").click();
-    frames(&mut harness);
+    harness.run();
     let saved = lumlab::settings::Settings::load(&existing).expect("replaced by the settings");
     assert_eq!(&saved, harness.state().settings());
 }

@@ -119,7 +119,7 @@ impl FilesPanel {
         };
         dialog = dialog
             .title(action.title())
-            .id(egui::Id::unique("lumlab file dialog"))
+            .id(Self::dialog_id())
             .show_files_filter(Box::new(move |path: &Path| {
                 path.file_name()
                     .and_then(|n| n.to_str())
@@ -133,6 +133,33 @@ impl FilesPanel {
         dialog.open();
         self.replace = None;
         self.dialog = Some(Dialog { action, dialog });
+    }
+
+    fn dialog_id() -> egui::Id {
+        egui::Id::unique("lumlab file dialog")
+    }
+
+    /// Names egui_file's two text fields for screen readers (the crate
+    /// leaves them unnamed): the folder above the list, the file name below.
+    fn name_text_fields(ctx: &egui::Context) {
+        let layer = egui::LayerId::new(egui::Order::Middle, Self::dialog_id());
+        let mut fields: Vec<(f32, egui::Id)> = ctx.viewport(|v| {
+            v.this_pass
+                .widgets
+                .get_layer(layer)
+                .map(|w| (w.rect.min.y, w.id))
+                .collect()
+        });
+        fields.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut names = ["Folder", "File name"].into_iter();
+        for (_, id) in fields {
+            let is_text = ctx
+                .accesskit_node_builder(id, |n| n.role() == egui::Role::TextInput && n.label().is_none())
+                .unwrap_or(false);
+            if let Some(name) = is_text.then(|| names.next()).flatten() {
+                ctx.accesskit_node_builder(id, |n| n.set_label(name));
+            }
+        }
     }
 
     /// Whether a dialog (or its question) is showing.
@@ -150,6 +177,7 @@ impl FilesPanel {
         let mut command = None;
         if let Some(open) = &mut self.dialog {
             open.dialog.show(ctx);
+            Self::name_text_fields(ctx);
             match open.dialog.state() {
                 egui_file::State::Open => {}
                 egui_file::State::Selected => {
