@@ -135,10 +135,8 @@ pub fn pressed(ctx: &egui::Context) -> Vec<Command> {
             .iter()
             .filter(|s| {
                 // Every alternative is consumed, so that none falls through
-                // to a later row.
-                s.keys
-                    .iter()
-                    .fold(false, |hit, k| input.consume_shortcut(k) || hit)
+                // to a later row (so no short-circuiting `any`).
+                s.keys.iter().filter(|k| input.consume_shortcut(k)).count() > 0
             })
             .map(|s| s.command.clone())
             .collect()
