@@ -126,6 +126,8 @@ impl FilesPanel {
                     .is_some_and(|n| action.matches(n))
             }))
             .show_rename(false)
+            .anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0])
+            .keep_on_top(true)
             .default_size([620.0, 460.0]);
         if let Some(folder) = folder {
             dialog = dialog.initial_path(folder);
