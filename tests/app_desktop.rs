@@ -89,7 +89,7 @@ fn the_dialogs_result_opens_the_scene_like_a_dropped_file() {
     harness.get_by_label_contains("box.glb").click();
     harness.run();
     harness.get_by_label("Open").click();
-    harness.run();
+    harness.run_steps(2); // not run(): the load on its thread repaints when it ends
     let from_dialog = opened_scenes(&harness);
     assert_eq!(from_dialog, [Command::OpenScene(Some(path.clone()))]);
     assert_eq!(
@@ -102,7 +102,7 @@ fn the_dialogs_result_opens_the_scene_like_a_dropped_file() {
         .input_mut()
         .dropped_files
         .push(std::sync::Arc::new(Dropped(path.clone())));
-    harness.run();
+    harness.run_steps(2);
     let all = opened_scenes(&harness);
     assert_eq!(all.len(), 2);
     assert_eq!(all[1], from_dialog[0], "a dropped file emits the same command");
@@ -131,7 +131,7 @@ fn a_recent_file_that_no_longer_exists_is_shown_as_missing() {
     let present = harness.get_by_label("here.glb");
     assert!(!present.accesskit_node().is_disabled());
     present.click();
-    harness.run();
+    harness.run_steps(2);
     assert_eq!(opened_scenes(&harness), [Command::OpenScene(Some(here.clone()))]);
     step_until(&mut harness, "the recent scene to load", |app| {
         app.title().contains("here.glb")
