@@ -5,7 +5,7 @@
 
 use egui::accesskit::Role;
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 use glam::DVec3;
 use lumlab::app::LabApp;
 use lumlab::physics::{BrdfParams, brdf, radiometry};
@@ -452,15 +452,23 @@ fn exr_export_and_a_bad_scene_file() {
     for _ in 0..100 {
         harness.step();
         if harness
-            .query_by_label_contains("the current scene is kept")
+            .query_all_by_label_contains("the current scene is kept")
+            .next()
             .is_some()
         {
             break;
         }
         std::thread::sleep(Duration::from_millis(10));
     }
-    harness.get_by_label_contains("missing.glb");
-    harness.get_by_label_contains("the current scene is kept");
+    // The status line and the error toast (shown from the next frame) both
+    // say so, naming the file.
+    harness.run();
+    let messages: Vec<String> = harness
+        .get_all_by_label_contains("the current scene is kept")
+        .filter_map(|n| n.accesskit_node().value())
+        .collect();
+    assert_eq!(messages.len(), 2, "{messages:?}");
+    assert!(messages.iter().all(|m| m.contains("missing.glb")), "{messages:?}");
     assert_eq!(*harness.state().settings(), before);
 }
 

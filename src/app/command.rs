@@ -4,6 +4,7 @@
 //! A new action is a new variant here, its handling in `apply.rs`, and, if
 //! it has a key, a row in `shortcuts.rs`.
 
+use super::files::FileAction;
 use super::state::{PanelState, SplitState};
 use crate::presets::Preset;
 use crate::scene::framing::frame_all;
@@ -15,7 +16,7 @@ use std::path::PathBuf;
 /// One thing the user (or a script) asks of the lab.
 ///
 /// Paths are optional where a shortcut has none to give: `None` means the
-/// path typed in the Files panel.
+/// file of that kind used last (shown in the Files panel).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Command {
     /// Replaces the settings: a panel's edit or a drag in the viewport.
@@ -45,6 +46,9 @@ pub enum Command {
     AutoExposure,
     Undo,
     Redo,
+    /// Shows the file dialog; the file chosen becomes the action's command
+    /// (e.g. `OpenScene(Some(path))`, as a dropped file does).
+    ChooseFile(FileAction),
     /// Loads a glTF/GLB on a thread; the current scene stays until it succeeds.
     OpenScene(Option<PathBuf>),
     /// Back to the built-in scene.

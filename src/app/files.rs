@@ -1,270 +1,402 @@
-//! The files panel: settings files (the same TOML as `--settings`), scenes
-//! (glTF/GLB, also by drag and drop), screenshots (PNG) and the linear
-//! radiance (EXR). egui has no native dialog; a path field and a small
-//! directory browser stand in for one.
+//! Files: the File menu, the Files panel and the file dialogs. A dialog is
+//! `egui_file`'s, drawn by egui itself (so it works on any desktop, under
+//! Xvfb and in the UI tests); what it picks becomes the same command a
+//! dropped file or a recent entry emits, e.g. `Command::OpenScene(Some(path))`.
+//! The Files panel's quick buttons act on the file of each kind used last.
 
 use super::command::Command;
+use super::recent::RecentFiles;
 use super::state::Paths;
 use std::path::{Path, PathBuf};
 
-/// Which path field the browser fills.
+/// What a file dialog is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Field {
-    Settings,
-    Scene,
+pub enum FileAction {
+    OpenScene,
+    LoadSettings,
+    SaveSettings,
     Screenshot,
-    Exr,
+    ExportExr,
 }
 
-impl Field {
-    fn extensions(self) -> &'static [&'static str] {
+impl FileAction {
+    /// The kind's extensions, lower case; the first is added to a saved
+    /// name that has none.
+    pub fn extensions(self) -> &'static [&'static str] {
         match self {
-            Self::Settings => &["toml"],
-            Self::Scene => &["gltf", "glb"],
+            Self::OpenScene => &["glb", "gltf"],
+            Self::LoadSettings | Self::SaveSettings => &["toml"],
             Self::Screenshot => &["png"],
-            Self::Exr => &["exr"],
+            Self::ExportExr => &["exr"],
         }
     }
 
-    fn path(self, paths: &mut Paths) -> &mut String {
+    fn title(self) -> &'static str {
         match self {
-            Self::Settings => &mut paths.settings_file,
-            Self::Scene => &mut paths.scene_file,
-            Self::Screenshot => &mut paths.screenshot_file,
-            Self::Exr => &mut paths.exr_file,
+            Self::OpenScene => "Open a glTF/GLB scene",
+            Self::LoadSettings => "Load a TOML settings file",
+            Self::SaveSettings => "Save the settings as TOML",
+            Self::Screenshot => "Save a screenshot (PNG)",
+            Self::ExportExr => "Export linear radiance (EXR)",
+        }
+    }
+
+    /// The dialog writes a file (and asks before replacing one).
+    pub fn saves(self) -> bool {
+        matches!(self, Self::SaveSettings | Self::Screenshot | Self::ExportExr)
+    }
+
+    /// The command that does the action on `path`.
+    pub fn command(self, path: PathBuf) -> Command {
+        match self {
+            Self::OpenScene => Command::OpenScene(Some(path)),
+            Self::LoadSettings => Command::LoadSettings(Some(path)),
+            Self::SaveSettings => Command::SaveSettings(Some(path)),
+            Self::Screenshot => Command::Screenshot(Some(path)),
+            Self::ExportExr => Command::ExportExr(Some(path)),
+        }
+    }
+
+    /// The file of this kind used last.
+    fn last_file(self, paths: &Paths) -> &str {
+        match self {
+            Self::OpenScene => &paths.scene_file,
+            Self::LoadSettings | Self::SaveSettings => &paths.settings_file,
+            Self::Screenshot => &paths.screenshot_file,
+            Self::ExportExr => &paths.exr_file,
+        }
+    }
+
+    fn matches(self, name: &str) -> bool {
+        Path::new(name)
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| self.extensions().contains(&e.to_ascii_lowercase().as_str()))
+    }
+
+    /// `path` with the kind's extension when it has none of them.
+    fn with_extension(self, path: PathBuf) -> PathBuf {
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+        match name {
+            Some(n) if !self.matches(&n) => path.with_file_name(format!("{n}.{}", self.extensions()[0])),
+            _ => path,
         }
     }
 }
 
-/// A directory listing to pick a file from.
-struct Browser {
-    field: Field,
-    dir: PathBuf,
-    entries: Vec<(String, bool)>,
-    error: Option<String>,
+/// An open dialog and what its result is for.
+struct Dialog {
+    action: FileAction,
+    dialog: egui_file::FileDialog,
 }
 
-impl Browser {
-    fn open(field: Field, current: &str) -> Self {
-        let start = Path::new(current)
-            .parent()
-            .filter(|p| p.is_dir())
-            .map(Path::to_path_buf)
-            .or_else(|| std::env::current_dir().ok())
-            .unwrap_or_else(|| PathBuf::from("."));
-        let mut browser = Self {
-            field,
-            dir: start,
-            entries: Vec::new(),
-            error: None,
-        };
-        browser.list();
-        browser
-    }
-
-    /// Sub-directories, then the files with the field's extensions.
-    fn list(&mut self) {
-        self.entries.clear();
-        self.error = None;
-        let read = match std::fs::read_dir(&self.dir) {
-            Ok(read) => read,
-            Err(e) => {
-                self.error = Some(format!("cannot list '{}': {e}", self.dir.display()));
-                return;
-            }
-        };
-        let extensions = self.field.extensions();
-        for entry in read.flatten() {
-            let name = entry.file_name().to_string_lossy().into_owned();
-            if name.starts_with('.') {
-                continue;
-            }
-            let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
-            let matches = Path::new(&name)
-                .extension()
-                .and_then(|e| e.to_str())
-                .is_some_and(|e| extensions.contains(&e.to_ascii_lowercase().as_str()));
-            if is_dir || matches {
-                self.entries.push((name, is_dir));
-            }
-        }
-        self.entries.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
-    }
-
-    /// Shows the window; Some(path) when a file was picked, and whether it stays open.
-    fn ui(&mut self, ctx: &egui::Context) -> (Option<PathBuf>, bool) {
-        let mut open = true;
-        let mut picked = None;
-        let mut go_to = None;
-        egui::Window::new(format!("Choose a .{} file", self.field.extensions().join(" / .")))
-            .open(&mut open)
-            .default_size([520.0, 420.0])
-            .collapsible(false)
-            .show(ctx, |ui| {
-                ui.horizontal(|ui| {
-                    if ui.button("Up").on_hover_text("Parent directory").clicked() {
-                        go_to = self.dir.parent().map(Path::to_path_buf);
-                    }
-                    ui.label(self.dir.display().to_string());
-                });
-                if let Some(e) = &self.error {
-                    ui.label(egui::RichText::new(e).color(ui.visuals().warn_fg_color));
-                }
-                egui::ScrollArea::vertical().max_height(340.0).show(ui, |ui| {
-                    for (name, is_dir) in &self.entries {
-                        let text = if *is_dir { format!("{name}/") } else { name.clone() };
-                        if ui
-                            .selectable_label(false, text)
-                            .on_hover_text(name.as_str())
-                            .clicked()
-                        {
-                            let path = self.dir.join(name);
-                            if *is_dir {
-                                go_to = Some(path);
-                            } else {
-                                picked = Some(path);
-                            }
-                        }
-                    }
-                    if self.entries.is_empty() && self.error.is_none() {
-                        ui.label("(no matching files here)");
-                    }
-                });
-            });
-        if let Some(dir) = go_to {
-            self.dir = dir;
-            self.list();
-        }
-        (picked.clone(), open && picked.is_none())
-    }
-}
-
+/// The file dialog, and the question asked before a save replaces a file.
 #[derive(Default)]
 pub struct FilesPanel {
-    browser: Option<Browser>,
+    dialog: Option<Dialog>,
+    replace: Option<(FileAction, PathBuf)>,
 }
 
 impl FilesPanel {
-    fn path_row(&mut self, ui: &mut egui::Ui, paths: &mut Paths, field: Field, label: &str, help: &str) {
-        ui.horizontal(|ui| {
-            ui.label(label).on_hover_text(help);
-            let width = (ui.available_width() - 90.0).max(80.0);
-            ui.add(egui::TextEdit::singleline(field.path(paths)).desired_width(width))
-                .on_hover_text(help);
-            if ui
-                .button("Browse…")
-                .on_hover_text("Pick a file in a directory listing")
-                .clicked()
-            {
-                self.browser = Some(Browser::open(field, field.path(paths)));
-            }
-        });
+    /// Opens the dialog for `action`, in the folder used last (else the last
+    /// file's folder, else the working directory).
+    pub fn choose(&mut self, action: FileAction, paths: &Paths) {
+        let last_file = Path::new(action.last_file(paths).trim());
+        let folder = paths
+            .last_folder
+            .clone()
+            .filter(|d| d.is_dir())
+            .or_else(|| last_file.parent().filter(|d| d.is_dir()).map(Path::to_path_buf))
+            .or_else(|| std::env::current_dir().ok());
+        let mut dialog = if action.saves() {
+            let name = last_file.file_name().map(|n| n.to_string_lossy().into_owned());
+            egui_file::FileDialog::save_file()
+                .default_filename(name.unwrap_or_default())
+                .filename_filter(Box::new(|name: &str| !name.trim().is_empty()))
+        } else {
+            egui_file::FileDialog::open_file()
+                .filename_filter(Box::new(move |name: &str| action.matches(name)))
+        };
+        dialog = dialog
+            .title(action.title())
+            .id(Self::dialog_id())
+            .show_files_filter(Box::new(move |path: &Path| {
+                path.file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| action.matches(n))
+            }))
+            .show_rename(false)
+            .anchor(egui::Align2::CENTER_CENTER, [0.0, 0.0])
+            .keep_on_top(true)
+            .default_size([620.0, 460.0]);
+        if let Some(folder) = folder {
+            dialog = dialog.initial_path(folder);
+        }
+        dialog.open();
+        self.replace = None;
+        self.dialog = Some(Dialog { action, dialog });
     }
 
-    /// The panel; returns the command its buttons emit.
-    pub fn ui(&mut self, ui: &mut egui::Ui, paths: &mut Paths, scene_name: &str) -> Option<Command> {
+    fn dialog_id() -> egui::Id {
+        egui::Id::unique("lumlab file dialog")
+    }
+
+    /// Names egui_file's two text fields for screen readers (the crate
+    /// leaves them unnamed): the folder above the list, the file name below.
+    fn name_text_fields(ctx: &egui::Context) {
+        let layer = egui::LayerId::new(egui::Order::Middle, Self::dialog_id());
+        let mut fields: Vec<(f32, egui::Id)> = ctx.viewport(|v| {
+            v.this_pass
+                .widgets
+                .get_layer(layer)
+                .map(|w| (w.rect.min.y, w.id))
+                .collect()
+        });
+        fields.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut names = ["Folder", "File name"].into_iter();
+        for (_, id) in fields {
+            let is_text = ctx
+                .accesskit_node_builder(id, |n| n.role() == egui::Role::TextInput && n.label().is_none())
+                .unwrap_or(false);
+            if let Some(name) = is_text.then(|| names.next()).flatten() {
+                ctx.accesskit_node_builder(id, |n| n.set_label(name));
+            }
+        }
+    }
+
+    /// Whether a dialog (or its question) is showing.
+    pub fn dialog_open(&self) -> bool {
+        self.dialog.is_some() || self.replace.is_some()
+    }
+
+    /// Shows the dialog and the question; the command of a file chosen.
+    /// The dialog's folder is remembered in `last_folder`.
+    pub fn show_dialogs(
+        &mut self,
+        ctx: &egui::Context,
+        last_folder: &mut Option<PathBuf>,
+    ) -> Option<Command> {
+        let mut command = None;
+        if let Some(open) = &mut self.dialog {
+            open.dialog.show(ctx);
+            Self::name_text_fields(ctx);
+            match open.dialog.state() {
+                egui_file::State::Open => {}
+                egui_file::State::Selected => {
+                    *last_folder = Some(open.dialog.directory().to_path_buf());
+                    let action = open.action;
+                    if let Some(path) = open.dialog.path().map(Path::to_path_buf) {
+                        let path = if action.saves() {
+                            action.with_extension(path)
+                        } else {
+                            path
+                        };
+                        if action.saves() && path.exists() {
+                            self.replace = Some((action, path));
+                        } else {
+                            command = Some(action.command(path));
+                        }
+                    }
+                    self.dialog = None;
+                }
+                egui_file::State::Cancelled | egui_file::State::Closed => {
+                    *last_folder = Some(open.dialog.directory().to_path_buf());
+                    self.dialog = None;
+                }
+            }
+        }
+        command.or_else(|| self.ask_to_replace(ctx))
+    }
+
+    /// "Replace it?" before a save overwrites an existing file.
+    fn ask_to_replace(&mut self, ctx: &egui::Context) -> Option<Command> {
+        let (action, path) = self.replace.clone()?;
+        let mut answer = None;
+        let modal = egui::Modal::new(egui::Id::unique("lumlab replace file")).show(ctx, |ui| {
+            ui.heading("Replace the file?");
+            ui.label(format!("'{}' already exists.", path.display()));
+            ui.horizontal(|ui| {
+                if ui.button("Replace").clicked() {
+                    answer = Some(true);
+                }
+                if ui.button("Cancel").clicked() {
+                    answer = Some(false);
+                }
+            });
+        });
+        if modal.should_close() && answer.is_none() {
+            answer = Some(false);
+        }
+        let replace = answer?;
+        self.replace = None;
+        replace.then(|| action.command(path))
+    }
+
+    /// The File menu's entries; the command of the one clicked.
+    pub fn menu(ui: &mut egui::Ui, recent: &RecentFiles) -> Option<Command> {
+        let entries = [
+            (
+                "Open scene…",
+                "A .gltf or .glb file (Ctrl+O; or drop it on the window)",
+                Command::ChooseFile(FileAction::OpenScene),
+            ),
+            (
+                "Built-in scene",
+                "Back to the lab's own scene",
+                Command::BuiltInScene,
+            ),
+            (
+                "Load settings…",
+                "A TOML settings file, as `lumlab render --settings FILE` reads",
+                Command::ChooseFile(FileAction::LoadSettings),
+            ),
+            (
+                "Save settings",
+                "Write every setting to the settings file used last (Ctrl+S)",
+                Command::SaveSettings(None),
+            ),
+            (
+                "Save settings as…",
+                "Write every setting to a new TOML file",
+                Command::ChooseFile(FileAction::SaveSettings),
+            ),
+            (
+                "Save screenshot…",
+                "The whole window as PNG",
+                Command::ChooseFile(FileAction::Screenshot),
+            ),
+            (
+                "Export EXR…",
+                "Half A's linear values, no exposure, no sRGB",
+                Command::ChooseFile(FileAction::ExportExr),
+            ),
+        ];
+        let mut chosen = None;
+        for (text, help, command) in entries {
+            if ui.button(text).on_hover_text(help).clicked() {
+                chosen = Some(command);
+            }
+        }
+        ui.separator();
+        recent.menu(ui).or(chosen)
+    }
+
+    /// The panel: the file of each kind used last, the quick actions on it,
+    /// and a dialog to choose another.
+    pub fn ui(&mut self, ui: &mut egui::Ui, paths: &Paths, scene_name: &str) -> Option<Command> {
         let mut action = None;
-        let path = |p: &str| Some(PathBuf::from(p.trim()));
+        let mut button = |ui: &mut egui::Ui, text: &str, help: &str, command: Command| {
+            if ui.button(text).on_hover_text(help).clicked() {
+                action = Some(command);
+            }
+        };
+        let browse = Command::ChooseFile;
 
         ui.label(egui::RichText::new(format!("Scene: {scene_name}")).strong());
-        self.path_row(
-            ui,
-            paths,
-            Field::Scene,
-            "glTF",
-            "A .gltf or .glb file (or drop one on the window)",
-        );
+        file_row(ui, "glTF", &paths.scene_file);
         ui.horizontal(|ui| {
-            if ui
-                .button("Open scene")
-                .on_hover_text("Load the glTF/GLB file above (Ctrl+O)")
-                .clicked()
-            {
-                action = Some(Command::OpenScene(path(&paths.scene_file)));
-            }
-            if ui
-                .button("Built-in scene")
-                .on_hover_text("Back to the lab's own scene")
-                .clicked()
-            {
-                action = Some(Command::BuiltInScene);
-            }
+            button(
+                ui,
+                "Browse…",
+                "Pick a .gltf/.glb file and open it (Ctrl+O)",
+                browse(FileAction::OpenScene),
+            );
+            button(
+                ui,
+                "Open scene",
+                "Open the file shown again",
+                Command::OpenScene(None),
+            );
+            button(
+                ui,
+                "Built-in scene",
+                "Back to the lab's own scene",
+                Command::BuiltInScene,
+            );
         });
         ui.separator();
 
-        self.path_row(
-            ui,
-            paths,
-            Field::Settings,
-            "Settings",
-            "A TOML settings file, the same as `lumlab render --settings FILE`",
-        );
+        file_row(ui, "Settings", &paths.settings_file);
         ui.horizontal(|ui| {
-            if ui
-                .button("Save (Ctrl+S)")
-                .on_hover_text("Write every setting to the file")
-                .clicked()
-            {
-                action = Some(Command::SaveSettings(path(&paths.settings_file)));
-            }
-            if ui
-                .button("Load")
-                .on_hover_text("Read the settings from the file (undo with Ctrl+Z)")
-                .clicked()
-            {
-                action = Some(Command::LoadSettings(path(&paths.settings_file)));
-            }
+            button(
+                ui,
+                "Save (Ctrl+S)",
+                "Write every setting to the file shown",
+                Command::SaveSettings(None),
+            );
+            button(
+                ui,
+                "Load",
+                "Read the settings from the file shown (undo with Ctrl+Z)",
+                Command::LoadSettings(None),
+            );
+        });
+        ui.horizontal(|ui| {
+            button(
+                ui,
+                "Save as…",
+                "Write the settings to another TOML file",
+                browse(FileAction::SaveSettings),
+            );
+            button(
+                ui,
+                "Load…",
+                "Pick a TOML settings file and load it",
+                browse(FileAction::LoadSettings),
+            );
         });
         ui.separator();
 
-        self.path_row(
-            ui,
-            paths,
-            Field::Screenshot,
-            "PNG",
-            "Screenshot of the whole window",
-        );
-        if ui
-            .button("Save screenshot (F12)")
-            .on_hover_text("The whole window, as displayed")
-            .clicked()
-        {
-            action = Some(Command::Screenshot(path(&paths.screenshot_file)));
-        }
-        self.path_row(
-            ui,
-            paths,
-            Field::Exr,
-            "EXR",
-            "Linear 32-bit values of half A's view: radiance L (W/m²/sr) for `shaded`",
-        );
-        if ui
-            .button("Export EXR")
-            .on_hover_text("Unscaled linear values, no exposure, no sRGB")
-            .clicked()
-        {
-            action = Some(Command::ExportExr(path(&paths.exr_file)));
-        }
+        file_row(ui, "PNG", &paths.screenshot_file);
+        ui.horizontal(|ui| {
+            button(
+                ui,
+                "Save screenshot (F12)",
+                "The whole window, as displayed, to the file shown",
+                Command::Screenshot(None),
+            );
+            button(
+                ui,
+                "Save as…",
+                "The whole window, to a PNG file you pick",
+                browse(FileAction::Screenshot),
+            );
+        });
+        file_row(ui, "EXR", &paths.exr_file);
+        ui.horizontal(|ui| {
+            button(
+                ui,
+                "Export EXR",
+                "Half A's unscaled linear values (radiance L in W/m²/sr for `shaded`) to the file shown",
+                Command::ExportExr(None),
+            );
+            button(
+                ui,
+                "Export as…",
+                "The same, to an EXR file you pick",
+                browse(FileAction::ExportExr),
+            );
+        });
         ui.separator();
-        if ui
-            .button("Reset everything")
-            .on_hover_text("Every setting, the split view, the panels and the scene back to their defaults (Ctrl+Z undoes the settings)")
-            .clicked()
-        {
-            action = Some(Command::ResetEverything);
-        }
-
-        if let Some(browser) = &mut self.browser {
-            let (picked, keep) = browser.ui(ui.ctx());
-            if let Some(p) = picked {
-                *browser.field.path(paths) = p.display().to_string();
-            }
-            if !keep {
-                self.browser = None;
-            }
-        }
+        button(
+            ui,
+            "Reset everything",
+            "Every setting, the split view, the panels and the scene back to their defaults (Ctrl+Z undoes the settings)",
+            Command::ResetEverything,
+        );
         action
     }
+}
+
+/// A kind's file used last, shortened to its name (the full path on hover).
+fn file_row(ui: &mut egui::Ui, kind: &str, path: &str) {
+    let name = Path::new(path)
+        .file_name()
+        .map_or_else(|| "(none)".to_owned(), |n| n.to_string_lossy().into_owned());
+    ui.horizontal(|ui| {
+        ui.label(egui::RichText::new(kind).weak());
+        ui.label(name).on_hover_text(path);
+    });
 }
 
 #[cfg(test)]
@@ -272,15 +404,36 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_browser_lists_directories_and_matching_files() {
+    fn kinds_filter_by_extension_in_any_case() {
+        assert!(FileAction::OpenScene.matches("a.GLB"));
+        assert!(FileAction::OpenScene.matches("b.gltf"));
+        assert!(!FileAction::OpenScene.matches("c.toml"));
+        assert!(FileAction::ExportExr.matches("l.exr"));
+        assert!(!FileAction::Screenshot.matches("png"));
+    }
+
+    #[test]
+    fn a_saved_name_gets_its_kinds_extension() {
+        let s = FileAction::SaveSettings;
+        assert_eq!(s.with_extension("/d/lab".into()), Path::new("/d/lab.toml"));
+        assert_eq!(s.with_extension("/d/lab.TOML".into()), Path::new("/d/lab.TOML"));
+        assert_eq!(
+            FileAction::Screenshot.with_extension("/d/shot.v2".into()),
+            Path::new("/d/shot.v2.png")
+        );
+    }
+
+    #[test]
+    fn the_dialog_starts_in_the_folder_used_last() {
         let dir = tempfile::tempdir().unwrap();
-        std::fs::create_dir(dir.path().join("sub")).unwrap();
-        for name in ["a.glb", "b.GLTF", "c.txt", ".hidden.glb"] {
-            std::fs::write(dir.path().join(name), b"x").unwrap();
-        }
-        let current = dir.path().join("x.glb").display().to_string();
-        let browser = Browser::open(Field::Scene, &current);
-        let names: Vec<&str> = browser.entries.iter().map(|(n, _)| n.as_str()).collect();
-        assert_eq!(names, ["sub", "a.glb", "b.GLTF"]);
+        let paths = Paths {
+            last_folder: Some(dir.path().to_path_buf()),
+            ..Paths::default()
+        };
+        let mut files = FilesPanel::default();
+        files.choose(FileAction::OpenScene, &paths);
+        let open = files.dialog.as_ref().unwrap();
+        assert_eq!(open.dialog.directory(), dir.path());
+        assert!(files.dialog_open());
     }
 }

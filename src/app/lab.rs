@@ -10,6 +10,7 @@
 //! - new background work: `lab/jobs.rs`.
 
 mod apply;
+mod desktop;
 mod image;
 mod jobs;
 mod panels;
@@ -22,6 +23,7 @@ use super::probe::Probe;
 use super::reference::ReferencePanel;
 use super::state::State;
 use super::timings::FrameClock;
+use super::toast::Toasts;
 use super::undo::UndoStack;
 use super::{LaunchOptions, Preloaded, shortcuts};
 use crate::presets::Half;
@@ -58,6 +60,12 @@ pub struct LabApp {
     reference: ReferencePanel,
     reference_generation: u64,
     files: FilesPanel,
+    toasts: Toasts,
+    /// The settings as in the settings file last loaded or saved (the
+    /// title's mark compares with them); None before any.
+    saved: Option<Settings>,
+    /// The title last given to the window.
+    title_sent: Option<String>,
     clock: FrameClock,
     status: Option<Status>,
     help_open: bool,
@@ -149,6 +157,7 @@ impl LabApp {
             return Err("eframe started without the wgpu renderer".into());
         }
         let script = scripted.then(|| Script::new(options));
+        let saved = Settings::load(Path::new(state.paths.settings_file.trim())).ok();
         Ok(Self {
             undo: UndoStack::new(&state.settings),
             state,
@@ -163,6 +172,9 @@ impl LabApp {
             reference: ReferencePanel::default(),
             reference_generation: 1,
             files: FilesPanel::default(),
+            toasts: Toasts::default(),
+            saved,
+            title_sent: None,
             clock: FrameClock::default(),
             status,
             help_open: false,
@@ -264,11 +276,13 @@ impl LabApp {
         self.reference = ReferencePanel::new(compute);
     }
 
+    /// A message in the status line; an error also as a toast.
     fn say(&mut self, text: impl Into<String>, error: bool) {
-        self.status = Some(Status {
-            text: text.into(),
-            error,
-        });
+        let text = text.into();
+        if error {
+            self.toasts.push(text.clone());
+        }
+        self.status = Some(Status { text, error });
     }
 
     /// One frame of the whole window: input becomes commands, panels emit
@@ -296,6 +310,7 @@ impl LabApp {
             .inner;
         self.after_viewport(response);
         shortcuts::help_window(&ctx, &mut self.help_open);
+        self.desktop(&ctx);
         self.apply_queued(&ctx);
 
         let busy = ctx.input(|i| i.pointer.any_down()) || ctx.egui_wants_keyboard_input();
@@ -403,7 +418,14 @@ impl eframe::App for LabApp {
     }
 }
 
-/// A path typed in a panel, or the one a command names.
-fn chosen(path: Option<PathBuf>, typed: &str) -> PathBuf {
-    path.unwrap_or_else(|| PathBuf::from(typed.trim()))
+/// The path a command names (remembered as the kind's `last`), or else
+/// the kind's file used last.
+fn chosen(path: Option<PathBuf>, last: &mut String) -> PathBuf {
+    match path {
+        Some(path) => {
+            *last = path.display().to_string();
+            path
+        }
+        None => PathBuf::from(last.trim()),
+    }
 }

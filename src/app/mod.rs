@@ -11,29 +11,37 @@
 //! Every action is a [`Command`] (`command`): panels, shortcuts
 //! (`shortcuts`, one table for the keys and the help), dropped files and
 //! scripts emit them; `lab` applies them in one place and records undo.
+//!
+//! The desktop around it: file dialogs and the File menu (`files`), recent
+//! files (`recent`), error toasts (`toast`), the window's icon (`icon`) and
+//! a title naming the scene.
 
 mod camera_control;
 mod command;
 mod energy;
 mod files;
 mod gpu_view;
+pub mod icon;
 mod lab;
 mod legend;
 mod light;
 mod material;
 mod probe;
+mod recent;
 mod reference;
 mod scene_panel;
 mod shadow;
 mod shortcuts;
 mod state;
 mod timings;
+mod toast;
 mod undo;
 mod view;
 mod viewport;
 mod widgets;
 
 pub use command::Command;
+pub use files::FileAction;
 pub use lab::LabApp;
 pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
 pub use reference::{ErrorStats, ReferenceFn};
@@ -113,6 +121,10 @@ pub fn preload(options: &LaunchOptions) -> anyhow::Result<Preloaded> {
     Ok(Preloaded { settings, scene })
 }
 
+/// The app id: desktops group the lab's windows under it and match it to
+/// `assets/lumlab.desktop` (X11 `WM_CLASS`, Wayland `app_id`).
+pub const APP_ID: &str = "lumlab";
+
 /// Hint appended to the errors that keep the window from opening.
 const HEADLESS_HINT: &str = "for images without a window use 'lumlab render --out FILE.png'";
 
@@ -139,12 +151,18 @@ pub fn run(options: LaunchOptions) -> anyhow::Result<()> {
     setup.instance_descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
     setup.device_descriptor = Arc::new(crate::gpu::context::device_descriptor);
     let scripted = options.is_scripted();
+    // The title names the scene from the first frame on (`LabApp::title`).
+    let mut viewport = egui::ViewportBuilder::default()
+        .with_title("lumlab")
+        .with_app_id(APP_ID)
+        .with_inner_size([1600.0, 900.0])
+        .with_min_inner_size([480.0, 320.0])
+        .with_drag_and_drop(true);
+    if let Some(icon) = icon::window_icon() {
+        viewport = viewport.with_icon(icon);
+    }
     let native = eframe::NativeOptions {
-        viewport: egui::ViewportBuilder::default()
-            .with_title("lumlab — lighting lab")
-            .with_inner_size([1600.0, 900.0])
-            .with_min_inner_size([480.0, 320.0])
-            .with_drag_and_drop(true),
+        viewport,
         wgpu_options: egui_wgpu::WgpuConfiguration {
             wgpu_setup: egui_wgpu::WgpuSetup::CreateNew(setup),
             ..Default::default()

@@ -51,8 +51,8 @@ pub static SHORTCUTS: &[Shortcut] = &[
     },
     Shortcut {
         keys: &[key(CMD, Key::O)],
-        does: "open the glTF/GLB in the scene path",
-        command: Command::OpenScene(None),
+        does: "open a glTF/GLB file (file dialog)",
+        command: Command::ChooseFile(super::files::FileAction::OpenScene),
     },
     Shortcut {
         keys: &[key(NONE, Key::R)],
@@ -145,10 +145,9 @@ pub fn pressed(ctx: &egui::Context) -> Vec<Command> {
         SHORTCUTS
             .iter()
             .filter(|s| {
-                // Every alternative is consumed (no short circuit), so that
-                // none falls through to a later row.
-                let hits = s.keys.iter().filter(|k| input.consume_shortcut(k)).count();
-                hits > 0
+                // Every alternative is consumed, so that none falls through
+                // to a later row (so no short-circuiting `any`).
+                s.keys.iter().filter(|k| input.consume_shortcut(k)).count() > 0
             })
             .map(|s| s.command.clone())
             .collect()

@@ -1,11 +1,14 @@
 //! What the app remembers between runs (eframe storage), apart from every
 //! GPU object: the settings, the split comparison, panel visibility and
-//! the paths last used. Unknown or invalid stored state falls back to the
+//! the paths last used, the folder the file dialog was last in and the
+//! recent files. Unknown or invalid stored state falls back to the
 //! defaults.
 
+use super::recent::RecentFiles;
 use crate::presets::Comparison;
 use crate::settings::Settings;
 use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
 
 /// The key under which the state is stored.
 pub const STORAGE_KEY: &str = "lumlab.state";
@@ -17,6 +20,7 @@ pub struct State {
     pub split: SplitState,
     pub panels: PanelState,
     pub paths: Paths,
+    pub recent: RecentFiles,
 }
 
 /// The split view: B differs from A by the comparison's setting.
@@ -58,7 +62,8 @@ impl Default for PanelState {
     }
 }
 
-/// File paths typed or picked last, so they survive a restart.
+/// The file of each kind used last (the Files panel's quick actions work
+/// on them) and the folder the file dialog was last in.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct Paths {
@@ -66,6 +71,8 @@ pub struct Paths {
     pub scene_file: String,
     pub screenshot_file: String,
     pub exr_file: String,
+    /// Where the next file dialog starts (None: the working directory).
+    pub last_folder: Option<PathBuf>,
 }
 
 impl Default for Paths {
@@ -75,6 +82,7 @@ impl Default for Paths {
             scene_file: String::new(),
             screenshot_file: "lumlab-screenshot.png".into(),
             exr_file: "lumlab-radiance.exr".into(),
+            last_folder: None,
         }
     }
 }
@@ -104,6 +112,15 @@ mod tests {
         let text = serde_json::to_string(&state).unwrap();
         let back: State = serde_json::from_str(&text).unwrap();
         assert_eq!(back, state);
+    }
+
+    #[test]
+    fn state_stored_before_recent_files_and_folders_still_loads() {
+        let old = r#"{"settings":{},"paths":{"settings_file":"a.toml","scene_file":"b.glb"}}"#;
+        let state: State = serde_json::from_str(old).unwrap();
+        assert_eq!(state.paths.settings_file, "a.toml");
+        assert_eq!(state.paths.last_folder, None);
+        assert_eq!(state.recent, RecentFiles::default());
     }
 
     #[test]

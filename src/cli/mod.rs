@@ -10,6 +10,7 @@
 
 mod args;
 mod colour;
+mod completions;
 mod cost;
 mod energy;
 mod info;
@@ -72,6 +73,10 @@ impl Cli {
 pub enum Command {
     /// Spectral colour of the ColorChecker under an illuminant, against the lecture's RGB product (ΔE2000).
     Colour(colour::ColourArgs),
+    /// Print a shell completion script (e.g. `lumlab completions bash > ~/.local/share/bash-completion/completions/lumlab`).
+    Completions(completions::CompletionsArgs),
+    /// Print the man page (e.g. `lumlab manpage > ~/.local/share/man/man1/lumlab.1`).
+    Manpage,
     /// Directional albedo a(θ) of the BRDF: the energy-conservation table.
     Energy(energy::EnergyArgs),
     /// Facts of a scene: counts, bounds, objects, cameras, repairs.
@@ -104,6 +109,8 @@ pub fn main() -> ExitCode {
     }
     let result = cli.launch_options().and_then(|options| match &cli.command {
         Some(Command::Colour(args)) => colour::run(args),
+        Some(Command::Completions(args)) => completions::completions(args),
+        Some(Command::Manpage) => completions::manpage(),
         Some(Command::Energy(args)) => energy::run(args),
         Some(Command::Info(args)) => info::run(args),
         Some(Command::Render(args)) => render::run(args),

@@ -2,8 +2,10 @@
 //! scenes, files, the reference job, the split view and the panels.
 
 use super::super::command::Command;
+use super::super::files::FileAction;
 use super::super::state::State;
 use super::super::viewport::Viewport;
+use super::desktop::file_error;
 use super::{LabApp, adopt_scene, chosen, display_name};
 use crate::presets::Half;
 use crate::scene::Scene;
@@ -38,36 +40,40 @@ impl LabApp {
             Command::Redo => {
                 self.undo.redo(&mut self.state.settings);
             }
+            Command::ChooseFile(action) => self.files.choose(action, &self.state.paths),
             Command::OpenScene(path) => {
-                let path = chosen(path, &self.state.paths.scene_file);
+                let path = chosen(path, &mut self.state.paths.scene_file);
                 if path.as_os_str().is_empty() {
-                    self.say("type or browse to a .gltf/.glb file first", true);
+                    // No scene file used yet: ask for one.
+                    self.files.choose(FileAction::OpenScene, &self.state.paths);
                 } else {
-                    self.state.paths.scene_file = path.display().to_string();
                     self.open_scene(path, ctx);
                 }
             }
             Command::BuiltInScene => self.use_scene(None, crate::scene::default_scene()),
             Command::LoadSettings(path) => {
-                let path = chosen(path, &self.state.paths.settings_file);
+                let path = chosen(path, &mut self.state.paths.settings_file);
                 self.load_settings(&path, ctx);
             }
             Command::SaveSettings(path) => {
-                let path = chosen(path, &self.state.paths.settings_file);
+                let path = chosen(path, &mut self.state.paths.settings_file);
                 match self.state.settings.save(&path) {
-                    Ok(()) => self.say(format!("settings saved to {}", path.display()), false),
-                    Err(e) => self.say(e.to_string(), true),
+                    Ok(()) => {
+                        self.settings_match_file(&path);
+                        self.say(format!("settings saved to {}", path.display()), false);
+                    }
+                    Err(e) => self.say(file_error(&path, e), true),
                 }
             }
             Command::Screenshot(path) => {
-                let path = chosen(path, &self.state.paths.screenshot_file);
+                let path = chosen(path, &mut self.state.paths.screenshot_file);
                 self.jobs.request_screenshot(path, ctx);
             }
             Command::ExportExr(path) => {
-                let path = chosen(path, &self.state.paths.exr_file);
+                let path = chosen(path, &mut self.state.paths.exr_file);
                 match self.export_exr(&path) {
                     Ok(()) => self.say(format!("linear values written to {}", path.display()), false),
-                    Err(e) => self.say(crate::cli::one_line(&e), true),
+                    Err(e) => self.say(file_error(&path, crate::cli::one_line(&e)), true),
                 }
             }
             Command::AutoExposure => self.start_auto_exposure(),
@@ -93,8 +99,10 @@ impl LabApp {
             Command::ResetEverything => {
                 self.undo.checkpoint(&self.state.settings);
                 let paths = self.state.paths.clone();
+                let recent = self.state.recent.clone();
                 self.state = State {
                     paths,
+                    recent,
                     ..State::default()
                 };
                 ctx.memory_mut(|m| *m = Default::default());
@@ -122,14 +130,26 @@ impl LabApp {
         }
     }
 
+    /// Loads a settings file; on any failure (its scene gone included) the
+    /// settings and the scene stay as they were.
     fn load_settings(&mut self, path: &Path, ctx: &egui::Context) {
-        match Settings::load(path) {
+        let loaded = Settings::load(path)
+            .map_err(|e| file_error(path, e))
+            .and_then(|s| match &s.scene {
+                Some(scene) if !scene.is_file() => Err(file_error(
+                    path,
+                    format!("its scene '{}' cannot be found", scene.display()),
+                )),
+                _ => Ok(s),
+            });
+        match loaded {
             Ok(loaded) => {
                 let scene_changes = loaded.scene != self.state.settings.scene;
                 let scene = loaded.scene.clone();
                 self.undo.checkpoint(&self.state.settings);
                 self.state.settings = loaded;
                 self.undo.checkpoint(&self.state.settings);
+                self.settings_match_file(path);
                 self.say(
                     format!("settings loaded from {} (Ctrl+Z to undo)", path.display()),
                     false,
@@ -141,7 +161,7 @@ impl LabApp {
                     }
                 }
             }
-            Err(e) => self.say(e.to_string(), true),
+            Err(e) => self.say(e, true),
         }
     }
 
@@ -159,6 +179,9 @@ impl LabApp {
         self.undo.checkpoint(&self.state.settings);
         adopt_scene(&mut self.state.settings, path.as_deref(), &scene);
         self.undo.checkpoint(&self.state.settings);
+        if let Some(path) = &path {
+            self.state.recent.add_scene(path);
+        }
         self.file_scene = Arc::new(scene);
         self.scene_name = name;
         self.redraw_scene();
@@ -192,7 +215,7 @@ impl LabApp {
     fn open_scene(&mut self, path: PathBuf, ctx: &egui::Context) {
         match self.jobs.load_scene(path.clone(), ctx) {
             Ok(()) => self.say(format!("loading {}…", path.display()), false),
-            Err(e) => self.say(format!("cannot start loading: {e}"), true),
+            Err(e) => self.say(file_error(&path, format!("cannot start loading: {e}")), true),
         }
     }
 

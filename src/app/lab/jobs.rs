@@ -225,7 +225,7 @@ impl LabApp {
         }
         match result {
             Ok(()) => self.say(format!("screenshot saved to {}", path.display()), false),
-            Err(e) => self.say(crate::cli::one_line(&e), true),
+            Err(e) => self.say(super::desktop::file_error(&path, crate::cli::one_line(&e)), true),
         }
     }
 

@@ -19,6 +19,7 @@ impl LabApp {
     pub(super) fn top_bar(&mut self, ui: &mut egui::Ui) {
         ui.horizontal(|ui| {
             ui.heading("lumlab");
+            self.file_menu(ui);
             ui.separator();
             let can_undo = self.undo.can_undo(&self.state.settings);
             if ui
@@ -207,7 +208,7 @@ impl LabApp {
             self.emit(Command::SetSplit(split));
         }
         section(ui, "Files", false, |ui| {
-            if let Some(command) = self.files.ui(ui, &mut self.state.paths, &self.scene_name) {
+            if let Some(command) = self.files.ui(ui, &self.state.paths, &self.scene_name) {
                 self.queue.push(command);
             }
         });
