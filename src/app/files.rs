@@ -282,108 +282,120 @@ impl FilesPanel {
     }
 
     /// The panel: the file of each kind used last, the quick actions on it,
-    /// and a dialog to choose another.
+    /// and a dialog to choose another. Each row of buttons is data.
     pub fn ui(&mut self, ui: &mut egui::Ui, paths: &Paths, scene_name: &str) -> Option<Command> {
-        let mut action = None;
-        let mut button = |ui: &mut egui::Ui, text: &str, help: &str, command: Command| {
-            if ui.button(text).on_hover_text(help).clicked() {
-                action = Some(command);
-            }
-        };
         let browse = Command::ChooseFile;
-
+        type Row = Vec<(&'static str, &'static str, Command)>;
+        let sections: [(&str, &str, Vec<Row>); 4] = [
+            (
+                "glTF",
+                &paths.scene_file,
+                vec![vec![
+                    (
+                        "Browse…",
+                        "Pick a .gltf/.glb file and open it (Ctrl+O)",
+                        browse(FileAction::OpenScene),
+                    ),
+                    (
+                        "Open scene",
+                        "Open the file shown again",
+                        Command::OpenScene(None),
+                    ),
+                    (
+                        "Built-in scene",
+                        "Back to the lab's own scene",
+                        Command::BuiltInScene,
+                    ),
+                ]],
+            ),
+            (
+                "Settings",
+                &paths.settings_file,
+                vec![
+                    vec![
+                        (
+                            "Save (Ctrl+S)",
+                            "Write every setting to the file shown",
+                            Command::SaveSettings(None),
+                        ),
+                        (
+                            "Load",
+                            "Read the settings from the file shown (undo with Ctrl+Z)",
+                            Command::LoadSettings(None),
+                        ),
+                    ],
+                    vec![
+                        (
+                            "Save as…",
+                            "Write the settings to another TOML file",
+                            browse(FileAction::SaveSettings),
+                        ),
+                        (
+                            "Load…",
+                            "Pick a TOML settings file and load it",
+                            browse(FileAction::LoadSettings),
+                        ),
+                    ],
+                ],
+            ),
+            (
+                "PNG",
+                &paths.screenshot_file,
+                vec![vec![
+                    (
+                        "Save screenshot (F12)",
+                        "The whole window, as displayed, to the file shown",
+                        Command::Screenshot(None),
+                    ),
+                    (
+                        "Save as…",
+                        "The whole window, to a PNG file you pick",
+                        browse(FileAction::Screenshot),
+                    ),
+                ]],
+            ),
+            (
+                "EXR",
+                &paths.exr_file,
+                vec![vec![
+                    (
+                        "Export EXR",
+                        "Half A's unscaled linear values (radiance L in W/m²/sr for `shaded`) to the file shown",
+                        Command::ExportExr(None),
+                    ),
+                    (
+                        "Export as…",
+                        "The same, to an EXR file you pick",
+                        browse(FileAction::ExportExr),
+                    ),
+                ]],
+            ),
+        ];
+        let mut action = None;
         ui.label(egui::RichText::new(format!("Scene: {scene_name}")).strong());
-        file_row(ui, "glTF", &paths.scene_file);
-        ui.horizontal(|ui| {
-            button(
-                ui,
-                "Browse…",
-                "Pick a .gltf/.glb file and open it (Ctrl+O)",
-                browse(FileAction::OpenScene),
-            );
-            button(
-                ui,
-                "Open scene",
-                "Open the file shown again",
-                Command::OpenScene(None),
-            );
-            button(
-                ui,
-                "Built-in scene",
-                "Back to the lab's own scene",
-                Command::BuiltInScene,
-            );
-        });
-        ui.separator();
-
-        file_row(ui, "Settings", &paths.settings_file);
-        ui.horizontal(|ui| {
-            button(
-                ui,
-                "Save (Ctrl+S)",
-                "Write every setting to the file shown",
-                Command::SaveSettings(None),
-            );
-            button(
-                ui,
-                "Load",
-                "Read the settings from the file shown (undo with Ctrl+Z)",
-                Command::LoadSettings(None),
-            );
-        });
-        ui.horizontal(|ui| {
-            button(
-                ui,
-                "Save as…",
-                "Write the settings to another TOML file",
-                browse(FileAction::SaveSettings),
-            );
-            button(
-                ui,
-                "Load…",
-                "Pick a TOML settings file and load it",
-                browse(FileAction::LoadSettings),
-            );
-        });
-        ui.separator();
-
-        file_row(ui, "PNG", &paths.screenshot_file);
-        ui.horizontal(|ui| {
-            button(
-                ui,
-                "Save screenshot (F12)",
-                "The whole window, as displayed, to the file shown",
-                Command::Screenshot(None),
-            );
-            button(
-                ui,
-                "Save as…",
-                "The whole window, to a PNG file you pick",
-                browse(FileAction::Screenshot),
-            );
-        });
-        file_row(ui, "EXR", &paths.exr_file);
-        ui.horizontal(|ui| {
-            button(
-                ui,
-                "Export EXR",
-                "Half A's unscaled linear values (radiance L in W/m²/sr for `shaded`) to the file shown",
-                Command::ExportExr(None),
-            );
-            button(
-                ui,
-                "Export as…",
-                "The same, to an EXR file you pick",
-                browse(FileAction::ExportExr),
-            );
-        });
-        ui.separator();
-        button(
-            ui,
-            "Reset everything",
-            "Every setting, the split view, the panels and the scene back to their defaults (Ctrl+Z undoes the settings)",
-            Command::ResetEverything,
-        );
+        for (kind, path, rows) in sections {
+            file_row(ui, kind, path);
+            for row in rows {
+                ui.horizontal(|ui| {
+                    for (text, help, command) in row {
+                        if ui.button(text).on_hover_text(help).clicked() {
+                            action = Some(command);
+                        }
+                    }
+                });
+            }
+            ui.separator();
+        }
+        if ui
+            .button("Reset everything")
+            .on_hover_text(
+                "Every setting, the split view, the panels and the scene back to their defaults \
+                 (Ctrl+Z undoes the settings)",
+            )
+            .clicked()
+        {
+            action = Some(Command::ResetEverything);
+        }
         action
     }
 }
