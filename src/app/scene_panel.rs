@@ -62,6 +62,19 @@ impl ScenePanel<'_> {
                 }
             });
         }
+        for light in &scene.lights {
+            ui.label(format!(
+                "File light '{}': I = {}",
+                light.name,
+                quantity(light.intensity_w_sr as f64, "W/sr")
+            ))
+            .on_hover_text(format!(
+                "KHR_lights_punctual gives candela; I (W/sr) = I (cd) / {} lm/W, the efficacy of \
+                 555 nm light (a white source emits more watts for the same candela). The lab's \
+                 light starts there with Φ = 4π I.",
+                crate::scene::gltf::LUMINOUS_EFFICACY_LM_PER_W
+            ));
+        }
         let GroundSettings { mode, k, m } = ground;
         ui.horizontal(|ui| {
             ui.label("Ground")

@@ -93,15 +93,21 @@ fn looking_at(bounds: &Aabb, direction: DVec3, fovy_deg: f32) -> Camera {
 }
 
 /// Makes `settings` show `scene` as it opens: its home view; the built-in
-/// scene's light as designed, a model's from its bounds
-/// ([`scene_light`]); the sphere light's radius and the bias carried to its
-/// scale.
+/// scene's light as designed, the file's first point light
+/// (KHR_lights_punctual: Φ = 4π I, its colour), else a light from the
+/// model's bounds ([`scene_light`]); the sphere light's radius and the bias
+/// carried to its scale.
 pub fn adopt(settings: &mut Settings, scene: &Scene) {
     let defaults = Settings::for_scale(scene.scale);
     settings.camera = scene.home_camera();
-    let light = match scene.designed_view {
-        Some(_) => None,
-        None => scene_light(&scene.model_bounds()),
+    settings.light.color = defaults.light.color;
+    let light = match (scene.designed_view, scene.lights.first()) {
+        (Some(_), _) => None,
+        (None, Some(file)) => {
+            settings.light.color = file.color;
+            Some((file.position, 4.0 * std::f32::consts::PI * file.intensity_w_sr))
+        }
+        (None, None) => scene_light(&scene.model_bounds()),
     };
     let (position, power_w) = light.unwrap_or((defaults.light.position, defaults.light.power_w));
     settings.light.position = position;

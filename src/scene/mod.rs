@@ -104,6 +104,8 @@ pub struct Scene {
     pub textures: Vec<Texture>,
     /// Cameras defined in the file, in file order.
     pub cameras: Vec<SceneCamera>,
+    /// Point lights placed by the file (KHR_lights_punctual), in node order.
+    pub lights: Vec<SceneLight>,
     /// What was repaired or skipped while loading, one line each.
     pub warnings: Vec<String>,
     /// What the file defines beyond the flattened objects (counts, the
@@ -206,6 +208,20 @@ pub struct Texture {
 pub struct SceneCamera {
     pub name: String,
     pub camera: Camera,
+}
+
+/// A light the file places (KHR_lights_punctual), reduced to the lab's
+/// point light.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneLight {
+    pub name: String,
+    /// World position (m).
+    pub position: Vec3,
+    /// Radiant intensity I (W/sr), from the file's candela at
+    /// [`gltf::LUMINOUS_EFFICACY_LM_PER_W`]; the lab's power is Φ = 4π I.
+    pub intensity_w_sr: f32,
+    /// Linear RGB colour.
+    pub color: Vec3,
 }
 
 impl Scene {

@@ -12,11 +12,13 @@
 mod accessor;
 mod cameras;
 mod container;
+mod lights;
 mod materials;
 mod primitive;
 mod resources;
 pub mod write;
 
+pub use lights::LUMINOUS_EFFICACY_LM_PER_W;
 pub use resources::MAX_IMAGE_SIDE;
 pub use write::to_glb;
 
@@ -113,11 +115,18 @@ struct CameraInstance {
     world: DMat4,
 }
 
+/// A KHR_lights_punctual light placed by a node.
+struct LightInstance {
+    light: usize,
+    world: DMat4,
+}
+
 /// What the node hierarchy places.
 #[derive(Default)]
 struct Placements {
     meshes: Vec<MeshInstance>,
     cameras: Vec<CameraInstance>,
+    lights: Vec<LightInstance>,
 }
 
 /// Repairs counted over the whole scene, reported as one warning each.
@@ -251,6 +260,7 @@ impl Loader<'_, '_, '_> {
             .iter()
             .fold(undrawn_bounds, |b, o: &Object| b.union(&o.bounds));
         let cameras = self.cameras(&placed.cameras, &bounds);
+        let lights = self.lights(&placed.lights);
         let source = SourceInfo {
             meshes: root.meshes.len(),
             primitives: root.meshes.iter().map(|m| m.primitives.len()).sum(),
@@ -270,6 +280,7 @@ impl Loader<'_, '_, '_> {
             materials,
             textures,
             cameras,
+            lights,
             warnings: self.warnings,
             source: Some(source),
             scale: super::SceneScale::of_bounds(&bounds),
@@ -386,6 +397,16 @@ impl Loader<'_, '_, '_> {
                 placed.cameras.push(CameraInstance {
                     node: index,
                     camera,
+                    world,
+                });
+            }
+            if let Some(light) = node
+                .extensions
+                .as_ref()
+                .and_then(|e| e.khr_lights_punctual.as_ref())
+            {
+                placed.lights.push(LightInstance {
+                    light: light.light.value(),
                     world,
                 });
             }
