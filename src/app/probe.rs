@@ -4,7 +4,7 @@
 //! and L there are exact); the shadow map's V from the renderer's aux target
 //! (read back without blocking).
 
-use super::widgets::{number, quantity, rgb, value_row, vector};
+use super::widgets::{length, number, position, quantity, rgb, value_row, vector};
 use crate::gpu::ComparisonImage;
 use crate::physics::{Normalization, brdf, colour, radiometry};
 use crate::presets::Half;
@@ -218,7 +218,7 @@ impl Probe {
         let mut rows = vec![
             (
                 "p",
-                vector(t.position, "m"),
+                position(t.position),
                 "Where the pixel's ray meets the surface (m)",
             ),
             (
@@ -234,7 +234,7 @@ impl Probe {
             ("o", vector(t.o, ""), "Unit direction to the eye"),
             (
                 "r",
-                quantity(t.r_m, "m"),
+                length(t.r_m),
                 "r = |q − p|, distance to the light's centre (m)",
             ),
             (

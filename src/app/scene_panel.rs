@@ -2,7 +2,7 @@
 //! adds under a model, the file's own cameras, framing and exposure.
 
 use super::command::Command;
-use super::widgets::quantity;
+use super::widgets::{length, quantity};
 use crate::scene::Scene;
 use crate::settings::{GroundMode, GroundSettings};
 
@@ -24,7 +24,7 @@ impl ScenePanel<'_> {
             ui.label(format!(
                 "{} triangles · {} across",
                 scene.triangle_count(),
-                quantity(size, "m")
+                length(size)
             ))
             .on_hover_text("The model's bounding-box diagonal: the lab's lengths follow it");
         } else {

@@ -38,6 +38,32 @@ pub fn quantity(x: f64, unit: &str) -> String {
     with_unit(number(x), unit)
 }
 
+/// The unit a length of magnitude `metres` reads best in: mm below 10 cm,
+/// km from 10 km, m between; with its factor from metres.
+fn length_unit(metres: f64) -> (f64, &'static str) {
+    let a = metres.abs();
+    if a > 0.0 && a < 0.1 {
+        (1e3, "mm")
+    } else if a >= 1e4 {
+        (1e-3, "km")
+    } else {
+        (1.0, "m")
+    }
+}
+
+/// A length (m) in mm, m or km, whichever reads best (a model in
+/// millimetres or a far sun stay readable).
+pub fn length(metres: f64) -> String {
+    let (factor, unit) = length_unit(metres);
+    quantity(metres * factor, unit)
+}
+
+/// A position (m), its unit chosen by its largest component.
+pub fn position(v: glam::DVec3) -> String {
+    let (factor, unit) = length_unit(v.abs().max_element());
+    vector(v * factor, unit)
+}
+
 /// `text` followed by its unit, if any.
 fn with_unit(text: String, unit: &str) -> String {
     if unit.is_empty() {
@@ -135,6 +161,10 @@ mod tests {
         assert_eq!(number(1.25e-5), "1.25e-5");
         assert_eq!(quantity(1.0, "W"), "1 W");
         assert_eq!(vector(glam::DVec3::new(0.5, -4e-16, 3.0), "m"), "(0.5, 0, 3) m");
+        assert_eq!(length(0.0025), "2.5 mm");
+        assert_eq!(length(3.0), "3 m");
+        assert_eq!(length(1.5e11), "1.5e8 km");
+        assert_eq!(position(glam::DVec3::new(0.002, 0.001, 0.0)), "(2, 1, 0) mm");
         assert_eq!(rgb(glam::DVec3::splat(0.25), "W"), "0.25 (r = g = b) W");
         assert_eq!(rgb(glam::DVec3::new(1.0, 2.0, 3.0), ""), "(1, 2, 3)");
     }
