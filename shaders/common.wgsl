@@ -73,6 +73,9 @@ struct Globals {
     use_scene_materials: u32,
     // 0/1.
     use_color_override: u32,
+    // Where the shadow map is drawn from, relative to the eye (m): the light,
+    // or its stand-in on the same line for a far light.
+    shadow_apex_rel: vec3<f32>,
 }
 
 // One shadow-map layer: a perspective frustum from the light (gpu::uniforms::ShadowLayerRaw).

@@ -140,7 +140,8 @@ struct FsOut {
 fn fs(in: VsOut, @builtin(front_facing) front_facing: bool) -> FsOut {
     let s = surface_at(in, front_facing);
     let incidence = light_incidence(globals.light_rel - in.rel, s.n);
-    let p_l = in.rel - globals.light_rel;
+    // The shadow map's own apex: the light, or a far light's stand-in.
+    let p_l = in.rel - globals.shadow_apex_rel;
     // Derivatives: before any per-pixel branch.
     let density = shadow_map_texel_density(p_l, s.n_geo, incidence.l);
     let v = visibility(p_l, s, incidence, in.clip.xy);

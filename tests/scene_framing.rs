@@ -129,8 +129,11 @@ fn every_sample_opens_framed_lit_and_shadowed_at_every_scale() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// A far sun (3.8·10²⁶ W at 1.4·10¹¹ m) renders without NaN, and its
+/// shadows are the reference's: the map is drawn from a stand-in apex, since
+/// f32 cannot place a 1 m scene relative to the true sun.
 #[test]
-fn a_far_sun_renders_without_nan() {
+fn a_far_sun_renders_without_nan_and_casts_the_references_shadows() {
     let gpu = common::gpu();
     let options = SceneOptions {
         size: Some(SIZE),
@@ -141,7 +144,28 @@ fn a_far_sun_renders_without_nan() {
     let (settings, scene) = load_scene(&options).unwrap();
     let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
     renderer.render(&settings, SIZE);
-    for texel in renderer.read_quantity().iter().chain(&renderer.read_aux()) {
+    let (quantity, aux) = (renderer.read_quantity(), renderer.read_aux());
+    for texel in quantity.iter().chain(&aux) {
         assert!(texel.iter().all(|v| v.is_finite()), "{texel:?}");
     }
+    let facing: Vec<&[f32; 4]> = aux.iter().filter(|a| a[3] > 0.0 && a[2] > 0.0).collect();
+    let shadowed = facing.iter().filter(|a| a[0] < 0.5).count() as f64 / facing.len() as f64;
+    assert!(
+        shadowed > 0.01,
+        "the spheres cast shadows on the ground: {shadowed}"
+    );
+    let reference = lumlab::reference::Reference::new(&scene)
+        .render(
+            &settings,
+            &lumlab::reference::ReferenceOptions::DEFAULT,
+            &lumlab::reference::RenderControl::default(),
+        )
+        .unwrap();
+    let comparison = lumlab::report::metrics::Comparison::new(&reference, &aux);
+    let frame = lumlab::report::metrics::Frame::from_gpu(&quantity, &aux);
+    let wrong = comparison.measure(&frame).wrong_shadow_fraction;
+    assert!(
+        wrong < 0.01,
+        "shadow states differing from the reference: {wrong}"
+    );
 }

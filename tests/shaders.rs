@@ -97,7 +97,7 @@ fn uniform_fields_match_their_wgsl_offsets() {
         &shade,
         "Globals",
         &fields!(GlobalsRaw: view_proj, light_rel, light_radius_m, eye, light_power_w, light_color, k,
-            color_override, m, view, normalization, visibility, use_scene_materials, use_color_override),
+            color_override, m, view, normalization, visibility, use_scene_materials, use_color_override, shadow_apex_rel),
     );
     assert_members(
         &shade,

@@ -7,7 +7,7 @@
 
 use super::capabilities::Capabilities;
 use super::display::{DisplayInputs, DisplayPass};
-use super::light_frustum::{Frustum, LayoutKind, ShadowLayout};
+use super::light_frustum::{Frustum, LayoutKind, ShadowLayout, shadow_apex};
 use super::lines::FrustumOverlay;
 use super::readback::{PendingRead, read_texture};
 use super::shade::ShadePass;
@@ -222,7 +222,8 @@ impl Renderer {
             camera_near_far: (near, far),
             ..Default::default()
         };
-        let prepared = shared.prepare_shadows(self.view, settings, light, &visible_bounds, &mut report);
+        let apex = shadow_apex(light, &shared.scene.scene_bounds());
+        let prepared = shared.prepare_shadows(self.view, settings, apex, &visible_bounds, &mut report);
         self.queue
             .write_buffer(&self.shadow_uniform, 0, bytemuck::bytes_of(&prepared.raw));
 
@@ -231,6 +232,7 @@ impl Renderer {
         let globals = GlobalsRaw {
             view_proj: mat(view_proj),
             light_rel: (light - eye).as_vec3().to_array(),
+            shadow_apex_rel: (apex - eye).as_vec3().to_array(),
             light_radius_m: settings.light.radius_m,
             eye: camera.eye.to_array(),
             light_power_w: settings.light.power_w,

@@ -38,6 +38,10 @@ pub struct GlobalsRaw {
     /// `color_override` replaces the materials' colour (0/1).
     pub use_color_override: u32,
     pub _padding: [u32; 3],
+    /// Where the shadow map is drawn from, relative to the eye (m): the
+    /// light, or its stand-in for a far light (`light_frustum::shadow_apex`).
+    pub shadow_apex_rel: [f32; 3],
+    pub _padding_end: u32,
 }
 
 /// `ShadowLayer`: one frustum of the light.
