@@ -90,6 +90,42 @@ impl Preset {
         }
     }
 
+    /// The split-view comparison that shows what the preset is about
+    /// (A without, B with the remedy), if one fits.
+    pub fn comparison(self) -> Option<Comparison> {
+        let base = Comparison::default();
+        let with = |axis| Comparison { axis, ..base };
+        Some(match self {
+            // No bias (acne) | automatic bias.
+            Self::ShadowAcne => Comparison {
+                bias: [BiasMode::Constant, BiasMode::Auto],
+                ..with(ComparisonAxis::Bias)
+            },
+            // Too much constant bias (peter-panning) | automatic bias.
+            Self::PeterPanning => Comparison {
+                bias: [BiasMode::Constant, BiasMode::Auto],
+                ..with(ComparisonAxis::Bias)
+            },
+            Self::Aliasing => Comparison {
+                resolution: [256, 2048],
+                ..with(ComparisonAxis::Resolution)
+            },
+            Self::PcfSmoothing => Comparison {
+                filter: [Filter::None, Filter::Pcf],
+                ..with(ComparisonAxis::Filter)
+            },
+            Self::Penumbra => Comparison {
+                filter: [Filter::Pcf, Filter::Pcss],
+                ..with(ComparisonAxis::Filter)
+            },
+            Self::EnergyGain => Comparison {
+                norm: [Normalization::None, Normalization::Approx],
+                ..with(ComparisonAxis::Normalization)
+            },
+            Self::Grazing => return None,
+        })
+    }
+
     /// Sets the preset's values (see each variant's documentation), its
     /// lengths and positions those of the built-in scene moved by `scale`.
     pub fn apply(self, settings: &mut Settings, scale: SceneScale) {
@@ -266,6 +302,30 @@ mod tests {
             s.validate().unwrap_or_else(|e| panic!("{p}: {e}"));
             assert!(!p.description().is_empty() && !p.title().is_empty());
         }
+    }
+
+    #[test]
+    fn presets_compare_without_and_with_the_remedy() {
+        let base = Settings::default();
+        let c = Preset::ShadowAcne.comparison().unwrap();
+        let mut acne = base.clone();
+        Preset::ShadowAcne.apply(&mut acne, SceneScale::BUILT_IN);
+        assert_eq!(
+            c.settings_for(Half::A, &acne).shadow.bias.describe(),
+            "constant:0"
+        );
+        assert_eq!(c.settings_for(Half::B, &acne).shadow.bias.mode, BiasMode::Auto);
+        let c = Preset::Aliasing.comparison().unwrap();
+        assert_eq!(c.label(Half::A), "shadow map 256²");
+        assert_eq!(c.label(Half::B), "shadow map 2048²");
+        let c = Preset::Penumbra.comparison().unwrap();
+        assert_eq!(c.label(Half::B), "filter pcss");
+        let c = Preset::EnergyGain.comparison().unwrap();
+        assert_eq!(
+            (c.label(Half::A), c.label(Half::B)),
+            ("norm none".into(), "norm approx".into())
+        );
+        assert!(Preset::Grazing.comparison().is_none());
     }
 
     #[test]

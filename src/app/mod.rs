@@ -46,7 +46,7 @@ pub use lab::LabApp;
 pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
 pub use reference::{ErrorStats, ReferenceFn};
 pub use shortcuts::{GESTURES, SHORTCUTS, Shortcut};
-pub use state::State;
+pub use state::{SplitLayout, State};
 
 use crate::scene::Scene;
 use crate::settings::Settings;

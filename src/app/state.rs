@@ -23,6 +23,17 @@ pub struct State {
     pub recent: RecentFiles,
 }
 
+/// How the split view shows A and B.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum SplitLayout {
+    /// One image, A left of a divider the user drags, B right of it.
+    #[default]
+    Wipe,
+    /// Two whole images of the same view side by side, cameras linked: the
+    /// lecture's figure ("left: without normalization, right: with").
+    SideBySide,
+}
+
 /// The split view: B differs from A by the comparison's setting.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
@@ -31,6 +42,7 @@ pub struct SplitState {
     pub comparison: Comparison,
     /// Where A ends and B begins, as a fraction of the image width.
     pub wipe: f32,
+    pub layout: SplitLayout,
 }
 
 impl Default for SplitState {
@@ -39,6 +51,7 @@ impl Default for SplitState {
             enabled: false,
             comparison: Comparison::default(),
             wipe: 0.5,
+            layout: SplitLayout::Wipe,
         }
     }
 }

@@ -2,7 +2,7 @@
 //! comparison A | B.
 
 use super::View;
-use super::state::SplitState;
+use super::state::{SplitLayout, SplitState};
 use crate::physics::Normalization;
 use crate::presets::{Comparison, ComparisonAxis, Half};
 use crate::settings::{BiasMode, DebugView, Filter, ViewSettings};
@@ -69,6 +69,7 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
         enabled,
         comparison,
         wipe,
+        layout,
     } = split;
     ui.checkbox(enabled, "Split view A | B  (S)").on_hover_text(
         "Both halves show the current settings; B differs from A in one setting. \
@@ -137,8 +138,19 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
             }
         });
     }
-    ui.add(egui::Slider::new(wipe, 0.0..=1.0).text("divider"))
-        .on_hover_text("Where A ends and B begins (fraction of the width); or drag the line in the image");
+    ui.horizontal(|ui| {
+        ui.label("Layout");
+        ui.selectable_value(layout, SplitLayout::Wipe, "wipe")
+            .on_hover_text("One image: A left of the divider, B right of it");
+        ui.selectable_value(layout, SplitLayout::SideBySide, "side by side")
+            .on_hover_text("Two whole images of the same view, cameras linked: A left, B right");
+    });
+    if *layout == SplitLayout::Wipe {
+        ui.add(egui::Slider::new(wipe, 0.0..=1.0).text("divider"))
+            .on_hover_text(
+                "Where A ends and B begins (fraction of the width); or drag the line in the image",
+            );
+    }
 }
 
 /// A combo box of `all`, named by the label `id.1`.

@@ -6,7 +6,7 @@ use super::camera_control::{drag_height, drag_in_image_plane, orbit, pan, projec
 use super::gpu_view::GpuViews;
 use super::legend;
 use super::probe::ProbePixel;
-use super::state::SplitState;
+use super::state::{SplitLayout, SplitState};
 use crate::presets::Half;
 use crate::scene::SceneScale;
 use crate::settings::{DebugView, Settings};
@@ -20,6 +20,8 @@ const ORBIT_DEG_PER_POINT: f64 = 0.3;
 const ZOOM_PER_POINT: f64 = 0.0015;
 /// Radius of the light gizmo (points).
 const GIZMO_RADIUS: f32 = 11.0;
+/// The gap between the two images side by side (points).
+const SIDE_BY_SIDE_GAP: f32 = 6.0;
 const LIGHT_YELLOW: Color32 = Color32::from_rgb(255, 214, 60);
 
 pub struct Viewport<'a> {
@@ -90,7 +92,20 @@ impl Viewport<'_> {
             scale,
         } = self;
         let ppp = ui.ctx().pixels_per_point();
-        let rect = ui.available_rect_before_wrap().round_to_pixels(ppp);
+        let full = ui.available_rect_before_wrap().round_to_pixels(ppp);
+        // Side by side, A's image is the left half and B's the right: each
+        // a whole image of the same view. `rect` is A's (or the only) image.
+        let side_by_side = split.enabled && split.layout == SplitLayout::SideBySide;
+        let (rect, rect_b) = if side_by_side {
+            let gap = SIDE_BY_SIDE_GAP / 2.0;
+            let mid = full.center().x;
+            (
+                Rect::from_min_max(full.min, Pos2::new(mid - gap, full.max.y)).round_to_pixels(ppp),
+                Rect::from_min_max(Pos2::new(mid + gap, full.min.y), full.max).round_to_pixels(ppp),
+            )
+        } else {
+            (full, full)
+        };
         let size = (
             (rect.width() * ppp).round().max(0.0) as u32,
             (rect.height() * ppp).round().max(0.0) as u32,
@@ -102,7 +117,7 @@ impl Viewport<'_> {
         }
         out.size = size;
         out.rect = Some(rect);
-        let response = ui.allocate_rect(rect, Sense::click_and_drag());
+        let response = ui.allocate_rect(full, Sense::click_and_drag());
         let height_px = size.1 as f64;
         let wipe_x = rect.min.x + rect.width() * split.wipe.clamp(0.0, 1.0);
 
@@ -155,7 +170,7 @@ impl Viewport<'_> {
                 };
             }
         }
-        if split.enabled {
+        if split.enabled && !side_by_side {
             let divider = ui
                 .interact(
                     Rect::from_center_size(
@@ -213,16 +228,21 @@ impl Viewport<'_> {
         }
         let wipe_x = rect.min.x + rect.width() * split.wipe.clamp(0.0, 1.0);
         let pixel_at = |pos: Pos2| {
-            let local = (pos - rect.min) * ppp;
-            let pixel = (
-                (local.x.max(0.0) as u32).min(size.0 - 1),
-                (local.y.max(0.0) as u32).min(size.1 - 1),
-            );
-            let half = if split.enabled && pos.x >= wipe_x {
+            let half = if split.enabled && pos.x >= if side_by_side { rect_b.min.x } else { wipe_x } {
                 Half::B
             } else {
                 Half::A
             };
+            let origin = if side_by_side && half == Half::B {
+                rect_b.min
+            } else {
+                rect.min
+            };
+            let local = (pos - origin) * ppp;
+            let pixel = (
+                (local.x.max(0.0) as u32).min(size.0 - 1),
+                (local.y.max(0.0) as u32).min(size.1 - 1),
+            );
             ProbePixel { half, pixel, size }
         };
         if let Some(pos) = response.interact_pointer_pos() {
@@ -234,7 +254,7 @@ impl Viewport<'_> {
         }
 
         // Render (only what changed) and show.
-        let painter = ui.painter_at(rect);
+        let painter = ui.painter_at(full);
         let halves: &[Half] = if split.enabled {
             &[Half::A, Half::B]
         } else {
@@ -254,10 +274,13 @@ impl Viewport<'_> {
             let s = Self::render_settings(settings, split, half, size);
             out.rendered[half as usize] = gpu.prepare(half, &s, size);
         }
+        let whole = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));
         let part = |half: Half| -> (Rect, Rect) {
             let t = split.wipe.clamp(0.0, 1.0);
             match (split.enabled, half) {
-                (false, _) => (rect, Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0))),
+                (false, _) => (rect, whole),
+                (true, Half::A) if side_by_side => (rect, whole),
+                (true, Half::B) if side_by_side => (rect_b, whole),
                 (true, Half::A) => (
                     Rect::from_min_max(rect.min, Pos2::new(wipe_x, rect.max.y)),
                     Rect::from_min_max(Pos2::ZERO, Pos2::new(t, 1.0)),
@@ -289,14 +312,22 @@ impl Viewport<'_> {
             }
         }
         if split.enabled {
-            painter.line_segment(
-                [Pos2::new(wipe_x, rect.min.y), Pos2::new(wipe_x, rect.max.y)],
-                Stroke::new(3.0, Color32::WHITE),
-            );
-            for (half, align, x) in [
-                (Half::A, Align2::RIGHT_TOP, wipe_x - 10.0),
-                (Half::B, Align2::LEFT_TOP, wipe_x + 10.0),
-            ] {
+            let labels = if side_by_side {
+                [
+                    (Half::A, Align2::LEFT_TOP, rect.min.x + 10.0),
+                    (Half::B, Align2::LEFT_TOP, rect_b.min.x + 10.0),
+                ]
+            } else {
+                painter.line_segment(
+                    [Pos2::new(wipe_x, rect.min.y), Pos2::new(wipe_x, rect.max.y)],
+                    Stroke::new(3.0, Color32::WHITE),
+                );
+                [
+                    (Half::A, Align2::RIGHT_TOP, wipe_x - 10.0),
+                    (Half::B, Align2::LEFT_TOP, wipe_x + 10.0),
+                ]
+            };
+            for (half, align, x) in labels {
                 let name = if half == Half::A { "A" } else { "B" };
                 label(
                     ui,
@@ -345,17 +376,22 @@ impl Viewport<'_> {
         if let Some(probe) = probe
             && probe.size == size
         {
-            let p = rect.min + Vec2::new(probe.pixel.0 as f32 + 0.5, probe.pixel.1 as f32 + 0.5) / ppp;
+            let origin = if side_by_side && probe.half == Half::B {
+                rect_b.min
+            } else {
+                rect.min
+            };
+            let p = origin + Vec2::new(probe.pixel.0 as f32 + 0.5, probe.pixel.1 as f32 + 0.5) / ppp;
             painter.circle_stroke(p, 7.0, Stroke::new(2.0, Color32::BLACK));
             painter.circle_stroke(p, 6.0, Stroke::new(2.0, Color32::from_rgb(0, 230, 255)));
         }
         if let Some(text) = banner {
-            label(ui, rect.center(), Align2::CENTER_CENTER, &text);
+            label(ui, full.center(), Align2::CENTER_CENTER, &text);
         }
         if let Some(text) = caption {
             label(
                 ui,
-                Pos2::new(rect.center().x, rect.max.y - 104.0),
+                Pos2::new(full.center().x, full.max.y - 104.0),
                 Align2::CENTER_BOTTOM,
                 &text,
             );

@@ -126,6 +126,10 @@ impl LabApp {
             self.undo.checkpoint(&self.state.settings);
         }
         if let Command::ApplyPreset(preset) = command {
+            // The split view compares without | with the remedy.
+            if let Some(comparison) = preset.comparison() {
+                self.state.split.comparison = comparison;
+            }
             self.say(format!("preset: {} (Ctrl+Z to undo)", preset.title()), false);
         }
     }
