@@ -117,6 +117,7 @@ fn every_sample_opens_framed_lit_and_shadowed_at_every_scale() {
             let (settings, scene) = load_scene(&options).unwrap_or_else(|e| panic!("{model}: {e:#}"));
             let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
             let s = shares(&mut renderer, &settings);
+            eprintln!("{model} ×{scale}: {s:?}");
             let ok = s.covered >= 0.15
                 && s.lit >= 0.30
                 && (0.01..=0.90).contains(&s.shadowed)
@@ -164,6 +165,7 @@ fn a_far_sun_renders_without_nan_and_casts_the_references_shadows() {
     let comparison = lumlab::report::metrics::Comparison::new(&reference, &aux);
     let frame = lumlab::report::metrics::Frame::from_gpu(&quantity, &aux);
     let wrong = comparison.measure(&frame).wrong_shadow_fraction;
+    eprintln!("far sun: {shadowed:.4} of the facing pixels shadowed, {wrong:.5} differ from the reference");
     assert!(
         wrong < 0.01,
         "shadow states differing from the reference: {wrong}"
