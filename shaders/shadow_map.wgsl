@@ -129,21 +129,65 @@ fn in_map(texel: vec2<i32>) -> bool {
     return all(texel >= vec2<i32>(0)) && all(texel < vec2<i32>(res));
 }
 
-// The texel a filter reads for one it asks for beyond the edge of a cube
-// face: the edge texel, standing in for the neighbouring face that continues
-// there (counting it lit would leak light along the seams between faces).
-// Beyond a single fitted frustum nothing was drawn: callers count it lit.
-fn texel_in_layer(texel: vec2<i32>) -> vec2<i32> {
-    return clamp(texel, vec2<i32>(0), vec2<i32>(i32(resolution()) - 1));
+// A texel a filter reads, and the receiver as seen from that texel's layer.
+struct Tap {
+    r: Receiver,
+    texel: vec2<i32>,
+    // False when the tap lands where nothing was drawn: it counts lit.
+    drawn: bool,
+}
+
+// The receiver r expressed in another layer's view: its position, depth,
+// normal and texel footprint re-derived with that layer's rotation and
+// tangents (make_receiver's formulas), so its depth is compared on that face.
+fn receiver_on_layer(r: Receiver, layer: u32) -> Receiver {
+    let own = shadow.layers[r.layer].rotation;
+    let to = shadow.layers[layer];
+    // The rotations are orthonormal: v · M applies M's transpose, its inverse.
+    let p_l = (vec4<f32>(r.v, 0.0) * own).xyz;
+    let n = (vec4<f32>(r.n_v, 0.0) * own).xyz;
+    var q = r;
+    q.layer = layer;
+    q.v = (to.rotation * vec4<f32>(p_l, 0.0)).xyz;
+    q.z = max(-q.v.z, 1e-30);
+    q.tc = texel_of_tangent(q.v.xy / q.z, layer);
+    q.n_v = (to.rotation * vec4<f32>(n, 0.0)).xyz;
+    q.texel_m = q.z * max(to.tan_right - to.tan_left, to.tan_top - to.tan_bottom) / resolution();
+    return q;
+}
+
+// The texel a filter reads for the one it asks for. Beyond a single fitted
+// frustum nothing was drawn (lit). Beyond the edge of a cube face the map
+// continues on the neighbouring face: the tap's direction, from its texel
+// centre's tangents on this face, picks that face (choose_layer) and its
+// texel there, and the receiver is compared with the depth it has on it.
+// (Reading this face's edge texel instead drew a line along the seams.)
+fn tap(r: Receiver, texel: vec2<i32>) -> Tap {
+    if in_map(texel) {
+        return Tap(r, texel, true);
+    }
+    if shadow.cube == 0u {
+        return Tap(r, texel, false);
+    }
+    let dir_v = vec3<f32>(tangent_of_texel(vec2<f32>(texel) + 0.5, r.layer), -1.0);
+    let dir = (vec4<f32>(dir_v, 0.0) * shadow.layers[r.layer].rotation).xyz;
+    let layer = choose_layer(dir);
+    let q = receiver_on_layer(r, layer);
+    let d = (shadow.layers[layer].rotation * vec4<f32>(dir, 0.0)).xyz;
+    let t = vec2<i32>(floor(texel_of_tangent(d.xy / max(-d.z, 1e-30), layer)));
+    let last = vec2<i32>(i32(resolution()) - 1);
+    // A face with no geometry in it was not drawn (its texels are stale).
+    let drawn = (shadow.layer_mask & (1u << layer)) != 0u;
+    return Tap(q, clamp(t, vec2<i32>(0), last), drawn);
 }
 
 // 1 when the texel's stored depth does not hide the receiver.
 fn depth_test(r: Receiver, texel: vec2<i32>) -> f32 {
-    if !in_map(texel) && shadow.cube == 0u {
+    let t = tap(r, texel);
+    if !t.drawn {
         return 1.0;
     }
-    let t = texel_in_layer(texel);
-    return select(0.0, 1.0, compared_depth(r, t) <= stored_depth(r.layer, t));
+    return select(0.0, 1.0, compared_depth(t.r, t.texel) <= stored_depth(t.r.layer, t.texel));
 }
 
 // Bilinearly weighted tests of the 2×2 texels around the continuous position tc.
@@ -235,12 +279,13 @@ fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
     var blocker_sum = 0.0;
     var blockers = 0.0;
     for (var s = 0u; s < shadow.pcss_blocker_samples; s++) {
-        let texel = vec2<i32>(floor(r.tc + rotate(POISSON_DISC[s], angle) * search));
-        if in_map(texel) || shadow.cube != 0u {
-            let t = texel_in_layer(texel);
-            let z_s = stored_depth(r.layer, t);
-            if z_s < compared_depth(r, t) {
-                blocker_sum += z_s;
+        let t = tap(r, vec2<i32>(floor(r.tc + rotate(POISSON_DISC[s], angle) * search)));
+        if t.drawn {
+            // On a neighbouring face both depths are along that face's axis.
+            let z_s = stored_depth(t.r.layer, t.texel);
+            if z_s < compared_depth(t.r, t.texel) {
+                // In the receiver's face's terms: the same ratio z_s / z.
+                blocker_sum += z_s * (r.z / t.r.z);
                 blockers += 1.0;
             }
         }

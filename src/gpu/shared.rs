@@ -16,8 +16,16 @@ use crate::scene::{Aabb, Scene};
 use crate::settings::{BiasMode, Filter, Settings};
 use glam::DVec3;
 
-/// Texels by which cube faces overlap: the widest kernel and two more.
+/// Texels by which cube faces of a moment map overlap: the widest kernel and
+/// two more. Moments are sampled by the hardware and blurred within a layer,
+/// so they cannot follow a tap onto the neighbouring face.
 const CUBE_MARGIN_TEXELS: f64 = MAX_FILTER_RADIUS_TEXELS as f64 + 2.0;
+
+/// Texels by which cube faces of a depth map overlap: the hardware 2×2
+/// comparison reads one texel around the receiver; every other depth filter
+/// re-projects its taps onto the neighbouring face (shadow_map.wgsl, `tap`),
+/// so no texels are spent on a wide overlap.
+const CUBE_DEPTH_MARGIN_TEXELS: f64 = 2.0;
 
 /// What a shadow map was drawn for: when it is unchanged, so is the map.
 #[derive(Clone, Debug, PartialEq)]
@@ -169,14 +177,15 @@ impl SharedScene {
             self.caps.array_layers(layers),
             moments_format,
         );
-        // Cube faces overlap by the widest filter kernel so taps near a face's
-        // edge stay on it; taps off a single frustum see no geometry (lit).
-        // The margin does not depend on the filter, so that switching between
-        // depth filters reuses the map.
-        let margin = if layers == 6 {
-            CUBE_MARGIN_TEXELS / resolution as f64
-        } else {
-            0.0
+        // Cube faces of a moment map overlap by the widest filter kernel so
+        // taps near a face's edge stay on it; depth taps beyond a face read
+        // the next face; taps off a single frustum see no geometry (lit).
+        // The margin does not depend on the depth filter, so that switching
+        // between depth filters reuses the map.
+        let margin = match (layers, kind) {
+            (6, MapKind::Depth) => CUBE_DEPTH_MARGIN_TEXELS / resolution as f64,
+            (6, _) => CUBE_MARGIN_TEXELS / resolution as f64,
+            _ => 0.0,
         };
         let layout = ShadowLayout::fit(light, &self.scene.bounds, margin);
         let casters = select_casters(&layout, &self.scene.caster_bounds, visible_bounds);
