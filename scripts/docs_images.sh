@@ -15,7 +15,7 @@ for view in shaded depth visibility ndotl irradiance brdf diffuse specular texel
 done
 # A close look at the thin occluder's shadow: R = 0.25 m gives a wide penumbra.
 close=(--size "$size" --camera=-3.7,2.4,2.4:-3.7,0,-0.1:40 --light-radius 0.25 --shadow-res 1024)
-for filter in none hw2x2 pcf poisson pcss vsm evsm; do
+for filter in none hw2x2 pcf poisson pcss vsm evsm msm; do
   "$lumlab" render "${close[@]}" --filter "$filter" --pcf-size 5 --out "docs/filters/$filter.png"
 done
 "$lumlab" reference "${close[@]}" --light-samples 256 --out docs/filters/reference.png

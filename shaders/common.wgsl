@@ -27,6 +27,7 @@ const FILTER_POISSON: u32 = 3u;
 const FILTER_PCSS: u32 = 4u;
 const FILTER_VSM: u32 = 5u;
 const FILTER_EVSM: u32 = 6u;
+const FILTER_MSM: u32 = 7u;
 
 // Bias modes, in settings::BiasMode order.
 const BIAS_AUTO: u32 = 0u;
@@ -133,6 +134,8 @@ struct Shadow {
     evsm_exponent: f32,
     // Sphere light radius R (m) for pcss.
     light_radius_m: f32,
+    // The moment bias α of msm.
+    msm_bias: f32,
 }
 
 // A material (gpu::uniforms::MaterialRaw).

@@ -1,5 +1,5 @@
 // Pass 1: the scene seen from the light, one layer (frustum) at a time.
-// Depth only for the depth-test filters; VSM/EVSM also write depth moments.
+// Depth only for the depth-test filters; VSM/EVSM/MSM also write depth moments.
 
 @group(0) @binding(0) var<uniform> shadow: Shadow;
 // The layer drawn (a dynamic offset selects it).
@@ -29,6 +29,11 @@ fn fs_moments(in: VsOut) -> @location(0) vec4<f32> {
     let u = clamp((in.depth - f.near_m) / (f.far_m - f.near_m), 0.0, 1.0);
     if shadow.filter_mode == FILTER_VSM {
         return vec4<f32>(u, u * u, 0.0, 0.0);
+    }
+    if shadow.filter_mode == FILTER_MSM {
+        // MSM: the first four powers of u (Peters & Klein 2015).
+        let u2 = u * u;
+        return vec4<f32>(u, u2, u2 * u, u2 * u2);
     }
     let c = shadow.evsm_exponent;
     let w = 2.0 * u - 1.0;

@@ -317,12 +317,51 @@ fn chebyshev(m: vec2<f32>, t: f32, min_variance: f32) -> f32 {
     return clamp((p - bleed) / (1.0 - bleed), 0.0, 1.0);
 }
 
+// Moment shadow mapping, Hamburger 4MSM (Peters & Klein 2015, algorithm 2):
+// V = 1 − G, G the smallest fraction of occluders in front of z_f over every
+// depth distribution with the biased moments b' = (1 − α) b + α (½, ½, ½, ½).
+fn hamburger_4msm(b: vec4<f32>, z_f: f32, alpha: f32) -> f32 {
+    let m = mix(b, vec4<f32>(0.5), alpha);
+    // Solve the Hankel system [1 b1 b2; b1 b2 b3; b2 b3 b4] c = (1, z_f, z_f²)
+    // by its Cholesky factor L = [1 0 0; l21 d22 0; l31 l32 d33] (row-wise).
+    let l21 = m.x;
+    let l31 = m.y;
+    let d22 = sqrt(max(m.y - l21 * l21, 1e-12));
+    let l32 = (m.z - l21 * l31) / d22;
+    let d33 = sqrt(max(m.w - l31 * l31 - l32 * l32, 1e-12));
+    // Forward substitution L y = (1, z_f, z_f²), then back substitution Lᵀ c = y.
+    let y1 = 1.0;
+    let y2 = (z_f - l21 * y1) / d22;
+    let y3 = (z_f * z_f - l31 * y1 - l32 * y2) / d33;
+    let c3 = y3 / d33;
+    let c2 = (y2 - l32 * c3) / d22;
+    let c1 = y1 - l21 * c2 - l31 * c3;
+    // The other two support points z2 ≤ z3: roots of c3 z² + c2 z + c1 = 0.
+    let disc = sqrt(max(c2 * c2 - 4.0 * c3 * c1, 0.0));
+    let ra = (-c2 - disc) / (2.0 * c3);
+    let rb = (-c2 + disc) / (2.0 * c3);
+    let z2 = min(ra, rb);
+    let z3 = max(ra, rb);
+    var g = 0.0;
+    if z_f <= z2 {
+        g = 0.0;
+    } else if z_f <= z3 {
+        g = (z_f * z3 - m.x * (z_f + z3) + m.y) / ((z3 - z2) * (z_f - z2));
+    } else {
+        g = 1.0 - (z2 * z3 - m.x * (z2 + z3) + m.y) / ((z_f - z2) * (z_f - z3));
+    }
+    return 1.0 - clamp(g, 0.0, 1.0);
+}
+
 fn filter_moments(r: Receiver) -> f32 {
     let f = shadow.layers[r.layer];
     let u = clamp((r.z - f.near_m) / (f.far_m - f.near_m), 0.0, 1.0);
     let m = textureSampleLevel(moments, moments_sampler, r.tc / resolution(), i32(r.layer), 0.0);
     if shadow.filter_mode == FILTER_VSM {
         return chebyshev(m.xy, u, 1e-6);
+    }
+    if shadow.filter_mode == FILTER_MSM {
+        return hamburger_4msm(m, u, shadow.msm_bias);
     }
     // EVSM: both exponential warps of u, the smaller bound wins.
     let c = shadow.evsm_exponent;

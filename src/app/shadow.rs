@@ -30,6 +30,9 @@ pub fn filter_help(filter: Filter) -> &'static str {
         }
         Filter::Vsm => "Variance shadow map: blurred moments (μ, σ²), V ≤ σ² / (σ² + (d − μ)²) (Chebyshev)",
         Filter::Evsm => "Exponential VSM: moments of e^(c·d), less light bleeding than VSM",
+        Filter::Msm => {
+            "Moment shadow map: moments d, d², d³, d⁴, Hamburger reconstruction (Peters & Klein 2015)"
+        }
     }
 }
 
@@ -57,6 +60,7 @@ impl View for ShadowPanel<'_> {
             pcss_blocker_samples,
             vsm_blur_texels,
             vsm_bleed_reduction,
+            msm_bias,
             bias,
         } = self.shadow;
 
@@ -139,6 +143,22 @@ impl View for ShadowPanel<'_> {
                         .on_hover_text(
                             "V' = clamp((V − b) / (1 − b), 0, 1): cuts Chebyshev's light bleeding",
                         );
+                }
+                Filter::Msm => {
+                    ui.add(
+                        egui::Slider::new(vsm_blur_texels, 0..=16)
+                            .text("blur")
+                            .suffix(" texels"),
+                    )
+                    .on_hover_text("Radius of the separable blur of the moments (texels)");
+                    ui.add(
+                        egui::Slider::new(msm_bias, 0.0..=0.01)
+                            .logarithmic(true)
+                            .text("moment bias α"),
+                    )
+                    .on_hover_text(
+                        "b' = (1 − α) b + α (½, ½, ½, ½): larger α, more light leaking, less noise",
+                    );
                 }
             }
             bias_ui(ui, bias, self.scale);

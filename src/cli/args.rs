@@ -192,7 +192,7 @@ pub struct SceneOptions {
     /// Shadow-map resolution (texels, 256 … 65536), clamped to the device limit and memory budget.
     #[arg(long, value_name = "N", value_parser = shadow_res)]
     pub shadow_res: Option<u32>,
-    /// Shadow filter: none|hw2x2|pcf|poisson|pcss|vsm|evsm.
+    /// Shadow filter: none|hw2x2|pcf|poisson|pcss|vsm|evsm|msm.
     #[arg(long, value_name = "NAME", value_parser = filter)]
     pub filter: Option<Filter>,
     /// PCF kernel size: 3|5|7|9.

@@ -36,6 +36,7 @@ pub enum MapKind {
     Depth,
     Vsm,
     Evsm,
+    Msm,
 }
 
 /// The textures of the shadow map at one resolution and layer count.

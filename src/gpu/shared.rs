@@ -150,6 +150,7 @@ impl SharedScene {
         let kind = match s.filter {
             Filter::Vsm => MapKind::Vsm,
             Filter::Evsm => MapKind::Evsm,
+            Filter::Msm => MapKind::Msm,
             _ => MapKind::Depth,
         };
         let moments_format = (kind != MapKind::Depth).then_some(self.caps.moments_format);
@@ -261,6 +262,7 @@ impl SharedScene {
         raw.vsm_bleed_reduction = s.vsm_bleed_reduction;
         raw.evsm_exponent = self.caps.evsm_exponent();
         raw.light_radius_m = settings.light.radius_m;
+        raw.msm_bias = s.msm_bias;
         report.layout = Some(layout);
         PreparedShadow { raw, slot, redraw }
     }
@@ -301,6 +303,7 @@ impl SharedScene {
             // The far plane: u = 1.
             Filter::Vsm => Some([1.0, 1.0, 0.0, 0.0]),
             Filter::Evsm => Some([c.exp(), (2.0 * c).exp(), -(-c).exp(), (-2.0 * c).exp()]),
+            Filter::Msm => Some([1.0, 1.0, 1.0, 1.0]),
             _ => None,
         }
     }

@@ -104,7 +104,8 @@ pub struct ShadowRaw {
     pub evsm_exponent: f32,
     /// Sphere light radius R (m) for `pcss`.
     pub light_radius_m: f32,
-    pub _padding: [u32; 1],
+    /// The moment bias α of `msm`.
+    pub msm_bias: f32,
 }
 
 /// `Material`: one entry of the materials storage buffer.

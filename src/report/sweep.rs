@@ -29,11 +29,11 @@ pub struct SweepPoint {
     pub shadow: ShadowSettings,
 }
 
-/// The default sweep: 2 resolutions × 6 filters × 2 biases = 24 points.
+/// The default sweep: 2 resolutions × 7 filters × 2 biases = 28 points.
 pub const DEFAULT_SWEEP: &str = r#"
 [cross]
 resolution = [512, 2048]
-filter = ["none", "hw2x2", "pcf", "poisson", "vsm", "evsm"]
+filter = ["none", "hw2x2", "pcf", "poisson", "vsm", "evsm", "msm"]
 bias = ["auto", "constant:0.02"]
 "#;
 
@@ -219,9 +219,14 @@ fn effective(mut s: ShadowSettings) -> ShadowSettings {
     if !uses(&[Filter::Pcss]) {
         s.pcss_blocker_samples = d.pcss_blocker_samples;
     }
-    if !uses(&[Filter::Vsm, Filter::Evsm]) {
+    if !uses(&[Filter::Vsm, Filter::Evsm, Filter::Msm]) {
         s.vsm_blur_texels = d.vsm_blur_texels;
+    }
+    if !uses(&[Filter::Vsm, Filter::Evsm]) {
         s.vsm_bleed_reduction = d.vsm_bleed_reduction;
+    }
+    if !uses(&[Filter::Msm]) {
+        s.msm_bias = d.msm_bias;
     }
     let (bias, db) = (&mut s.bias, d.bias);
     if !matches!(bias.mode, BiasMode::Constant | BiasMode::Slope) {
@@ -271,6 +276,13 @@ pub fn label(s: &ShadowSettings) -> String {
                 format!("bleed{}", s.vsm_bleed_reduction),
             ),
         ],
+        Filter::Msm => vec![
+            (
+                s.vsm_blur_texels != d.vsm_blur_texels,
+                format!("blur{}", s.vsm_blur_texels),
+            ),
+            (s.msm_bias != d.msm_bias, format!("alpha{}", s.msm_bias)),
+        ],
         _ => Vec::new(),
     };
     for (_, text) in extras.iter().filter(|(differs, _)| *differs) {
@@ -289,13 +301,13 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_default_sweep_has_24_distinct_points() {
+    fn the_default_sweep_has_28_distinct_points() {
         let points = parse(DEFAULT_SWEEP, &Settings::default()).unwrap();
-        assert_eq!(points.len(), 24);
+        assert_eq!(points.len(), 28);
         let mut labels: Vec<_> = points.iter().map(|p| p.label.clone()).collect();
         labels.sort();
         labels.dedup();
-        assert_eq!(labels.len(), 24);
+        assert_eq!(labels.len(), 28);
     }
 
     #[test]

@@ -153,6 +153,9 @@ named_enum! {
         Vsm = "vsm",
         /// Exponential variance shadow map: warped moments, less light bleeding.
         Evsm = "evsm",
+        /// Moment shadow map: four moments of the depth, Hamburger
+        /// reconstruction of the sharpest distribution that has them.
+        Msm = "msm",
     }
 }
 
@@ -259,10 +262,15 @@ pub struct ShadowSettings {
     pub poisson_radius_texels: f32,
     /// Samples of the blocker search of `pcss`.
     pub pcss_blocker_samples: u32,
-    /// Radius of the separable blur of `vsm`/`evsm` (texels).
+    /// Radius of the separable blur of `vsm`/`evsm`/`msm` (texels).
     pub vsm_blur_texels: u32,
     /// Light-bleeding reduction of `vsm`/`evsm`: the part of Chebyshev's bound cut off.
     pub vsm_bleed_reduction: f32,
+    /// Moment bias α of `msm`: the moments are pulled towards those of a
+    /// uniform depth, b' = (1 − α) b + α (½, ½, ½, ½), which keeps the
+    /// Hankel matrix invertible under rounding (α small: sharper, acne-prone
+    /// where rounding shows; larger: more light leaking).
+    pub msm_bias: f32,
     pub bias: BiasSettings,
 }
 
@@ -270,6 +278,8 @@ impl ShadowSettings {
     pub const MIN_RESOLUTION: u32 = 256;
     pub const MAX_RESOLUTION: u32 = 65536;
     pub const PCF_SIZES: [u32; 4] = [3, 5, 7, 9];
+    /// Peters & Klein 2015's α for moments stored in 32-bit floats.
+    pub const DEFAULT_MSM_BIAS: f32 = 3e-5;
 }
 
 impl Default for ShadowSettings {
@@ -285,6 +295,7 @@ impl Default for ShadowSettings {
             pcss_blocker_samples: 16,
             vsm_blur_texels: 2,
             vsm_bleed_reduction: 0.2,
+            msm_bias: Self::DEFAULT_MSM_BIAS,
             bias: BiasSettings::default(),
         }
     }
@@ -502,7 +513,7 @@ mod tests {
 
     #[test]
     fn enum_names_are_the_design_names() {
-        assert_eq!(Filter::choices(), "none|hw2x2|pcf|poisson|pcss|vsm|evsm");
+        assert_eq!(Filter::choices(), "none|hw2x2|pcf|poisson|pcss|vsm|evsm|msm");
         assert_eq!(BiasMode::choices(), "auto|constant|slope|normal");
         assert_eq!(
             DebugView::choices(),

@@ -51,6 +51,7 @@ impl Settings {
         check_int("shadow.pcss_blocker_samples", s.pcss_blocker_samples, 4, 64)?;
         check_int("shadow.vsm_blur_texels", s.vsm_blur_texels, 0, 16)?;
         check("shadow.vsm_bleed_reduction", s.vsm_bleed_reduction, 0.0, 0.99)?;
+        check("shadow.msm_bias", s.msm_bias, 0.0, 0.5)?;
         check("shadow.bias.depth_m", s.bias.depth_m, 0.0, far)?;
         check("shadow.bias.slope", s.bias.slope, 0.0, 1e3)?;
         check("shadow.bias.normal_texels", s.bias.normal_texels, 0.0, 1e3)?;
