@@ -8,7 +8,7 @@ use super::widgets::{length, number, position, quantity, rgb, value_row, vector}
 use crate::gpu::ComparisonImage;
 use crate::physics::{Normalization, brdf, colour, radiometry};
 use crate::presets::Half;
-use crate::reference::{Reference, ReferenceOptions};
+use crate::reference::{Reference, ReferenceOptions, ShadingSample};
 use crate::scene::Scene;
 use crate::settings::{DebugView, Settings};
 use glam::DVec3;
@@ -88,6 +88,22 @@ impl ProbeTerms {
     }
 }
 
+/// The primary sample through the centre of pixel (i, j) of an image of
+/// `size` pixels rendered with `settings`, or None where it misses the
+/// scene: what the probe shows and where a double-click sets the pivot.
+pub fn trace(
+    tracer: &Reference,
+    settings: &Settings,
+    pixel: (u32, u32),
+    size: (u32, u32),
+) -> Option<ShadingSample> {
+    let mut settings = settings.clone();
+    settings.image.width = size.0;
+    settings.image.height = size.1;
+    let (x, y) = (pixel.0 as f64 + 0.5, pixel.1 as f64 + 0.5);
+    tracer.trace_pixel(&settings, &ReferenceOptions::DEFAULT, x, y)
+}
+
 /// The terms at pixel (i, j) of an image of `size` pixels rendered with
 /// `settings`, or None where the pixel's ray misses the scene. `tracer` is
 /// the reference prepared for `scene`.
@@ -98,11 +114,7 @@ pub fn evaluate(
     pixel: (u32, u32),
     size: (u32, u32),
 ) -> Option<ProbeTerms> {
-    let mut settings = settings.clone();
-    settings.image.width = size.0;
-    settings.image.height = size.1;
-    let (x, y) = (pixel.0 as f64 + 0.5, pixel.1 as f64 + 0.5);
-    let sample = tracer.trace_pixel(&settings, &ReferenceOptions::DEFAULT, x, y)?;
+    let sample = trace(tracer, settings, pixel, size)?;
     let object = scene.objects.get(sample.object)?;
     let material = scene.material_of(object);
     let eye = settings.camera.eye.as_dvec3();

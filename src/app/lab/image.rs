@@ -3,12 +3,13 @@
 //! kept on its point, the readbacks a fresh image needs.
 
 use super::super::command::Command;
-use super::super::probe::ReferenceSample;
+use super::super::probe::{self, ProbePixel, ReferenceSample};
 use super::super::reference::reference_key;
 use super::super::viewport::{Viewport, ViewportResponse};
 use super::LabApp;
 use crate::presets::Half;
 use crate::reference::Reference;
+use crate::scene::Scene;
 use crate::settings::{DebugView, Settings};
 
 impl LabApp {
@@ -115,11 +116,8 @@ impl LabApp {
         }
         if let Some(p) = response.double_clicked {
             // The orbit's pivot: the point under the cursor, if any.
-            let settings = Viewport::render_settings(&self.state.settings, &self.state.split, p.half, p.size);
-            let tracer = self.tracer.get_or_insert_with(|| Reference::new(&self.scene));
-            let (x, y) = (p.pixel.0 as f64 + 0.5, p.pixel.1 as f64 + 0.5);
-            let options = crate::reference::ReferenceOptions::DEFAULT;
-            if let Some(hit) = tracer.trace_pixel(&settings, &options, x, y) {
+            let (settings, tracer, _) = self.traced_half(p);
+            if let Some(hit) = probe::trace(tracer, &settings, p.pixel, p.size) {
                 self.emit(Command::SetPivot(hit.position.as_vec3()));
             }
         }
@@ -151,12 +149,20 @@ impl LabApp {
         }
     }
 
+    /// The settings the half of `p` shows at its size, the scene's ray
+    /// tracer (built at the first use) and the scene.
+    fn traced_half(&mut self, p: ProbePixel) -> (Settings, &Reference, &Scene) {
+        let settings = Viewport::render_settings(&self.state.settings, &self.state.split, p.half, p.size);
+        let scene = &self.scene;
+        let tracer = self.tracer.get_or_insert_with(|| Reference::new(scene));
+        (settings, tracer, scene)
+    }
+
     /// Recomputes the probe's terms and asks the GPU for its values there.
     pub(super) fn refresh_probe(&mut self) {
         let Some(p) = self.probe.pixel else { return };
-        let settings = Viewport::render_settings(&self.state.settings, &self.state.split, p.half, p.size);
-        let tracer = self.tracer.get_or_insert_with(|| Reference::new(&self.scene));
-        self.probe.terms = super::super::probe::evaluate(tracer, &self.scene, &settings, p.pixel, p.size);
+        let (settings, tracer, scene) = self.traced_half(p);
+        self.probe.terms = probe::evaluate(tracer, scene, &settings, p.pixel, p.size);
         self.probe.gpu = None;
         self.jobs.pending_probe = self.gpu.as_ref().and_then(|g| g.request_probe(p.half, p.pixel));
         self.probe.reference = self.reference.result.as_ref().and_then(|r| {
