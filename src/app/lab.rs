@@ -86,8 +86,10 @@ pub struct LabApp {
     impossible: Option<(PlausibilityKey, Vec<String>)>,
 }
 
-/// What the plausibility check depends on.
-type PlausibilityKey = (glam::Vec3, f32, glam::Vec3, u64);
+/// What the plausibility check depends on: the light, the eye and the
+/// drawn scene (by identity: a new scene is a new `Arc`, and holding the
+/// old one keeps its address from being reused).
+type PlausibilityKey = (glam::Vec3, f32, glam::Vec3, Arc<Scene>);
 
 /// Text sizes readable from the back of a room.
 fn set_style(ctx: &egui::Context) {
@@ -341,14 +343,18 @@ impl LabApp {
     /// the status bar shows what is impossible.
     fn check_plausibility(&mut self) {
         let s = &self.state.settings;
-        let key = (
-            s.light.position,
-            s.light.radius_m,
-            s.camera.eye,
-            self.reference_generation,
-        );
-        if self.impossible.as_ref().is_none_or(|(k, _)| *k != key) {
+        let unchanged = self.impossible.as_ref().is_some_and(|((q, r, eye, scene), _)| {
+            (*q, *r, *eye) == (s.light.position, s.light.radius_m, s.camera.eye)
+                && Arc::ptr_eq(scene, &self.scene)
+        });
+        if !unchanged {
             let lines = crate::scene::plausibility::impossible_setups(&self.scene, s);
+            let key = (
+                s.light.position,
+                s.light.radius_m,
+                s.camera.eye,
+                Arc::clone(&self.scene),
+            );
             self.impossible = Some((key, lines));
         }
     }

@@ -117,13 +117,10 @@ impl LabApp {
     /// to the undo stack's quiet-time rule (one drag, one step); any other
     /// is one undo step of its own.
     fn change_settings(&mut self, command: &Command, after: Settings) {
-        let discrete = !matches!(command, Command::SetSettings(_));
-        if discrete {
-            self.undo.checkpoint(&self.state.settings);
-        }
-        self.state.settings = after;
-        if discrete {
-            self.undo.checkpoint(&self.state.settings);
+        if matches!(command, Command::SetSettings(_)) {
+            self.state.settings = after;
+        } else {
+            self.settings_in_one_step(|s| *s = after);
         }
         if let Command::ApplyPreset(preset) = command {
             // The split view compares without | with the remedy.
@@ -132,6 +129,14 @@ impl LabApp {
             }
             self.say(format!("preset: {} (Ctrl+Z to undo)", preset.title()), false);
         }
+    }
+
+    /// Changes the settings by `change` as one undo step of its own (a
+    /// pending slider change before it is committed as another).
+    pub(super) fn settings_in_one_step(&mut self, change: impl FnOnce(&mut Settings)) {
+        self.undo.checkpoint(&self.state.settings);
+        change(&mut self.state.settings);
+        self.undo.checkpoint(&self.state.settings);
     }
 
     /// Loads a settings file; on any failure (its scene gone included) the
@@ -150,9 +155,7 @@ impl LabApp {
             Ok(loaded) => {
                 let scene_changes = loaded.scene != self.state.settings.scene;
                 let scene = loaded.scene.clone();
-                self.undo.checkpoint(&self.state.settings);
-                self.state.settings = loaded;
-                self.undo.checkpoint(&self.state.settings);
+                self.settings_in_one_step(|s| *s = loaded);
                 self.settings_match_file(path);
                 self.say(
                     format!("settings loaded from {} (Ctrl+Z to undo)", path.display()),
@@ -180,9 +183,7 @@ impl LabApp {
                 scene.warnings.join("; ")
             );
         }
-        self.undo.checkpoint(&self.state.settings);
-        adopt_scene(&mut self.state.settings, path.as_deref(), &scene);
-        self.undo.checkpoint(&self.state.settings);
+        self.settings_in_one_step(|s| adopt_scene(s, path.as_deref(), &scene));
         if let Some(path) = &path {
             self.state.recent.add_scene(path);
         }

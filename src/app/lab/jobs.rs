@@ -166,11 +166,7 @@ impl LabApp {
             .collect();
         match crate::physics::display::auto_exposure_ev(&lit) {
             Some(ev) => {
-                let mut settings = self.state.settings.clone();
-                settings.view.exposure_ev = ev as f32;
-                self.undo.checkpoint(&self.state.settings);
-                self.state.settings = settings;
-                self.undo.checkpoint(&self.state.settings);
+                self.settings_in_one_step(|s| s.view.exposure_ev = ev as f32);
                 self.say(format!("auto exposure: {ev:+.2} EV (Ctrl+Z to undo)"), false);
             }
             None => self.say("auto exposure: nothing lit in the image", true),
