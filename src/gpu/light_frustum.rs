@@ -180,8 +180,8 @@ pub fn shadow_apex(light: DVec3, bounds: &Aabb) -> DVec3 {
     if bounds.is_empty() {
         return light;
     }
-    let centre = bounds.center().as_dvec3();
-    let radius = (0.5 * bounds.extent().as_dvec3().length()).max(1e-9);
+    let (centre, radius) = bounds.bounding_sphere();
+    let radius = radius.max(1e-9);
     let offset = light - centre;
     let limit = FAR_LIGHT_RADII * radius;
     if offset.length() > limit {
@@ -307,8 +307,7 @@ mod tests {
         assert_eq!(shadow_apex(near, &b), near);
         let sun = DVec3::new(6e10, 1.2e11, 5e10);
         let apex = shadow_apex(sun, &b);
-        let centre = b.center().as_dvec3();
-        let radius = 0.5 * b.extent().as_dvec3().length();
+        let (centre, radius) = b.bounding_sphere();
         assert!(((apex - centre).length() / radius - FAR_LIGHT_RADII).abs() < 1e-9);
         assert!((apex - centre).normalize().dot((sun - centre).normalize()) > 1.0 - 1e-12);
     }

@@ -51,6 +51,13 @@ impl Aabb {
         (self.max - self.min).max(Vec3::ZERO)
     }
 
+    /// The sphere around the box, in f64: its centre and radius (half the
+    /// diagonal; framing, the model's light, the scene's scale and far
+    /// lights all measure a scene by it).
+    pub fn bounding_sphere(&self) -> (glam::DVec3, f64) {
+        (self.center().as_dvec3(), 0.5 * self.extent().as_dvec3().length())
+    }
+
     /// The eight corners.
     pub fn corners(&self) -> [Vec3; 8] {
         let (a, b) = (self.min, self.max);

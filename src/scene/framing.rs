@@ -57,8 +57,8 @@ pub fn scene_light(bounds: &Aabb) -> Option<(Vec3, f32)> {
     if bounds.is_empty() {
         return None;
     }
-    let centre = bounds.center().as_dvec3();
-    let radius = (0.5 * bounds.extent().as_dvec3().length()).max(1e-9);
+    let (centre, radius) = bounds.bounding_sphere();
+    let radius = radius.max(1e-9);
     let distance = LIGHT_DISTANCE_RADII * radius;
     let azimuth = FRAMING_AZIMUTH_DEG + LIGHT_AZIMUTH_FROM_VIEW_DEG;
     let position = centre + direction(azimuth, LIGHT_ELEVATION_DEG) * distance;
@@ -81,8 +81,8 @@ pub fn frame_all(camera: &Camera, bounds: &Aabb) -> Camera {
 
 /// The camera on the ray from the bounds' centre along unit `direction`.
 fn looking_at(bounds: &Aabb, direction: DVec3, fovy_deg: f32) -> Camera {
-    let centre = bounds.center().as_dvec3();
-    let radius = (0.5 * bounds.extent().as_dvec3().length()).max(1e-9);
+    let (centre, radius) = bounds.bounding_sphere();
+    let radius = radius.max(1e-9);
     let half = (0.5 * fovy_deg as f64).to_radians();
     let distance = radius / (FRAMING_FILL * half.sin());
     Camera {

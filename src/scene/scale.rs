@@ -49,14 +49,13 @@ impl SceneScale {
     /// of its floor (the bounds' lowest height). An empty or degenerate
     /// scene gets the built-in scale.
     pub fn of_bounds(bounds: &Aabb) -> Self {
-        let radius = 0.5 * bounds.extent().length();
+        let (centre, radius) = bounds.bounding_sphere();
         if bounds.is_empty() || !radius.is_finite() || radius <= 0.0 {
             return Self::BUILT_IN;
         }
-        let centre = bounds.center();
         Self {
-            unit: radius / Self::BUILT_IN_MODEL_RADIUS_M,
-            anchor: Vec3::new(centre.x, bounds.min.y, centre.z),
+            unit: radius as f32 / Self::BUILT_IN_MODEL_RADIUS_M,
+            anchor: Vec3::new(centre.x as f32, bounds.min.y, centre.z as f32),
         }
     }
 
@@ -102,7 +101,7 @@ mod tests {
             .filter(|o| o.name != "ground")
             .fold(Aabb::EMPTY, |b, o| b.union(&o.bounds));
         assert!(objects.extent().x < 10.0, "the ground is left out");
-        let radius = 0.5 * objects.extent().length();
+        let radius = objects.bounding_sphere().1 as f32;
         assert!(
             (radius / SceneScale::BUILT_IN_MODEL_RADIUS_M - 1.0).abs() < 1e-2,
             "the built-in objects' radius is {radius} m"
