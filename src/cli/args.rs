@@ -224,19 +224,10 @@ pub struct SceneOptions {
 }
 
 impl SceneOptions {
-    /// The settings file (if any) with every given flag applied, validated:
-    /// a bad file is a runtime error, a flag that makes the whole invalid a
-    /// usage error. A `gltf:N` camera is returned apart: it needs the loaded
-    /// scene.
-    pub fn settings(&self) -> anyhow::Result<(Settings, Option<usize>)> {
-        let (mut s, _) = self.base()?;
-        let gltf_camera = self.apply_flags(&mut s)?;
-        Ok((s, gltf_camera))
-    }
-
     /// The settings file (or the defaults) naming the scene to draw, and
     /// whether they were saved for that very scene (they then carry its
-    /// view and light; otherwise the scene's own are used).
+    /// view and light; otherwise the scene's own are used). A bad file is
+    /// a run-time error.
     pub fn base(&self) -> anyhow::Result<(Settings, bool)> {
         let mut s = match &self.settings {
             Some(path) => Settings::load(path)?,
@@ -250,8 +241,9 @@ impl SceneOptions {
         Ok((s, saved))
     }
 
-    /// Applies every given flag to `s` and validates it; returns the
-    /// `gltf:N` camera asked for, which needs the loaded scene.
+    /// Applies every given flag to `s` and validates it (a flag that makes
+    /// the whole invalid is a usage error); returns the `gltf:N` camera
+    /// asked for, which needs the loaded scene.
     pub fn apply_flags(&self, s: &mut Settings) -> anyhow::Result<Option<usize>> {
         let mut gltf_camera = None;
         match self.camera {
