@@ -3,8 +3,8 @@
 //! `physics` holds the formulas (no GPU, no UI, no files); `settings` every
 //! user-settable value; `scene` what is drawn; `cli` the command line;
 //! `stability` the hard cases where direct lighting breaks numerically;
-//! `app` the window (the only module that knows egui); `presets` the
-//! lecture's experiments.
+//! `app` the window (the only module that knows egui); `i18n` the language
+//! of its text (French or English); `presets` the lecture's experiments.
 
 #[macro_use]
 mod named;
@@ -13,6 +13,7 @@ pub mod app;
 pub mod cli;
 pub mod colour;
 pub mod gpu;
+pub mod i18n;
 pub mod image_io;
 pub mod input;
 pub mod output;
