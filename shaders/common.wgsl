@@ -44,6 +44,9 @@ const NORM_EXACT: u32 = 3u;
 // Visibility sources, in settings::Visibility order.
 const VISIBILITY_SHADOW_MAP: u32 = 0u;
 
+// A specialisation constant's value for "any": read the uniform instead.
+const SPECIALISE_ANY: u32 = 0xffffffffu;
+
 // Everything the camera pass needs that changes per frame (gpu::uniforms::GlobalsRaw).
 struct Globals {
     // Eye-relative world position → clip space: clip = view_proj * (p − eye, 1).

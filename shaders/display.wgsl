@@ -1,14 +1,14 @@
 // The image people see: radiance exposed (2^EV) and sRGB encoded by the
 // target's format, or a debug quantity in grey or false colour.
 
+// Alpha: coverage, so a frame drawn without the aux target displays the same.
 @group(0) @binding(0) var quantity: texture_2d<f32>;
-@group(0) @binding(1) var aux: texture_2d<f32>;
-@group(0) @binding(2) var comparison: texture_2d<f32>;
+@group(0) @binding(1) var comparison: texture_2d<f32>;
 // The light's depth map read as plain floats (GLSL cannot load depth textures).
-@group(0) @binding(3) var shadow_depth: texture_2d_array<f32>;
-@group(0) @binding(4) var<uniform> shadow: Shadow;
-@group(0) @binding(5) var<uniform> params: DisplayParams;
-@group(0) @binding(6) var<storage, read> scale: array<u32, 4>;
+@group(0) @binding(2) var shadow_depth: texture_2d_array<f32>;
+@group(0) @binding(3) var<uniform> shadow: Shadow;
+@group(0) @binding(4) var<uniform> params: DisplayParams;
+@group(0) @binding(5) var<storage, read> scale: array<u32, 4>;
 
 @vertex
 fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
@@ -83,12 +83,12 @@ fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
         return vec4<f32>(depth_view(position.xy), 1.0);
     }
     let texel = vec2<i32>(position.xy);
-    let a = textureLoad(aux, texel, 0);
-    if a.w == 0.0 {
+    let sample = textureLoad(quantity, texel, 0);
+    if sample.a == 0.0 {
         // Background: a quiet grey, darker at the bottom.
         return vec4<f32>(grey(0.16 + 0.06 * (1.0 - position.y / params.size_px.y)), 1.0);
     }
-    let q = textureLoad(quantity, texel, 0).rgb;
+    let q = sample.rgb;
     let has_reference = params.has_comparison != 0u;
     var color: vec3<f32>;
     switch view {

@@ -2,10 +2,9 @@
 // per workgroup into result[0]. Positive floats order like their bits.
 
 @group(0) @binding(0) var quantity: texture_2d<f32>;
-@group(0) @binding(1) var aux: texture_2d<f32>;
-@group(0) @binding(2) var comparison: texture_2d<f32>;
-@group(0) @binding(3) var<storage, read_write> result: array<atomic<u32>, 4>;
-@group(0) @binding(4) var<uniform> params: DisplayParams;
+@group(0) @binding(1) var comparison: texture_2d<f32>;
+@group(0) @binding(2) var<storage, read_write> result: array<atomic<u32>, 4>;
+@group(0) @binding(3) var<uniform> params: DisplayParams;
 
 // The value a false-colour view scales by (its largest over the image).
 fn scaled_value(q: vec3<f32>, reference: vec3<f32>) -> f32 {
@@ -26,8 +25,10 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>, @builtin(local_invocation_
     let size = textureDimensions(quantity);
     if id.x < size.x && id.y < size.y {
         let texel = vec2<i32>(id.xy);
-        if textureLoad(aux, texel, 0).w > 0.0 {
-            let value = scaled_value(textureLoad(quantity, texel, 0).rgb, textureLoad(comparison, texel, 0).rgb);
+        let q = textureLoad(quantity, texel, 0);
+        // Alpha: coverage (0 on the background).
+        if q.a > 0.0 {
+            let value = scaled_value(q.rgb, textureLoad(comparison, texel, 0).rgb);
             if value > 0.0 && value < 3.0e38 {
                 atomicMax(&group_max, bitcast<u32>(value));
             }

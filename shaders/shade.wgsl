@@ -12,6 +12,21 @@
 @group(0) @binding(4) var base_sampler: sampler;
 // Group 1: the visibility source's resources (shadow_map.wgsl).
 
+// Pipeline-overridable constants: a pipeline specialised to one view and one
+// visibility source (gpu::specialise) holds its VIEW_* / VISIBILITY_* here,
+// and the compiler drops every other case; SPECIALISE_ANY (the default)
+// reads the uniform instead, the one generic pipeline.
+override SPECIALISED_VIEW: u32 = SPECIALISE_ANY;
+override SPECIALISED_VISIBILITY: u32 = SPECIALISE_ANY;
+
+fn view_mode() -> u32 {
+    return select(SPECIALISED_VIEW, globals.view, SPECIALISED_VIEW == SPECIALISE_ANY);
+}
+
+fn visibility_mode() -> u32 {
+    return select(SPECIALISED_VISIBILITY, globals.visibility, SPECIALISED_VISIBILITY == SPECIALISE_ANY);
+}
+
 struct VsIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
@@ -104,7 +119,7 @@ fn visibility(p_l: vec3<f32>, s: Surface, incidence: LightIncidence, pixel: vec2
     if incidence.cos_theta <= 0.0 {
         return 0.0;
     }
-    switch globals.visibility {
+    switch visibility_mode() {
         case VISIBILITY_SHADOW_MAP, default: {
             return shadow_map_visibility(p_l, s.n_geo, incidence.l, pixel);
         }
@@ -117,7 +132,7 @@ fn view_quantity(s: Surface, incidence: LightIncidence, v: f32, density: f32) ->
     let e = sphere_irradiance(globals.light_power_w, globals.light_radius_m, incidence.cos_theta, incidence.r);
     let f = blinn_phong(s.n, incidence.l, s.o, s.k, s.m, globals.normalization);
     let radiance_scale = tint(s.c, globals.light_color) * e * v;
-    switch globals.view {
+    switch view_mode() {
         case VIEW_VISIBILITY: { return vec3<f32>(v); }
         case VIEW_NDOTL: { return vec3<f32>(max(incidence.cos_theta, 0.0)); }
         case VIEW_IRRADIANCE: { return vec3<f32>(e * v); }
@@ -149,4 +164,11 @@ fn fs(in: VsOut, @builtin(front_facing) front_facing: bool) -> FsOut {
     out.quantity = vec4<f32>(view_quantity(s, incidence, v, density), 1.0);
     out.aux = vec4<f32>(v, density, max(incidence.cos_theta, 0.0), 1.0);
     return out;
+}
+
+// The same pass writing the quantity only (interaction frames, where nothing
+// reads V or the texel density back): the aux terms are never computed.
+@fragment
+fn fs_quantity(in: VsOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return fs(in, front_facing).quantity;
 }

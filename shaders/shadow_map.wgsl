@@ -11,6 +11,14 @@
 // depth texture, so the software filters read it through this binding.
 @group(1) @binding(4) var shadow_depth_values: texture_2d_array<f32>;
 
+// The filter a specialised pipeline is compiled for (FILTER_*), or
+// SPECIALISE_ANY to read shadow.filter_mode (see shade.wgsl).
+override SPECIALISED_FILTER: u32 = SPECIALISE_ANY;
+
+fn filter_mode() -> u32 {
+    return select(SPECIALISED_FILTER, shadow.filter_mode, SPECIALISED_FILTER == SPECIALISE_ANY);
+}
+
 // Where a receiver falls in the shadow map.
 struct Receiver {
     layer: u32,
@@ -357,10 +365,10 @@ fn filter_moments(r: Receiver) -> f32 {
     let f = shadow.layers[r.layer];
     let u = clamp((r.z - f.near_m) / (f.far_m - f.near_m), 0.0, 1.0);
     let m = textureSampleLevel(moments, moments_sampler, r.tc / resolution(), i32(r.layer), 0.0);
-    if shadow.filter_mode == FILTER_VSM {
+    if filter_mode() == FILTER_VSM {
         return chebyshev(m.xy, u, 1e-6);
     }
-    if shadow.filter_mode == FILTER_MSM {
+    if filter_mode() == FILTER_MSM {
         return hamburger_4msm(m, u, shadow.msm_bias);
     }
     // EVSM: both exponential warps of u, the smaller bound wins.
@@ -379,7 +387,7 @@ fn filtered_visibility(r: Receiver, pixel: vec2<f32>) -> f32 {
 }
 
 fn filter_taps(r: Receiver, pixel: vec2<f32>) -> f32 {
-    switch shadow.filter_mode {
+    switch filter_mode() {
         case FILTER_NONE: { return depth_test(r, vec2<i32>(floor(r.tc))); }
         case FILTER_HW2X2: { return filter_hw2x2(r); }
         case FILTER_PCF: { return filter_pcf(r); }

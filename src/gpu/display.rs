@@ -14,7 +14,6 @@ pub const DISPLAY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormS
 /// The textures a display pass reads and writes.
 pub struct DisplayInputs<'a> {
     pub quantity: &'a wgpu::TextureView,
-    pub aux: &'a wgpu::TextureView,
     pub comparison: &'a wgpu::TextureView,
     pub shadow_depth: &'a wgpu::TextureView,
     pub shadow_uniform: &'a wgpu::Buffer,
@@ -41,16 +40,15 @@ impl DisplayPass {
             &[
                 binding::float_texture(0, fragment),
                 binding::float_texture(1, fragment),
-                binding::float_texture(2, fragment),
                 binding::texture(
-                    3,
+                    2,
                     fragment,
                     wgpu::TextureSampleType::Float { filterable: false },
                     wgpu::TextureViewDimension::D2Array,
                 ),
+                binding::uniform(3, fragment),
                 binding::uniform(4, fragment),
-                binding::uniform(5, fragment),
-                binding::storage(6, fragment, true),
+                binding::storage(5, fragment, true),
             ],
         );
         let compute = ShaderStages::COMPUTE;
@@ -60,9 +58,8 @@ impl DisplayPass {
             &[
                 binding::float_texture(0, compute),
                 binding::float_texture(1, compute),
-                binding::float_texture(2, compute),
-                binding::storage(3, compute, false),
-                binding::uniform(4, compute),
+                binding::storage(2, compute, false),
+                binding::uniform(3, compute),
             ],
         );
         let module = Shader::Display.module(device);
@@ -126,7 +123,6 @@ impl DisplayPass {
             &self.reduce_layout,
             &[
                 wgpu::BindingResource::TextureView(inputs.quantity),
-                wgpu::BindingResource::TextureView(inputs.aux),
                 wgpu::BindingResource::TextureView(inputs.comparison),
                 self.scale.as_entire_binding(),
                 self.params.as_entire_binding(),
@@ -147,7 +143,6 @@ impl DisplayPass {
             &self.layout,
             &[
                 wgpu::BindingResource::TextureView(inputs.quantity),
-                wgpu::BindingResource::TextureView(inputs.aux),
                 wgpu::BindingResource::TextureView(inputs.comparison),
                 wgpu::BindingResource::TextureView(inputs.shadow_depth),
                 inputs.shadow_uniform.as_entire_binding(),

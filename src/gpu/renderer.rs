@@ -12,6 +12,7 @@ use super::lines::FrustumOverlay;
 use super::readback::{PendingRead, read_texture};
 use super::shade::ShadePass;
 use super::shared::SharedScene;
+use super::specialise::{ShadeOptions, Specialisation};
 use super::targets::{FloatTarget, FrameTargets, PendingScale, PendingTexels, decode_float_texels};
 use super::timing::{GpuTimer, Pass, PassTimes};
 use super::uniforms::{DisplayParamsRaw, GlobalsRaw, ShadowRaw, mat, uniform_buffer};
@@ -77,6 +78,7 @@ pub struct Renderer {
     /// The shared scene's generation the camera pass is bound to.
     scene_generation: Option<u64>,
     shade: ShadePass,
+    shade_options: ShadeOptions,
     /// This view's shadow uniforms (filter and bias may differ between views
     /// that share a map).
     shadow_uniform: wgpu::Buffer,
@@ -121,6 +123,7 @@ impl Renderer {
             view,
             scene_generation: None,
             shade,
+            shade_options: ShadeOptions::default(),
             targets: None,
             has_comparison: false,
             comparison: None,
@@ -129,6 +132,12 @@ impl Renderer {
 
     pub fn capabilities(&self) -> &Capabilities {
         &self.caps
+    }
+
+    /// Specialised or generic camera pass, with or without the aux target,
+    /// from the next frame on.
+    pub fn set_shade_options(&mut self, options: ShadeOptions) {
+        self.shade_options = options;
     }
 
     /// Uploads another scene for every view that shares it; the shadow
@@ -312,12 +321,15 @@ impl Renderer {
         let shadow_group = self
             .shade
             .shadow_group(&self.device, shadow_textures, &shared.dummy_moments);
+        let specialisation = Specialisation::for_frame(settings, self.shade_options);
+        self.shade.prepare(&self.device, specialisation);
         let writes = self
             .timer
             .as_mut()
             .and_then(|t| t.writes(Pass::Shade, true, true));
         self.shade.encode(
             encoder,
+            specialisation,
             &shared.scene,
             &shadow_group,
             &targets.quantity_view,
@@ -328,7 +340,6 @@ impl Renderer {
         );
         let inputs = DisplayInputs {
             quantity: &targets.quantity_view,
-            aux: &targets.aux_view,
             comparison: &targets.comparison_view,
             shadow_depth: &shadow_textures.depth_array,
             shadow_uniform: &self.shadow_uniform,

@@ -2,17 +2,23 @@
 //! quantity and the aux target (V, texel density, cos θ, coverage).
 
 use super::binding;
-use super::scene_buffers::{GpuScene, Vertex};
+use super::scene_buffers::GpuScene;
 use super::shaders::Shader;
-use super::shadow::{DEPTH_FORMAT, ShadowTextures};
+use super::shadow::ShadowTextures;
+use super::specialise::Specialisation;
 use super::uniforms::{GlobalsRaw, uniform_buffer};
+use std::collections::HashMap;
 use wgpu::ShaderStages;
 
 pub struct ShadePass {
     pub globals: wgpu::Buffer,
     scene_layout: wgpu::BindGroupLayout,
     shadow_layout: wgpu::BindGroupLayout,
-    pipeline: wgpu::RenderPipeline,
+    pipeline_layout: wgpu::PipelineLayout,
+    module: wgpu::ShaderModule,
+    hdr_format: wgpu::TextureFormat,
+    /// Compiled on first use, kept: switching views or filters back is free.
+    pipelines: HashMap<Specialisation, wgpu::RenderPipeline>,
     texture_sampler: wgpu::Sampler,
     compare_sampler: wgpu::Sampler,
     moments_sampler: wgpu::Sampler,
@@ -66,35 +72,6 @@ impl ShadePass {
         );
         let pipeline_layout =
             binding::pipeline_layout(device, "camera pass", &[&scene_layout, &shadow_layout]);
-        let module = Shader::Shade.module(device);
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("camera pass"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs"),
-                compilation_options: Default::default(),
-                buffers: &[Some(Vertex::layout())],
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs"),
-                compilation_options: Default::default(),
-                targets: &[Some(hdr_format.into()), Some(hdr_format.into())],
-            }),
-            // No culling: back faces are shaded to 0 (n·o ≤ 0), as in the reference.
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Greater),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            multiview_mask: None,
-            cache: None,
-        });
         let sampler = |label: &str, filter: wgpu::FilterMode, address: wgpu::AddressMode, compare| {
             device.create_sampler(&wgpu::SamplerDescriptor {
                 label: Some(label),
@@ -120,7 +97,10 @@ impl ShadePass {
             moments_sampler: sampler("shadow moments", linear, wgpu::AddressMode::ClampToEdge, None),
             scene_layout,
             shadow_layout,
-            pipeline,
+            pipeline_layout,
+            module: Shader::Shade.module(device),
+            hdr_format,
+            pipelines: HashMap::new(),
             scene_group: None,
         }
     }
@@ -163,10 +143,23 @@ impl ShadePass {
         )
     }
 
+    /// Compiles the pipeline of a specialisation unless it already is.
+    pub fn prepare(&mut self, device: &wgpu::Device, specialisation: Specialisation) {
+        if !self.pipelines.contains_key(&specialisation) {
+            let pipeline =
+                specialisation.pipeline(device, &self.pipeline_layout, &self.module, self.hdr_format);
+            self.pipelines.insert(specialisation, pipeline);
+        }
+    }
+
+    /// Draws the visible objects with the pipeline of `specialisation`
+    /// (compiled by [`Self::prepare`]); the aux target is written only when
+    /// the specialisation says so.
     #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,
+        specialisation: Specialisation,
         scene: &GpuScene,
         shadow_group: &wgpu::BindGroup,
         quantity: &wgpu::TextureView,
@@ -176,21 +169,23 @@ impl ShadePass {
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
         let clear = wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT);
+        let both = [
+            binding::color_attachment(quantity, clear),
+            binding::color_attachment(aux, clear),
+        ];
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("camera pass"),
-            color_attachments: &[
-                binding::color_attachment(quantity, clear),
-                binding::color_attachment(aux, clear),
-            ],
+            color_attachments: if specialisation.aux { &both } else { &both[..1] },
             depth_stencil_attachment: binding::depth_attachment(depth, wgpu::LoadOp::Clear(0.0)),
             timestamp_writes,
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        let Some(scene_group) = &self.scene_group else {
+        let (Some(scene_group), Some(pipeline)) = (&self.scene_group, self.pipelines.get(&specialisation))
+        else {
             return;
         };
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, scene_group, &[]);
         pass.set_bind_group(1, shadow_group, &[]);
         scene.bind_buffers(&mut pass);

@@ -1,0 +1,125 @@
+//! The camera pass compiled per view, per filter and per visibility source.
+//! shaders/shade.wgsl and shadow_map.wgsl read their mode through
+//! pipeline-overridable constants (`SPECIALISED_VIEW`, `SPECIALISED_FILTER`,
+//! `SPECIALISED_VISIBILITY`); a pipeline given one value keeps only that
+//! case of each `switch` (the compiler folds the rest away), the default
+//! value `SPECIALISE_ANY` reads the uniforms: the generic pipeline the tests
+//! hold the specialised ones to. A new mode (another visibility source, a
+//! bias mode) is one more constant here and one more `*_mode()` in WGSL.
+
+use super::renderer::code;
+use super::scene_buffers::Vertex;
+use super::shadow::DEPTH_FORMAT;
+use crate::settings::{DebugView, Filter, Settings, Visibility};
+
+/// How a renderer runs its camera pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ShadeOptions {
+    /// One pipeline per view × filter × visibility source (the default), or
+    /// the generic one that branches on the uniforms.
+    pub specialised: bool,
+    /// Also write the aux target (V, texel density, cos θ, coverage) that the
+    /// probe, the error statistics and `Renderer::read_aux` read. Frames
+    /// nobody reads back (the app's interaction frames) skip it.
+    pub aux: bool,
+}
+
+impl Default for ShadeOptions {
+    fn default() -> Self {
+        Self {
+            specialised: true,
+            aux: true,
+        }
+    }
+}
+
+/// What one camera-pass pipeline is compiled for; None: any (read the uniform).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Specialisation {
+    pub view: Option<DebugView>,
+    pub filter: Option<Filter>,
+    pub visibility: Option<Visibility>,
+    /// Writes the aux target beside the quantity.
+    pub aux: bool,
+}
+
+impl Specialisation {
+    /// The pipeline a frame with `settings` uses.
+    pub fn for_frame(settings: &Settings, options: ShadeOptions) -> Self {
+        let pick = |on: bool| on && options.specialised;
+        Self {
+            view: pick(true).then_some(settings.view.mode),
+            // Without shadows the filter never runs: one pipeline serves all.
+            filter: pick(settings.shadow.enabled).then_some(settings.shadow.filter),
+            visibility: pick(true).then_some(settings.shadow.visibility),
+            aux: options.aux,
+        }
+    }
+
+    /// The override constants' values (absent ones keep SPECIALISE_ANY).
+    fn constants(&self) -> Vec<(&'static str, f64)> {
+        let mut constants = Vec::new();
+        if let Some(view) = self.view {
+            constants.push(("SPECIALISED_VIEW", code(DebugView::ALL, &view) as f64));
+        }
+        if let Some(filter) = self.filter {
+            constants.push(("SPECIALISED_FILTER", code(Filter::ALL, &filter) as f64));
+        }
+        if let Some(visibility) = self.visibility {
+            constants.push((
+                "SPECIALISED_VISIBILITY",
+                code(Visibility::ALL, &visibility) as f64,
+            ));
+        }
+        constants
+    }
+
+    /// A camera-pass pipeline for this specialisation.
+    pub(super) fn pipeline(
+        &self,
+        device: &wgpu::Device,
+        layout: &wgpu::PipelineLayout,
+        module: &wgpu::ShaderModule,
+        hdr_format: wgpu::TextureFormat,
+    ) -> wgpu::RenderPipeline {
+        let constants = self.constants();
+        let compilation_options = wgpu::PipelineCompilationOptions {
+            constants: &constants,
+            ..Default::default()
+        };
+        let both = [Some(hdr_format.into()), Some(hdr_format.into())];
+        let (entry_point, targets) = if self.aux {
+            ("fs", &both[..])
+        } else {
+            ("fs_quantity", &both[..1])
+        };
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(&format!("camera pass {self:?}")),
+            layout: Some(layout),
+            vertex: wgpu::VertexState {
+                module,
+                entry_point: Some("vs"),
+                compilation_options: Default::default(),
+                buffers: &[Some(Vertex::layout())],
+            },
+            fragment: Some(wgpu::FragmentState {
+                module,
+                entry_point: Some(entry_point),
+                compilation_options,
+                targets,
+            }),
+            // No culling: back faces are shaded to 0 (n·o ≤ 0), as in the reference.
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Greater),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            multiview_mask: None,
+            cache: None,
+        })
+    }
+}
