@@ -4,10 +4,24 @@
 //! `cargo bench --bench frame_cost` prints a Markdown table; times are medians
 //! of wall time around submit + wait, and of GPU timestamps where the adapter
 //! has them.
+//!
+//! A second table (`cargo bench --bench frame_cost -- interaction` prints it
+//! alone) gives what the lab's viewport costs while the user orbits: the
+//! generic and the specialised camera pass against a minimal flat-colour pass
+//! over the same geometry (their ratio), and the frame rate at the render
+//! scales the app drops to during interaction. Ratios are taken within one
+//! run, so a loaded machine slows both sides alike; the spread is over runs.
 
-use lumlab::gpu::{GpuContext, Renderer};
+use lumlab::gpu::{GpuContext, Renderer, ShadeOptions};
 use lumlab::settings::{Filter, Settings};
 use std::time::Instant;
+
+/// The lab's viewport in its default 1600×900 window, side panels open (0.68 Mpixel).
+const VIEWPORT: (u32, u32) = (1000, 680);
+/// Repeats of the interaction measurements, for their spread.
+const RUNS: usize = 5;
+/// Render scales of the interaction table (the app chooses among such).
+const SCALES: [f64; 4] = [1.0, 0.75, 0.5, 0.35];
 
 const SIZE: (u32, u32) = (1280, 720);
 const FRAMES: usize = 5;
@@ -37,11 +51,123 @@ fn measure(renderer: &mut Renderer, settings: &mut Settings, moving: bool) -> (f
     (median(wall), (!gpu.is_empty()).then(|| median(gpu)))
 }
 
+/// Median GPU time (ms) of the camera pass and of the whole frame, and the
+/// median wall time, over `FRAMES` orbiting frames (the camera turns, the
+/// shadow map is reused).
+fn orbit(renderer: &mut Renderer, settings: &mut Settings, size: (u32, u32)) -> (f64, f64, f64) {
+    renderer.render(settings, size);
+    renderer.wait_idle();
+    let _ = renderer.wait_timings();
+    let (mut shade, mut gpu, mut wall) = (Vec::new(), Vec::new(), Vec::new());
+    for frame in 0..FRAMES {
+        let turn = if frame % 2 == 0 { 0.02 } else { -0.02 };
+        settings.camera.eye = glam::Quat::from_rotation_y(turn) * settings.camera.eye;
+        let start = Instant::now();
+        renderer.render(settings, size);
+        renderer.wait_idle();
+        wall.push(start.elapsed().as_secs_f64() * 1e3);
+        if let Some(t) = renderer.wait_timings() {
+            shade.push(t.shade_ms.unwrap_or(0.0));
+            gpu.push(t.total_ms());
+        }
+    }
+    let or_wall = |v: Vec<f64>| {
+        if v.is_empty() {
+            median(wall.clone())
+        } else {
+            median(v)
+        }
+    };
+    (or_wall(shade), or_wall(gpu), median(wall))
+}
+
+/// "median (min–max)" of several runs.
+fn spread(values: &[f64]) -> String {
+    let min = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    format!("{:.1} ({min:.1}–{max:.1})", median(values.to_vec()))
+}
+
+fn scaled(size: (u32, u32), scale: f64) -> (u32, u32) {
+    let side = |n: u32| ((n as f64 * scale).round() as u32).max(1);
+    (side(size.0), side(size.1))
+}
+
+/// The interaction table: camera pass against the flat pass, and frames
+/// per second at each render scale, for the default settings and two filters.
+fn interaction(renderer: &mut Renderer) {
+    println!(
+        "viewport {}×{} ({:.2} Mpixel), default scene, medians of {FRAMES} orbiting frames; median (min–max) of {RUNS} runs\n",
+        VIEWPORT.0,
+        VIEWPORT.1,
+        (VIEWPORT.0 * VIEWPORT.1) as f64 / 1e6
+    );
+    let mut header = String::from(
+        "| filter | flat pass (ms) | shading, generic (ms) | shading, specialised (ms) | specialised / flat | generic / flat |",
+    );
+    let mut rule = String::from("|---|---|---|---|---|---|");
+    for scale in SCALES {
+        header += &format!(" frames/s at scale {scale} (frame ms) |");
+        rule += "---|";
+    }
+    println!("{header}\n{rule}");
+    for filter in [Settings::default().shadow.filter, Filter::Pcss] {
+        let mut columns: Vec<Vec<f64>> = vec![Vec::new(); 5 + 2 * SCALES.len()];
+        for _ in 0..RUNS {
+            let mut settings = Settings::default();
+            settings.shadow.filter = filter;
+            renderer.set_shade_options(ShadeOptions {
+                specialised: false,
+                aux: true,
+            });
+            let (generic, _, _) = orbit(renderer, &mut settings, VIEWPORT);
+            renderer.set_shade_options(ShadeOptions::default());
+            let (specialised, _, _) = orbit(renderer, &mut settings, VIEWPORT);
+            let flat = median((0..FRAMES).filter_map(|_| renderer.minimal_pass_ms()).collect());
+            for (column, value) in [flat, generic, specialised, specialised / flat, generic / flat]
+                .into_iter()
+                .enumerate()
+            {
+                columns[column].push(value);
+            }
+            // Interaction frames: specialised, without the aux target.
+            renderer.set_shade_options(ShadeOptions {
+                specialised: true,
+                aux: false,
+            });
+            for (k, scale) in SCALES.into_iter().enumerate() {
+                let (_, gpu_ms, wall_ms) = orbit(renderer, &mut settings, scaled(VIEWPORT, scale));
+                let frame_ms = gpu_ms.max(wall_ms);
+                columns[5 + 2 * k].push(1e3 / frame_ms);
+                columns[6 + 2 * k].push(frame_ms);
+            }
+            renderer.set_shade_options(ShadeOptions::default());
+        }
+        let mut row = format!("| {filter} |");
+        for column in &columns[..5] {
+            row += &format!(" {} |", spread(column));
+        }
+        for k in 0..SCALES.len() {
+            row += &format!(
+                " {} ({}) |",
+                spread(&columns[5 + 2 * k]),
+                spread(&columns[6 + 2 * k])
+            );
+        }
+        println!("{row}");
+    }
+    println!();
+}
+
 fn main() {
     let gpu = GpuContext::headless().unwrap_or_else(|e| panic!("{e}"));
     let scene = lumlab::scene::default_scene();
     let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
     println!("adapter: {}\n", gpu.describe());
+    interaction(&mut renderer);
+    if std::env::args().any(|a| a == "interaction") {
+        return;
+    }
     println!("| filter | shadow map | unchanged frame (ms) | light moved (ms) | moved / unchanged |");
     println!("|---|---|---|---|---|");
     for &filter in Filter::ALL {

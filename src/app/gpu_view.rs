@@ -6,9 +6,10 @@
 //! image size, the scene or the reference.
 
 use super::probe::{GpuSample, quantity_is_radiance};
-use crate::gpu::Capabilities;
+use super::render_scale::RenderScale;
 use crate::gpu::readback::ReadState;
 use crate::gpu::timing::PassTimes;
+use crate::gpu::{Capabilities, ShadeOptions};
 use crate::gpu::{ComparisonImage, FloatTarget, FrameReport, PendingScale, PendingTexels, Renderer};
 use crate::presets::Half;
 use crate::scene::Scene;
@@ -48,6 +49,8 @@ pub struct HalfView {
     pub render_cpu_ms: f64,
     /// Frames rendered so far (the lab renders only on change).
     pub renders: u64,
+    /// The render scale of the last frame (1: the viewport's full size).
+    rendered_scale: f64,
     /// Until when to keep polling for the last frame's GPU times.
     times_due: Option<Instant>,
     /// The false-colour scale of the displayed frame, once read back.
@@ -77,6 +80,10 @@ pub struct GpuViews {
     halves: [Option<HalfView>; 2],
     scene_generation: u64,
     caps: Capabilities,
+    /// Reduced while the user drags, full when idle.
+    pub render_scale: RenderScale,
+    /// This frame's render scale (see [`Self::begin_frame`]).
+    frame_scale: f64,
 }
 
 impl GpuViews {
@@ -94,6 +101,8 @@ impl GpuViews {
             halves: [Some(a), None],
             scene_generation: 0,
             caps,
+            render_scale: RenderScale::default(),
+            frame_scale: 1.0,
         }
     }
 
@@ -152,7 +161,16 @@ impl GpuViews {
         }
     }
 
-    /// Renders a half if what it shows changed; true when it did.
+    /// The render scale of this frame's images: reduced while `interacting`
+    /// (a drag), else 1. Frames rendered while interacting skip the aux
+    /// target: nothing reads them back.
+    pub fn begin_frame(&mut self, interacting: bool) -> f64 {
+        self.frame_scale = self.render_scale.begin_frame(interacting);
+        self.frame_scale
+    }
+
+    /// Renders a half if what it shows changed; true when it did. `size`:
+    /// the image size at this frame's render scale.
     pub fn prepare(&mut self, half: Half, settings: &Settings, size: (u32, u32)) -> bool {
         let Some(h) = &mut self.halves[half as usize] else {
             return false;
@@ -166,10 +184,18 @@ impl GpuViews {
         if h.rendered.as_ref() == Some(&key) {
             return false;
         }
+        h.renderer.set_shade_options(ShadeOptions {
+            aux: !self.render_scale.interacting,
+            ..Default::default()
+        });
         let start = Instant::now();
         h.report = h.renderer.render(settings, size);
         h.render_cpu_ms = start.elapsed().as_secs_f64() * 1e3;
         h.renders += 1;
+        h.rendered_scale = self.frame_scale;
+        if half == Half::A {
+            self.render_scale.rendered(self.frame_scale);
+        }
         if self.caps.timestamps {
             h.times_due = Some(Instant::now() + Duration::from_secs(1));
         }
@@ -183,6 +209,11 @@ impl GpuViews {
         true
     }
 
+    /// The render scale of a half's last frame (1: full resolution).
+    pub fn rendered_scale(&self, half: Half) -> f64 {
+        self.half(half).map_or(1.0, |h| h.rendered_scale)
+    }
+
     /// The texture showing a half's last frame.
     pub fn texture(&self, half: Half) -> Option<egui::TextureId> {
         self.halves[half as usize].as_ref().and_then(|h| h.texture)
@@ -191,8 +222,12 @@ impl GpuViews {
     /// Collects timings and scales without blocking; true while some are still on their way.
     pub fn poll(&mut self) -> bool {
         let mut waiting = false;
-        for h in self.halves.iter_mut().flatten() {
+        for (i, h) in self.halves.iter_mut().enumerate() {
+            let Some(h) = h else { continue };
             if let Some(t) = h.renderer.poll_timings() {
+                if i == Half::A as usize {
+                    self.render_scale.observe(h.rendered_scale, &t);
+                }
                 if let Some(shadow) = t.shadow_ms {
                     h.last_shadow_ms = Some(shadow + t.blur_ms.unwrap_or(0.0));
                 }
@@ -272,6 +307,7 @@ impl HalfView {
             last_shadow_ms: None,
             render_cpu_ms: 0.0,
             renders: 0,
+            rendered_scale: 1.0,
             times_due: None,
             scale: None,
             pending_scale: None,
@@ -311,8 +347,13 @@ impl HalfView {
         }
         let view = shown.create_view(&wgpu::TextureViewDescriptor::default());
         let mut renderer = render_state.renderer.write();
-        // Nearest: the image is rendered at the viewport's pixel size, one texel per pixel.
-        let filter = wgpu::FilterMode::Nearest;
+        // Nearest at full scale: one texel per pixel. Linear for the
+        // reduced images of interaction frames.
+        let filter = if self.rendered_scale < 1.0 {
+            wgpu::FilterMode::Linear
+        } else {
+            wgpu::FilterMode::Nearest
+        };
         match self.texture {
             Some(id) => renderer.update_egui_texture_from_wgpu_texture(device, &view, filter, id),
             None => self.texture = Some(renderer.register_native_texture(device, &view, filter)),

@@ -29,6 +29,7 @@ mod material;
 mod probe;
 mod recent;
 mod reference;
+mod render_scale;
 mod scene_panel;
 mod shadow;
 mod shortcuts;

@@ -2,6 +2,7 @@
 //! was redrawn, what was drawn into it, and the adapter.
 
 use super::gpu_view::GpuViews;
+use super::render_scale::{MIN_SCALE, RenderScale, TARGET_FPS};
 use super::widgets::{number, value_row};
 use crate::presets::Half;
 use egui::RichText;
@@ -34,6 +35,37 @@ impl FrameClock {
     }
 }
 
+/// The render scale and the frame rate while dragging.
+fn interaction_rows(ui: &mut egui::Ui, scale: &RenderScale) {
+    egui::Grid::new("interaction")
+        .num_columns(2)
+        .striped(true)
+        .show(ui, |ui| {
+            value_row(
+                ui,
+                "render scale",
+                &format!(
+                    "{} % {}",
+                    number(100.0 * scale.shown),
+                    if scale.shown < 1.0 { "(dragging)" } else { "(full)" }
+                ),
+                &format!(
+                    "Image side rendered / viewport side. While dragging, s = s_measured · √((budget − t_shadow) / t_pixels), \
+                     budget {} ms for {} frames/s, at least {} %; full resolution as soon as the drag ends",
+                    number(RenderScale::budget_ms()),
+                    number(TARGET_FPS),
+                    number(100.0 * MIN_SCALE)
+                ),
+            );
+            value_row(
+                ui,
+                "frames/s (drag)",
+                &scale.drag_fps.map_or_else(|| "—".into(), number),
+                "Frames rendered per second during the last drag: 1 / (time between frames), smoothed",
+            );
+        });
+}
+
 fn ms(value: Option<f64>) -> String {
     value.map_or_else(|| "—".into(), |v| format!("{} ms", number(v)))
 }
@@ -60,6 +92,7 @@ pub fn ui(ui: &mut egui::Ui, clock: &FrameClock, gpu: Option<&GpuViews>) {
         return;
     };
     let caps = gpu.capabilities();
+    interaction_rows(ui, &gpu.render_scale);
     for half in [Half::A, Half::B] {
         let Some(h) = gpu.half(half) else { continue };
         if gpu.half(Half::B).is_some() {

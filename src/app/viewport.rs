@@ -23,6 +23,8 @@ const GIZMO_RADIUS: f32 = 11.0;
 /// The gap between the two images side by side (points).
 const SIDE_BY_SIDE_GAP: f32 = 6.0;
 const LIGHT_YELLOW: Color32 = Color32::from_rgb(255, 214, 60);
+/// How soon a frame follows one shown at a reduced render scale.
+const PREVIEW_REPAINT: std::time::Duration = std::time::Duration::from_millis(50);
 
 pub struct Viewport<'a> {
     pub settings: &'a mut Settings,
@@ -51,6 +53,9 @@ pub struct ViewportResponse {
     pub rendered: [bool; 2],
     /// The camera, light or divider is being dragged.
     pub dragging: bool,
+    /// The image shown is an interaction frame at a reduced render scale:
+    /// nothing should be read back from it.
+    pub preview: bool,
 }
 
 impl Viewport<'_> {
@@ -270,9 +275,25 @@ impl Viewport<'_> {
             );
             return out;
         };
+        // While anything is dragged (here or a slider in a panel) the image
+        // is rendered at a reduced scale; the first frame after is full size.
+        let interacting = out.dragging || ui.ctx().dragged_id().is_some();
+        let scale = gpu.begin_frame(interacting);
+        let render_size = if scale < 1.0 {
+            let side = |n: u32| ((n as f64 * scale).round() as u32).max(1);
+            (side(size.0), side(size.1))
+        } else {
+            size
+        };
         for &half in halves {
-            let s = Self::render_settings(settings, split, half, size);
-            out.rendered[half as usize] = gpu.prepare(half, &s, size);
+            let s = Self::render_settings(settings, split, half, render_size);
+            out.rendered[half as usize] = gpu.prepare(half, &s, render_size);
+        }
+        out.preview = gpu.rendered_scale(Half::A) < 1.0;
+        if out.preview {
+            // Should the drag's end come without an event of its own, this
+            // repaint still brings the full-resolution frame.
+            ui.ctx().request_repaint_after(PREVIEW_REPAINT);
         }
         let whole = Rect::from_min_max(Pos2::ZERO, Pos2::new(1.0, 1.0));
         let part = |half: Half| -> (Rect, Rect) {

@@ -14,6 +14,7 @@ pub mod capabilities;
 pub mod colormap;
 pub mod context;
 pub mod display;
+pub mod flat;
 pub mod light_frustum;
 pub mod lines;
 pub mod readback;

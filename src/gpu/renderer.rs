@@ -7,6 +7,7 @@
 
 use super::capabilities::Capabilities;
 use super::display::{DisplayInputs, DisplayPass};
+use super::flat::{FlatTargets, time_flat_pass};
 use super::light_frustum::{Frustum, LayoutKind, ShadowLayout, shadow_apex};
 use super::lines::FrustumOverlay;
 use super::readback::{PendingRead, read_texture};
@@ -355,6 +356,27 @@ impl Renderer {
             self.overlay
                 .encode(encoder, &targets.display_view, &targets.depth_view);
         }
+    }
+
+    /// GPU time (ms) of a minimal flat-colour pass over the last frame's
+    /// geometry, camera and image size (see [`super::flat`]): the floor of
+    /// the camera pass's cost. Waits for the GPU; overwrites the quantity
+    /// target. None before the first frame.
+    pub fn minimal_pass_ms(&self) -> Option<f64> {
+        let targets = self.targets.as_ref()?;
+        let flat = FlatTargets {
+            color: &targets.quantity_view,
+            format: self.caps.hdr_format,
+            depth: &targets.depth_view,
+        };
+        let shared = lock(&self.shared);
+        Some(time_flat_pass(
+            &self.device,
+            &self.queue,
+            &shared.scene,
+            &self.shade.globals,
+            &flat,
+        ))
     }
 
     /// The display texture (8-bit sRGB) of the last frame.

@@ -126,6 +126,7 @@ impl LabApp {
             self.refresh_probe();
         } else if let Some(pixel) = self.probe.pixel
             && response.rendered[pixel.half as usize]
+            && !response.preview
         {
             // A resized viewport (a panel widened by the probe's own rows, or
             // the window) keeps the probe on the same point of the image.
@@ -141,6 +142,7 @@ impl LabApp {
             self.reference.stats = None;
             self.jobs.pending_frame = None;
             if fresh_reference
+                && !response.preview
                 && self.state.settings.view.mode == DebugView::Error
                 && let Some(gpu) = &self.gpu
             {

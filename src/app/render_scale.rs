@@ -1,0 +1,138 @@
+//! The viewport's render scale: while the user drags (the camera, the light,
+//! the divider, a slider) the image is rendered at a reduced scale chosen
+//! from the measured frame cost, so that frames stay fluid on a software
+//! adapter; as soon as the drag ends the next frame is full resolution
+//! (never a blurry still image).
+
+use crate::gpu::timing::PassTimes;
+use std::time::Instant;
+
+/// The frame rate aimed at while dragging (frames/s).
+pub const TARGET_FPS: f64 = 30.0;
+/// Share of a frame's budget left to the renderer's passes; the rest is
+/// egui's own drawing and the copy to the window.
+const RENDER_SHARE: f64 = 0.6;
+/// The smallest scale (per side): 1/16 of the pixels.
+pub const MIN_SCALE: f64 = 0.25;
+/// The scale used while dragging on adapters without GPU timestamps (no cost
+/// measured).
+const UNTIMED_SCALE: f64 = 0.5;
+/// Frame intervals longer than this (s) are pauses, not frame times.
+const PAUSE_S: f64 = 0.5;
+
+#[derive(Debug)]
+pub struct RenderScale {
+    /// The scale the next interaction frame uses, learned from the cost.
+    interactive: f64,
+    /// A drag is under way this frame.
+    pub interacting: bool,
+    /// The scale of the image shown (1 when idle).
+    pub shown: f64,
+    /// Frames per second while dragging (smoothed), once measured.
+    pub drag_fps: Option<f64>,
+    last_render: Option<Instant>,
+}
+
+impl Default for RenderScale {
+    fn default() -> Self {
+        Self {
+            interactive: UNTIMED_SCALE,
+            interacting: false,
+            shown: 1.0,
+            drag_fps: None,
+            last_render: None,
+        }
+    }
+}
+
+impl RenderScale {
+    /// The renderer's share of a frame at the target rate (ms).
+    pub fn budget_ms() -> f64 {
+        RENDER_SHARE * 1e3 / TARGET_FPS
+    }
+
+    /// The scale of this frame's image: reduced while `interacting`, else 1.
+    pub fn begin_frame(&mut self, interacting: bool) -> f64 {
+        self.interacting = interacting;
+        if interacting { self.interactive } else { 1.0 }
+    }
+
+    /// A frame was rendered at `scale` (its pixel size is what counts).
+    pub fn rendered(&mut self, scale: f64) {
+        let now = Instant::now();
+        if self.interacting
+            && let Some(last) = self.last_render
+        {
+            let interval_s = (now - last).as_secs_f64();
+            if interval_s > 0.0 && interval_s < PAUSE_S {
+                let fps = 1.0 / interval_s;
+                // Exponential smoothing over about four frames.
+                self.drag_fps = Some(self.drag_fps.map_or(fps, |f| 0.75 * f + 0.25 * fps));
+            }
+        }
+        self.last_render = Some(now);
+        self.shown = scale;
+    }
+
+    /// GPU times of a frame rendered at `scale` came back: the next
+    /// interaction scale s follows from the cost model
+    /// t(s) = t_fixed + t_pixels · (s / scale)², where t_fixed (the shadow
+    /// map and its blur) does not depend on the image size and t_pixels (the
+    /// camera and display passes) is proportional to its pixel count:
+    /// s = scale · √((budget − t_fixed) / t_pixels), within [MIN_SCALE, 1].
+    pub fn observe(&mut self, scale: f64, times: &PassTimes) {
+        let fixed_ms = times.shadow_ms.unwrap_or(0.0) + times.blur_ms.unwrap_or(0.0);
+        let pixels_ms = times.shade_ms.unwrap_or(0.0) + times.display_ms.unwrap_or(0.0);
+        if !(pixels_ms > 0.0 && scale > 0.0) {
+            return;
+        }
+        let room_ms = (Self::budget_ms() - fixed_ms).max(0.0);
+        let ideal = scale * (room_ms / pixels_ms).sqrt();
+        self.interactive = ideal.clamp(MIN_SCALE, 1.0);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn times(shadow: f64, shade: f64) -> PassTimes {
+        PassTimes {
+            shadow_ms: Some(shadow),
+            shade_ms: Some(shade),
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn the_scale_fits_the_pixel_cost_into_the_budget() {
+        let mut scale = RenderScale::default();
+        // A full frame 4× over the budget: half the side, a quarter of the pixels.
+        scale.observe(1.0, &times(0.0, 4.0 * RenderScale::budget_ms()));
+        assert!((scale.begin_frame(true) - 0.5).abs() < 1e-12);
+        // Measured at that scale on budget: it stays.
+        scale.observe(0.5, &times(0.0, RenderScale::budget_ms()));
+        assert!((scale.begin_frame(true) - 0.5).abs() < 1e-12);
+        // A fixed cost (the shadow map) leaves less room for pixels.
+        scale.observe(
+            1.0,
+            &times(0.75 * RenderScale::budget_ms(), RenderScale::budget_ms()),
+        );
+        assert!((scale.begin_frame(true) - 0.5).abs() < 1e-12);
+        assert_eq!(scale.begin_frame(false), 1.0, "idle frames are full resolution");
+    }
+
+    #[test]
+    fn the_scale_keeps_to_its_floor_and_ceiling() {
+        let mut scale = RenderScale::default();
+        scale.observe(1.0, &times(0.0, 1e6));
+        assert_eq!(scale.begin_frame(true), MIN_SCALE);
+        scale.observe(1.0, &times(0.0, 1e-3));
+        assert_eq!(scale.begin_frame(true), 1.0);
+        scale.observe(1.0, &times(1e6, 1.0));
+        assert_eq!(scale.begin_frame(true), MIN_SCALE);
+        // Nothing measured: unchanged.
+        scale.observe(1.0, &PassTimes::default());
+        assert_eq!(scale.begin_frame(true), MIN_SCALE);
+    }
+}

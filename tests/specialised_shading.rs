@@ -1,0 +1,79 @@
+//! The camera pass specialised per view × filter (one pipeline each, the
+//! other cases compiled away) gives the pixels of the generic pipeline that
+//! branches on the uniforms, and the pipeline without the aux target gives
+//! the same quantity and displayed image. Every specialisation is compiled
+//! and drawn. Tests elsewhere hold the (specialised) renderer to the f64
+//! physics and the CPU reference.
+
+mod common;
+
+use common::*;
+use lumlab::gpu::{Renderer, ShadeOptions};
+use lumlab::settings::{DebugView, Filter};
+
+/// Largest |a − b| / max(1, |b|) over every channel: the targets are
+/// half floats (relative step 2⁻¹¹), so equal shading agrees to a few of those.
+fn worst_difference(a: &[[f32; 4]], b: &[[f32; 4]]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter()
+        .zip(b)
+        .flat_map(|(x, y)| (0..4).map(move |c| (x[c] as f64, y[c] as f64)))
+        .map(|(x, y)| (x - y).abs() / y.abs().max(1.0))
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
+    let gpu = gpu();
+    let scene = lumlab::scene::default_scene();
+    let mut generic = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    generic.set_shade_options(ShadeOptions {
+        specialised: false,
+        aux: true,
+    });
+    // Shares the generic renderer's shadow maps: the same V inputs.
+    let mut specialised = generic.sharing();
+    let size = (64, 48);
+    for &filter in Filter::ALL {
+        let mut shaded_views = Vec::new();
+        for &view in DebugView::ALL {
+            let mut s = lumlab::settings::Settings::default();
+            s.shadow.filter = filter;
+            s.light.radius_m = 0.2;
+            s.view.mode = view;
+            generic.render(&s, size);
+            let (q0, a0) = (generic.read_quantity(), generic.read_aux());
+            specialised.set_shade_options(ShadeOptions::default());
+            specialised.render(&s, size);
+            let (q1, a1) = (specialised.read_quantity(), specialised.read_aux());
+            let what = format!("{filter} × {view}");
+            assert!(a0.iter().any(|t| t[3] > 0.0), "{what}: the scene is in view");
+            assert!(worst_difference(&q1, &q0) < 2e-3, "{what}: quantity");
+            assert!(worst_difference(&a1, &a0) < 2e-3, "{what}: aux");
+            let display = specialised.read_display();
+            // Without the aux target: the same quantity and the same image.
+            specialised.set_shade_options(ShadeOptions {
+                specialised: true,
+                aux: false,
+            });
+            specialised.render(&s, size);
+            assert!(
+                worst_difference(&specialised.read_quantity(), &q1) < 2e-3,
+                "{what}: no aux"
+            );
+            assert!(
+                specialised.read_display() == display,
+                "{what}: displayed without aux"
+            );
+            shaded_views.push(q0);
+        }
+        // The views differ: a pipeline that ignored its view would not pass.
+        let distinct = (1..shaded_views.len())
+            .filter(|&i| worst_difference(&shaded_views[i], &shaded_views[0]) > 1e-2)
+            .count();
+        assert!(
+            distinct >= 6,
+            "{filter}: only {distinct} views differ from shaded"
+        );
+    }
+}
