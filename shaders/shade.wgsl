@@ -151,8 +151,8 @@ struct FsOut {
     @location(1) aux: vec4<f32>,
 }
 
-@fragment
-fn fs(in: VsOut, @builtin(front_facing) front_facing: bool) -> FsOut {
+// Both targets of a fragment; the entry points below write what they need.
+fn shade_fragment(in: VsOut, front_facing: bool) -> FsOut {
     let s = surface_at(in, front_facing);
     let incidence = light_incidence(globals.light_rel - in.rel, s.n);
     // The shadow map's own apex: the light, or a far light's stand-in.
@@ -166,9 +166,14 @@ fn fs(in: VsOut, @builtin(front_facing) front_facing: bool) -> FsOut {
     return out;
 }
 
+@fragment
+fn fs(in: VsOut, @builtin(front_facing) front_facing: bool) -> FsOut {
+    return shade_fragment(in, front_facing);
+}
+
 // The same pass writing the quantity only (interaction frames, where nothing
 // reads V or the texel density back): the aux terms are never computed.
 @fragment
 fn fs_quantity(in: VsOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
-    return fs(in, front_facing).quantity;
+    return shade_fragment(in, front_facing).quantity;
 }

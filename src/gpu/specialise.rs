@@ -46,12 +46,12 @@ pub struct Specialisation {
 impl Specialisation {
     /// The pipeline a frame with `settings` uses.
     pub fn for_frame(settings: &Settings, options: ShadeOptions) -> Self {
-        let pick = |on: bool| on && options.specialised;
+        let on = options.specialised;
         Self {
-            view: pick(true).then_some(settings.view.mode),
+            view: on.then_some(settings.view.mode),
             // Without shadows the filter never runs: one pipeline serves all.
-            filter: pick(settings.shadow.enabled).then_some(settings.shadow.filter),
-            visibility: pick(true).then_some(settings.shadow.visibility),
+            filter: (on && settings.shadow.enabled).then_some(settings.shadow.filter),
+            visibility: on.then_some(settings.shadow.visibility),
             aux: options.aux,
         }
     }
