@@ -3,8 +3,8 @@
 //! repaint asked for, so the sharp image comes without another event).
 
 mod app_support;
-use app_support::harness;
-use egui::{Event, Modifiers, PointerButton};
+use app_support::{harness, primary_button};
+use egui::Event;
 
 /// The size (pixels) of half A's last rendered image.
 fn rendered_size(harness: &egui_kittest::Harness<'_, lumlab::app::LabApp>) -> (u32, u32) {
@@ -30,12 +30,7 @@ fn dragging_renders_at_a_reduced_scale_and_releasing_returns_to_full_resolution(
     let from = rect.center();
     harness.event(Event::PointerMoved(from));
     harness.step();
-    harness.event(Event::PointerButton {
-        pos: from,
-        button: PointerButton::Primary,
-        pressed: true,
-        modifiers: Modifiers::NONE,
-    });
+    primary_button(&mut harness, from, true);
     harness.step();
     let mut to = from;
     for _ in 0..5 {
@@ -56,12 +51,7 @@ fn dragging_renders_at_a_reduced_scale_and_releasing_returns_to_full_resolution(
     }
     let orbited = harness.state().settings().camera;
     let renders = harness.state().renders();
-    harness.event(Event::PointerButton {
-        pos: to,
-        button: PointerButton::Primary,
-        pressed: false,
-        modifiers: Modifiers::NONE,
-    });
+    primary_button(&mut harness, to, false);
     harness.step();
     if rendered_size(&harness) != full {
         // The release frame was still an interaction frame: it must ask for

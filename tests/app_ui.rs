@@ -168,15 +168,9 @@ fn lumlab_number(x: f64) -> String {
 }
 
 fn click_at(harness: &mut Harness<'_, LabApp>, pos: egui::Pos2) {
-    use egui::{Event, Modifiers, PointerButton};
-    harness.event(Event::PointerMoved(pos));
+    harness.event(egui::Event::PointerMoved(pos));
     for pressed in [true, false] {
-        harness.event(Event::PointerButton {
-            pos,
-            button: PointerButton::Primary,
-            pressed,
-            modifiers: Modifiers::NONE,
-        });
+        app_support::primary_button(harness, pos, pressed);
     }
     harness.step();
 }

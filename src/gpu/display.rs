@@ -84,14 +84,7 @@ impl DisplayPass {
             compilation_options: Default::default(),
             cache: None,
         });
-        let buffer = |label: &str, usage| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: 16,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
+        let buffer = |label: &str, usage| binding::buffer(device, label, 16, usage);
         Self {
             params: uniform_buffer::<DisplayParamsRaw>(device, "display params"),
             scale: buffer(

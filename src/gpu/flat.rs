@@ -8,7 +8,7 @@ use super::binding;
 use super::readback::map_and_read;
 use super::scene_buffers::{GpuScene, Vertex};
 use super::shaders::with_common;
-use super::shadow::DEPTH_FORMAT;
+use super::specialise::camera_depth_test;
 use std::time::Instant;
 
 const FLAT_WGSL: &str = "
@@ -68,13 +68,7 @@ pub(super) fn time_flat_pass(
             targets: &[Some(targets.format.into())],
         }),
         primitive: wgpu::PrimitiveState::default(),
-        depth_stencil: Some(wgpu::DepthStencilState {
-            format: DEPTH_FORMAT,
-            depth_write_enabled: Some(true),
-            depth_compare: Some(wgpu::CompareFunction::Greater),
-            stencil: Default::default(),
-            bias: Default::default(),
-        }),
+        depth_stencil: Some(camera_depth_test()),
         multisample: Default::default(),
         multiview_mask: None,
         cache: None,
@@ -89,22 +83,9 @@ pub(super) fn time_flat_pass(
                 count: 2,
             })
         });
-    let buffer = |label: &str, usage| {
-        device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(label),
-            size: 16,
-            usage,
-            mapped_at_creation: false,
-        })
-    };
-    let resolve = buffer(
-        "flat pass resolve",
-        wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-    );
-    let readback = buffer(
-        "flat pass readback",
-        wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-    );
+    use wgpu::BufferUsages as U;
+    let resolve = binding::buffer(device, "flat pass resolve", 16, U::QUERY_RESOLVE | U::COPY_SRC);
+    let readback = binding::buffer(device, "flat pass readback", 16, U::MAP_READ | U::COPY_DST);
     let mut encoder = device.create_command_encoder(&Default::default());
     {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {

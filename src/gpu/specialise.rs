@@ -110,16 +110,21 @@ impl Specialisation {
             }),
             // No culling: back faces are shaded to 0 (n·o ≤ 0), as in the reference.
             primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Greater),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
+            depth_stencil: Some(camera_depth_test()),
             multisample: Default::default(),
             multiview_mask: None,
             cache: None,
         })
+    }
+}
+
+/// The camera's depth test: reversed Z, nearest wins (the flat pass shares it).
+pub(super) fn camera_depth_test() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(true),
+        depth_compare: Some(wgpu::CompareFunction::Greater),
+        stencil: Default::default(),
+        bias: Default::default(),
     }
 }

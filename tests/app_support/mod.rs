@@ -58,3 +58,13 @@ pub fn step_until(harness: &mut Harness<'_, LabApp>, what: &str, done: impl Fn(&
     }
     panic!("timed out waiting for {what}");
 }
+
+/// Presses or releases the primary button at `pos` (the next step sees it).
+pub fn primary_button(harness: &mut Harness<'_, LabApp>, pos: egui::Pos2, pressed: bool) {
+    harness.event(egui::Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: egui::Modifiers::NONE,
+    });
+}
