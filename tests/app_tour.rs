@@ -107,8 +107,13 @@ fn every_step_sets_its_settings_opens_its_panel_and_shows_the_physics() {
             "step {}: {value} against {truth}",
             step.id
         );
-        let text = step.observe.format(truth, lumlab::i18n::current());
-        harness.get_by_label_contains(&text);
+        // In either language: another test switches to French meanwhile.
+        let shown = Language::ALL.iter().any(|&language| {
+            let number = step.observe.format(truth, language);
+            let sentence = step.text(language).observe_with(&number);
+            harness.query_by_label(&sentence).is_some()
+        });
+        assert!(shown, "step {}: the number {truth} is not shown", step.id);
         // One undo step: Ctrl+Z brings the settings before the step back.
         if before != harness.state().settings().clone() {
             harness.state_mut().emit(Command::Undo);
@@ -214,12 +219,27 @@ fn the_lecture_panel_speaks_french() {
     harness.run();
     let step = &tour.steps[index];
     harness.get_by_label(&step.text(Language::Fr).title);
-    harness.get_by_label("Suivant →");
+    harness.get_by_label("Suivant ▶");
     // A decimal comma: 1,075.
     harness.get_by_label_contains("1,075");
     lumlab::i18n::set_current(Language::En);
     harness.run();
     harness.get_by_label(&step.text(Language::En).title);
+    // Every word of every step can be drawn with the lab's fonts.
+    let font = egui::FontId::proportional(20.0);
+    for step in &tour.steps {
+        for language in Language::ALL {
+            let t = step.text(language);
+            for text in [&t.title, &t.text, &t.formula, &t.observe, &t.question] {
+                let drawable = harness.ctx.fonts_mut(|f| f.has_glyphs(&font, text));
+                assert!(
+                    drawable,
+                    "{} ({language:?}): a glyph is missing in {text}",
+                    step.id
+                );
+            }
+        }
+    }
 }
 
 /// The error of `text` as a tour file.

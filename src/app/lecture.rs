@@ -97,23 +97,27 @@ struct Chrome {
     observe: &'static str,
     question: &'static str,
     close: &'static str,
+    /// The step list's name.
+    steps: &'static str,
 }
 
 fn chrome(language: Language) -> Chrome {
     match language {
         Language::Fr => Chrome {
-            previous: "← Précédent",
-            next: "Suivant →",
+            previous: "◀ Précédent",
+            next: "Suivant ▶",
             observe: "À observer :",
             question: "Question :",
             close: "Fermer",
+            steps: "Étapes",
         },
         Language::En => Chrome {
-            previous: "← Previous",
-            next: "Next →",
+            previous: "◀ Previous",
+            next: "Next ▶",
             observe: "Observe:",
             question: "Question:",
             close: "Close",
+            steps: "Steps",
         },
     }
 }
@@ -205,7 +209,7 @@ impl LecturePanel {
             if ui.add_enabled(i > 0, egui::Button::new(words.previous)).clicked() {
                 command = Some(Command::TourStep(i - 1));
             }
-            egui::ComboBox::from_id_salt("tour step")
+            egui::ComboBox::new("tour step", words.steps)
                 .selected_text(format!("{} / {count}", i + 1))
                 .show_ui(ui, |ui| {
                     for (j, s) in self.tour.steps.iter().enumerate() {

@@ -342,17 +342,17 @@ fn describe_error(text: &str, error: &toml::de::Error) -> String {
         return detail;
     };
     let before = &text[..span.start.min(text.len())];
-    let headers: Vec<usize> = text
+    // Where each step's table begins: a `[[step]]` line (not a comment).
+    let starts: Vec<usize> = text
         .match_indices("[[step]]")
         .map(|(at, _)| at)
-        .filter(|&at| at < before.len())
+        .filter(|&at| text[..at].ends_with('\n') || at == 0)
         .collect();
+    let headers: Vec<usize> = starts.iter().copied().filter(|&at| at < before.len()).collect();
     let Some(&start) = headers.last() else {
         return detail;
     };
-    let end = text[start + 1..]
-        .find("[[step]]")
-        .map_or(text.len(), |e| start + 1 + e);
+    let end = starts.get(headers.len()).copied().unwrap_or(text.len());
     let id = text[start..end].lines().find_map(|line| {
         let (key, value) = line.split_once('=')?;
         (key.trim() == "id").then(|| value.trim().trim_matches('"').to_string())
