@@ -238,34 +238,32 @@ impl LecturePanel {
         });
         ui.separator();
         let number = value.map_or_else(|| "—".into(), |v| step.observe.format(v, language));
-        egui::ScrollArea::vertical().show(ui, |ui| {
-            ui.columns(2, |columns| {
-                let [left, right] = columns else { return };
-                left.label(RichText::new(&text.text).size(TEXT_PT));
-                left.add_space(6.0);
-                egui::Frame::group(left.style()).show(left, |ui| {
-                    ui.label(
-                        RichText::new(&text.formula)
-                            .font(FontId::new(FORMULA_PT, FontFamily::Proportional))
-                            .strong(),
-                    );
-                });
-                right.label(
-                    RichText::new(words.observe)
-                        .size(TEXT_PT)
-                        .strong()
-                        .color(HIGHLIGHT),
+        ui.columns(2, |columns| {
+            let [left, right] = columns else { return };
+            left.label(RichText::new(&text.text).size(TEXT_PT));
+            left.add_space(6.0);
+            egui::Frame::group(left.style()).show(left, |ui| {
+                ui.label(
+                    RichText::new(&text.formula)
+                        .font(FontId::new(FORMULA_PT, FontFamily::Proportional))
+                        .strong(),
                 );
-                right.label(RichText::new(text.observe_with(&number)).size(TEXT_PT));
-                right.add_space(10.0);
-                right.label(
-                    RichText::new(words.question)
-                        .size(TEXT_PT)
-                        .strong()
-                        .color(HIGHLIGHT),
-                );
-                right.label(RichText::new(&text.question).size(TEXT_PT).italics());
             });
+            right.label(
+                RichText::new(words.observe)
+                    .size(TEXT_PT)
+                    .strong()
+                    .color(HIGHLIGHT),
+            );
+            right.label(RichText::new(text.observe_with(&number)).size(TEXT_PT));
+            right.add_space(10.0);
+            right.label(
+                RichText::new(words.question)
+                    .size(TEXT_PT)
+                    .strong()
+                    .color(HIGHLIGHT),
+            );
+            right.label(RichText::new(&text.question).size(TEXT_PT).italics());
         });
         command
     }

@@ -15,9 +15,9 @@ use glam::{Vec3, Vec4};
 /// The exponents m of the row, left to right.
 pub const EXPONENTS: [f32; 5] = [1.0, 8.0, 32.0, 128.0, 1000.0];
 /// Radius of each sphere (m).
-pub const SPHERE_RADIUS_M: f32 = 0.4;
+pub const SPHERE_RADIUS_M: f32 = 0.35;
 /// Distance between the centres of neighbouring spheres (m).
-pub const SPACING_M: f32 = 1.0;
+pub const SPACING_M: f32 = 0.85;
 /// Fine tessellation: interpolated normals keep even m = 1000's small
 /// highlight round.
 pub const SPHERE_SEGMENTS: u32 = 96;
@@ -33,7 +33,8 @@ pub const GROUND_COLOR: [f32; 3] = [0.25, 0.25, 0.27];
 pub const GROUND_K: f32 = 0.9;
 pub const GROUND_M: f32 = 16.0;
 
-/// The view of the row: in front, a little above, the row filling the width.
+/// The view of the row: in front, a little above; the row still fits the
+/// width of one half of the split view side by side.
 pub const HOME: Camera = Camera {
     eye: Vec3::new(0.0, 1.5, 5.0),
     target: Vec3::new(0.0, 0.35, 0.0),

@@ -76,10 +76,9 @@ impl LabApp {
         if !self.state.panels.lecture {
             return;
         }
+        // As tall as the step's words: nothing of them is ever cut off.
         egui::Panel::bottom("lecture panel")
-            .resizable(true)
-            .default_size(270.0)
-            .size_range(150.0..=600.0)
+            .resizable(false)
             .show(ui, |ui| {
                 let panels = self.state.panels;
                 if let Some(command) = self.lecture.ui(ui, &self.state.settings, panels) {
