@@ -5,36 +5,19 @@
 //! step's words.
 
 use egui_kittest::kittest::{NodeT, Queryable};
-use lumlab::app::{Command, SplitLayout};
+use lumlab::app::{Command, SplitLayout, panel_title as title};
 use lumlab::i18n::Language;
 use lumlab::physics::energy::directional_albedo;
 use lumlab::physics::radiometry::{incidence, intensity, sphere_irradiance, sphere_radiance};
 use lumlab::physics::{BrdfParams, Normalization};
 use lumlab::presets::ComparisonAxis;
 use lumlab::settings::{BiasMode, DebugView, Filter, Settings};
-use lumlab::tour::{Observe, Panel, Tour, TourScene};
+use lumlab::tour::{Observe, Tour, TourScene};
 use std::f64::consts::PI;
 use std::path::Path;
 
 mod app_support;
 use app_support::harness;
-
-/// The sections' titles, as a user reads them.
-fn title(panel: Panel) -> &'static str {
-    match panel {
-        Panel::Experiments => "Experiments",
-        Panel::Scene => "Scene",
-        Panel::Light => "Light",
-        Panel::Material => "Material",
-        Panel::Shadow => "Shadow",
-        Panel::View => "View",
-        Panel::Files => "Files",
-        Panel::Probe => "Pixel probe",
-        Panel::Energy => "Energy: albedo a(θ)",
-        Panel::Reference => "Reference and error",
-        Panel::Timings => "Timings",
-    }
-}
 
 /// The observed quantity computed here from `physics` and `colour`
 /// directly, from the settings the app shows.

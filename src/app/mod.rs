@@ -44,6 +44,7 @@ mod widgets;
 pub use command::Command;
 pub use files::FileAction;
 pub use lab::LabApp;
+pub use lecture::panel_title;
 pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
 pub use reference::{ErrorStats, ReferenceFn};
 pub use shortcuts::{GESTURES, SHORTCUTS, Shortcut};

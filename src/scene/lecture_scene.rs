@@ -122,6 +122,6 @@ mod tests {
                 );
             }
         }
-        assert!(SPACING_M > 2.0 * SPHERE_RADIUS_M);
+        const { assert!(SPACING_M > 2.0 * SPHERE_RADIUS_M) };
     }
 }

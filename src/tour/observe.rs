@@ -157,7 +157,7 @@ mod tests {
         assert_eq!(format_number(79.577), "79.58");
         assert_eq!(format_number(1234.6), "1235");
         assert_eq!(format_number(0.0), "0");
-        assert_eq!(format_number(0.31831), "0.3183");
+        assert_eq!(format_number(0.24687), "0.2469");
         assert_eq!(format_number(2.5e7), "2.500e7");
     }
 
