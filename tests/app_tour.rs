@@ -19,6 +19,12 @@ use std::path::Path;
 mod app_support;
 use app_support::harness;
 
+/// Frames enough for a step's scene, panels and grids to settle (a grid
+/// takes a few frames to find its size when the panels change).
+fn settle(harness: &mut egui_kittest::Harness<'_, lumlab::app::LabApp>) {
+    harness.run_steps(12);
+}
+
 /// The observed quantity computed here from `physics` and `colour`
 /// directly, from the settings the app shows.
 fn expected(observe: &Observe, s: &Settings) -> f64 {
@@ -64,7 +70,7 @@ fn every_step_sets_its_settings_opens_its_panel_and_shows_the_physics() {
     for (i, step) in tour.steps.iter().enumerate() {
         let before = harness.state().settings().clone();
         harness.state_mut().emit(Command::TourStep(i));
-        harness.run();
+        settle(&mut harness);
         let app = harness.state();
         let shown = Settings {
             image: step.settings.image,
@@ -90,7 +96,6 @@ fn every_step_sets_its_settings_opens_its_panel_and_shows_the_physics() {
             "step {}: {value} against {truth}",
             step.id
         );
-        // In either language: another test switches to French meanwhile.
         let shown = Language::ALL.iter().any(|&language| {
             let number = step.observe.format(truth, language);
             let sentence = step.text(language).observe_with(&number);
@@ -100,12 +105,13 @@ fn every_step_sets_its_settings_opens_its_panel_and_shows_the_physics() {
         // One undo step: Ctrl+Z brings the settings before the step back.
         if before != harness.state().settings().clone() {
             harness.state_mut().emit(Command::Undo);
-            harness.run();
+            settle(&mut harness);
             assert_eq!(harness.state().settings(), &before, "undo of {}", step.id);
             harness.state_mut().emit(Command::Redo);
-            harness.run();
+            settle(&mut harness);
         }
     }
+    the_lecture_panel_speaks_french();
 }
 
 #[test]
@@ -159,7 +165,7 @@ fn a_side_by_side_step_shows_two_images_of_the_spheres() {
     let mut harness = harness();
     let index = step_index(harness.state().tour(), "with-without");
     harness.state_mut().emit(Command::TourStep(index));
-    harness.run();
+    settle(&mut harness);
     let split = harness.state_mut().state_mut().split;
     assert!(split.enabled);
     assert_eq!(split.layout, SplitLayout::SideBySide);
@@ -192,21 +198,23 @@ fn both_languages_have_every_steps_words() {
     }
 }
 
-#[test]
+/// The lecture panel in French, then in English again; every word of
+/// every step drawable. Called by the walk through every step: the
+/// language is process-wide, so no other test may switch it meanwhile.
 fn the_lecture_panel_speaks_french() {
     let mut harness = harness();
     let tour = harness.state().tour().clone();
     let index = step_index(&tour, "phong-approx");
     lumlab::i18n::set_current(Language::Fr);
     harness.state_mut().emit(Command::TourStep(index));
-    harness.run();
+    settle(&mut harness);
     let step = &tour.steps[index];
     harness.get_by_label(&step.text(Language::Fr).title);
     harness.get_by_label("Suivant ▶");
     // A decimal comma: 1,075.
     harness.get_by_label_contains("1,075");
     lumlab::i18n::set_current(Language::En);
-    harness.run();
+    settle(&mut harness);
     harness.get_by_label(&step.text(Language::En).title);
     // Every word of every step can be drawn with the lab's fonts.
     let font = egui::FontId::proportional(20.0);
