@@ -4,7 +4,7 @@
 //! user-settable value; `scene` what is drawn; `cli` the command line;
 //! `stability` the hard cases where direct lighting breaks numerically;
 //! `app` the window (the only module that knows egui); `i18n` the language
-//! of its text (French or English); `presets` the lecture's experiments.
+//! of its text (French or English); `presets` the lecture's experiments; `tour` the lecture step by step.
 
 #[macro_use]
 mod named;
@@ -25,3 +25,4 @@ pub mod report;
 pub mod scene;
 pub mod settings;
 pub mod stability;
+pub mod tour;

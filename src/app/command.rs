@@ -69,6 +69,10 @@ pub enum Command {
     TogglePanels,
     /// Default settings, split and panels, the built-in scene (paths kept).
     ResetEverything,
+    /// Goes to step i of the lecture tour: its scene, and its settings,
+    /// camera and view as one undo step; its split view; its panel opened
+    /// and highlighted.
+    TourStep(usize),
 }
 
 /// What a command needs to know of the scene shown.

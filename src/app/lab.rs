@@ -14,11 +14,13 @@ mod desktop;
 mod image;
 mod jobs;
 mod panels;
+mod tour;
 
 use super::command::{Command, SceneView};
 use super::energy::EnergyPanel;
 use super::files::FilesPanel;
 use super::gpu_view::GpuViews;
+use super::lecture::LecturePanel;
 use super::probe::Probe;
 use super::reference::ReferencePanel;
 use super::state::State;
@@ -60,6 +62,8 @@ pub struct LabApp {
     reference: ReferencePanel,
     reference_generation: u64,
     files: FilesPanel,
+    /// The lecture tour and the step shown.
+    lecture: LecturePanel,
     toasts: Toasts,
     /// The settings as in the settings file last loaded or saved (the
     /// title's mark compares with them); None before any.
@@ -159,6 +163,21 @@ impl LabApp {
             return Err("eframe started without the wgpu renderer".into());
         }
         let script = scripted.then(|| Script::new(options));
+        let mut queue = Vec::new();
+        let tour = match preloaded.tour {
+            Some(tour) => {
+                // `--tour`: the lecture opens at its first step.
+                queue.push(Command::TourStep(0));
+                tour
+            }
+            None => crate::tour::Tour::built_in().unwrap_or_else(|e| {
+                status = Some(Status {
+                    text: e.to_string(),
+                    error: true,
+                });
+                crate::tour::Tour { steps: Vec::new() }
+            }),
+        };
         let saved = Settings::load(Path::new(state.paths.settings_file.trim())).ok();
         Ok(Self {
             undo: UndoStack::new(&state.settings),
@@ -174,6 +193,7 @@ impl LabApp {
             reference: ReferencePanel::default(),
             reference_generation: 1,
             files: FilesPanel::default(),
+            lecture: LecturePanel::new(tour),
             toasts: Toasts::default(),
             saved,
             title_sent: None,
@@ -187,7 +207,7 @@ impl LabApp {
             viewport_size: (0, 0),
             viewport_rect: egui::Rect::NOTHING,
             styled: false,
-            queue: Vec::new(),
+            queue,
             applied: VecDeque::new(),
             impossible: None,
         })
@@ -304,6 +324,7 @@ impl LabApp {
 
         egui::Panel::top("top bar").show(ui, |ui| self.top_bar(ui));
         egui::Panel::bottom("status bar").show(ui, |ui| self.status_bar(ui));
+        self.lecture_panel(ui);
         self.side_panels(ui);
         self.apply_queued(&ctx);
         self.sync_ground();
@@ -388,13 +409,6 @@ fn adopt_scene(settings: &mut Settings, path: Option<&Path>, scene: &Scene) {
         crate::scene::framing::adopt(settings, scene);
     }
     settings.scene = path.map(Path::to_path_buf);
-}
-
-/// A collapsible section of a side panel, its title in heading size.
-fn section(ui: &mut egui::Ui, title: &str, open: bool, add: impl FnOnce(&mut egui::Ui)) {
-    egui::CollapsingHeader::new(egui::RichText::new(title).heading())
-        .default_open(open)
-        .show(ui, add);
 }
 
 fn display_name(path: &Path) -> String {

@@ -23,6 +23,7 @@ mod files;
 mod gpu_view;
 pub mod icon;
 mod lab;
+mod lecture;
 mod legend;
 mod light;
 mod material;
@@ -44,6 +45,7 @@ mod widgets;
 pub use command::Command;
 pub use files::FileAction;
 pub use lab::LabApp;
+pub use lecture::panel_title;
 pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
 pub use reference::{ErrorStats, ReferenceFn};
 pub use shortcuts::{GESTURES, SHORTCUTS, Shortcut};
@@ -71,6 +73,9 @@ pub struct LaunchOptions {
     pub screenshot: Option<PathBuf>,
     /// `--quit-after-frames N`: quit (or take the screenshot) after N frames.
     pub quit_after_frames: Option<u32>,
+    /// `--tour [FILE]`: open at the first step of the lecture tour (None
+    /// inside: the built-in tour).
+    pub tour: Option<Option<PathBuf>>,
 }
 
 impl LaunchOptions {
@@ -86,9 +91,12 @@ impl LaunchOptions {
 
 /// What the flags name, loaded before any window opens so that a bad file
 /// is a one-line error.
+#[derive(Default)]
 pub struct Preloaded {
     pub settings: Option<Settings>,
     pub scene: Option<(PathBuf, Scene)>,
+    /// The tour `--tour` asked for.
+    pub tour: Option<crate::tour::Tour>,
 }
 
 /// Reads the settings and scene files the options name.
@@ -119,7 +127,16 @@ pub fn preload(options: &LaunchOptions) -> anyhow::Result<Preloaded> {
             }
         }
     }
-    Ok(Preloaded { settings, scene })
+    let tour = match &options.tour {
+        Some(Some(path)) => Some(crate::tour::Tour::load(path)?),
+        Some(None) => Some(crate::tour::Tour::built_in()?),
+        None => None,
+    };
+    Ok(Preloaded {
+        settings,
+        scene,
+        tour,
+    })
 }
 
 /// The app id: desktops group the lab's windows under it and match it to

@@ -64,6 +64,8 @@ pub struct PanelState {
     pub settings: bool,
     /// The analysis panel on the right (probe, energy, reference, timings).
     pub analysis: bool,
+    /// The Lecture panel (the guided tour) under the image.
+    pub lecture: bool,
 }
 
 impl Default for PanelState {
@@ -71,6 +73,7 @@ impl Default for PanelState {
         Self {
             settings: true,
             analysis: true,
+            lecture: false,
         }
     }
 }

@@ -46,6 +46,10 @@ pub struct Cli {
     /// Quit after this many frames (with --screenshot: take it then).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
     pub quit_after_frames: Option<u32>,
+    /// Open the lab at the first step of the lecture tour: the built-in one
+    /// (assets/tour.toml), or FILE.
+    #[arg(long, value_name = "FILE", num_args = 0..=1)]
+    pub tour: Option<Option<PathBuf>>,
 }
 
 impl Cli {
@@ -57,11 +61,15 @@ impl Cli {
             scene: self.scene.clone(),
             screenshot: self.screenshot.clone(),
             quit_after_frames: self.quit_after_frames,
+            tour: self.tour.clone(),
         };
-        let any = options.settings.is_some() || options.scene.is_some() || options.is_scripted();
+        let any = options.settings.is_some()
+            || options.scene.is_some()
+            || options.tour.is_some()
+            || options.is_scripted();
         if any && self.command.is_some() {
             return Err(usage(
-                "--settings, --scene, --screenshot and --quit-after-frames before a command apply to the \
+                "--settings, --scene, --tour, --screenshot and --quit-after-frames before a command apply to the \
                  window only; put a command's options after its name (e.g. 'lumlab render --settings FILE')",
             ));
         }

@@ -10,6 +10,7 @@ pub mod default_scene;
 pub mod facts;
 pub mod framing;
 pub mod gltf;
+pub mod lecture_scene;
 pub mod plausibility;
 pub mod scale;
 pub mod shapes;

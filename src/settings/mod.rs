@@ -443,7 +443,7 @@ impl Settings {
 }
 
 /// One line: where the error is (line and key path) and what it is.
-fn describe_toml_error(text: &str, error: &toml::de::Error) -> String {
+pub(crate) fn describe_toml_error(text: &str, error: &toml::de::Error) -> String {
     let message = error.message().trim().replace('\n', " ");
     let Some(span) = error.span() else {
         return message;

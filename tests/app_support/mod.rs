@@ -23,10 +23,7 @@ pub fn harness() -> Harness<'static, LabApp> {
         Some(render_state.clone()),
         None,
         &LaunchOptions::default(),
-        Preloaded {
-            settings: None,
-            scene: None,
-        },
+        Preloaded::default(),
         Arc::default(),
     )
     .expect("the app starts on a wgpu device");

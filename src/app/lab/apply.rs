@@ -96,6 +96,7 @@ impl LabApp {
                 self.state.panels.settings = show;
                 self.state.panels.analysis = show;
             }
+            Command::TourStep(index) => self.go_to_step(index),
             Command::ResetEverything => {
                 self.undo.checkpoint(&self.state.settings);
                 let paths = self.state.paths.clone();
@@ -202,7 +203,7 @@ impl LabApp {
 
     /// The drawn scene made anew from the file's and the ground settings;
     /// what was computed for the old one goes.
-    fn redraw_scene(&mut self) {
+    pub(super) fn redraw_scene(&mut self) {
         self.ground = self.state.settings.ground;
         let scene = with_ground((*self.file_scene).clone(), &self.ground);
         if let Some(gpu) = &mut self.gpu {

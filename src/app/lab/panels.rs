@@ -5,14 +5,16 @@
 use super::super::View;
 use super::super::command::Command;
 use super::super::energy::{Curve, EnergyKey};
+use super::super::lecture::section;
 use super::super::light::LightPanel;
 use super::super::material::MaterialPanel;
 use super::super::scene_panel::ScenePanel;
 use super::super::shadow::ShadowPanel;
 use super::super::view::ViewPanel;
 use super::super::viewport::Viewport;
-use super::{LabApp, section};
+use super::LabApp;
 use crate::presets::{ComparisonAxis, Half, Preset};
+use crate::tour::Panel;
 use egui::RichText;
 
 impl LabApp {
@@ -56,6 +58,8 @@ impl LabApp {
                 .on_hover_text("Show the settings panel (F9 hides both panels)");
             ui.toggle_value(&mut panels.analysis, "Analysis")
                 .on_hover_text("Show the probe, energy, reference and timings panel");
+            ui.toggle_value(&mut panels.lecture, "Lecture")
+                .on_hover_text("Show the guided tour of the lecture (lumlab --tour)");
             if panels != self.state.panels {
                 self.emit(Command::SetPanels(panels));
             }
@@ -137,7 +141,7 @@ impl LabApp {
     }
 
     fn settings_panel(&mut self, ui: &mut egui::Ui) {
-        section(ui, "Experiments", true, |ui| {
+        section(ui, Panel::Experiments, |ui| {
             ui.horizontal_wrapped(|ui| {
                 for &preset in Preset::ALL {
                     if ui
@@ -152,7 +156,7 @@ impl LabApp {
         });
         let mut settings = self.state.settings.clone();
         let mut split = self.state.split;
-        section(ui, "Scene", true, |ui| {
+        section(ui, Panel::Scene, |ui| {
             let panel = ScenePanel {
                 scene: &self.file_scene,
                 name: &self.scene_name,
@@ -170,20 +174,20 @@ impl LabApp {
             ),
             None => (crate::settings::ShadowSettings::MAX_RESOLUTION, None),
         };
-        section(ui, "Light", true, |ui| {
+        section(ui, Panel::Light, |ui| {
             LightPanel {
                 light: &mut settings.light,
                 scale: self.scene.scale,
             }
             .ui(ui)
         });
-        section(ui, "Material", true, |ui| {
+        section(ui, Panel::Material, |ui| {
             MaterialPanel {
                 material: &mut settings.material,
             }
             .ui(ui)
         });
-        section(ui, "Shadow", true, |ui| {
+        section(ui, Panel::Shadow, |ui| {
             ShadowPanel {
                 shadow: &mut settings.shadow,
                 light_radius_m: &mut settings.light.radius_m,
@@ -193,7 +197,7 @@ impl LabApp {
             }
             .ui(ui)
         });
-        section(ui, "View", true, |ui| {
+        section(ui, Panel::View, |ui| {
             ViewPanel {
                 view: &mut settings.view,
                 split: &mut split,
@@ -207,7 +211,7 @@ impl LabApp {
         if split != self.state.split {
             self.emit(Command::SetSplit(split));
         }
-        section(ui, "Files", false, |ui| {
+        section(ui, Panel::Files, |ui| {
             if let Some(command) = self.files.ui(ui, &self.state.paths, &self.scene_name) {
                 self.queue.push(command);
             }
@@ -215,10 +219,10 @@ impl LabApp {
     }
 
     fn analysis_panel(&mut self, ui: &mut egui::Ui) {
-        section(ui, "Pixel probe", true, |ui| self.probe.ui(ui));
+        section(ui, Panel::Probe, |ui| self.probe.ui(ui));
         let curves = self.energy_curves();
         let incidence = self.incidence_for_lobe();
-        section(ui, "Energy: albedo a(θ)", true, |ui| {
+        section(ui, Panel::Energy, |ui| {
             self.energy
                 .ui(ui, &curves, incidence.as_ref().map(|(t, s)| (*t, s.as_str())))
         });
@@ -228,12 +232,12 @@ impl LabApp {
             Half::A,
             self.viewport_size,
         );
-        section(ui, "Reference and error", true, |ui| {
+        section(ui, Panel::Reference, |ui| {
             if let Some(command) = self.reference.ui(ui, &settings_a, self.viewport_size) {
                 self.queue.push(command);
             }
         });
-        section(ui, "Timings", false, |ui| {
+        section(ui, Panel::Timings, |ui| {
             super::super::timings::ui(ui, &self.clock, self.gpu.as_ref())
         });
     }
