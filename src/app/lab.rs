@@ -128,6 +128,10 @@ impl LabApp {
         } else {
             State::restore(storage).unwrap_or_default()
         };
+        // Else the language set before (the system's, by `app::run`).
+        if let Some(language) = state.language {
+            crate::i18n::set_current(language);
+        }
         if let Some(settings) = preloaded.settings {
             state.settings = settings;
         }

@@ -142,6 +142,8 @@ fn check_display() -> anyhow::Result<()> {
 /// Opens the lab and runs until its window closes.
 pub fn run(options: LaunchOptions) -> anyhow::Result<()> {
     let preloaded = preload(&options)?;
+    // The text's language until the stored state names the one picked.
+    crate::i18n::set_current(crate::i18n::system_language());
     check_display()?;
     // No adapter: say so (and what to install) before eframe tries.
     crate::gpu::context::pick_adapter(&crate::gpu::context::instance())

@@ -1,10 +1,11 @@
 //! What the app remembers between runs (eframe storage), apart from every
 //! GPU object: the settings, the split comparison, panel visibility and
-//! the paths last used, the folder the file dialog was last in and the
-//! recent files. Unknown or invalid stored state falls back to the
+//! the paths last used, the folder the file dialog was last in, the
+//! recent files and the language picked. Unknown or invalid stored state falls back to the
 //! defaults.
 
 use super::recent::RecentFiles;
+use crate::i18n::Language;
 use crate::presets::Comparison;
 use crate::settings::Settings;
 use serde::{Deserialize, Serialize};
@@ -21,6 +22,8 @@ pub struct State {
     pub panels: PanelState,
     pub paths: Paths,
     pub recent: RecentFiles,
+    /// The language picked in the Language menu (None: the system's).
+    pub language: Option<Language>,
 }
 
 /// How the split view shows A and B.
@@ -122,6 +125,7 @@ mod tests {
         let mut state = State::default();
         state.settings.light.power_w = 42.0;
         state.split.enabled = true;
+        state.language = Some(Language::Fr);
         let text = serde_json::to_string(&state).unwrap();
         let back: State = serde_json::from_str(&text).unwrap();
         assert_eq!(back, state);
@@ -134,6 +138,7 @@ mod tests {
         assert_eq!(state.paths.settings_file, "a.toml");
         assert_eq!(state.paths.last_folder, None);
         assert_eq!(state.recent, RecentFiles::default());
+        assert_eq!(state.language, None);
     }
 
     #[test]

@@ -13,6 +13,7 @@ use super::super::view::ViewPanel;
 use super::super::viewport::Viewport;
 use super::{LabApp, section};
 use crate::presets::{ComparisonAxis, Half, Preset};
+use crate::tr;
 use egui::RichText;
 
 impl LabApp {
@@ -23,49 +24,50 @@ impl LabApp {
             ui.separator();
             let can_undo = self.undo.can_undo(&self.state.settings);
             if ui
-                .add_enabled(can_undo, egui::Button::new("Undo"))
-                .on_hover_text("Undo the last settings change (Ctrl+Z)")
+                .add_enabled(can_undo, egui::Button::new(tr!("top-undo")))
+                .on_hover_text(tr!("top-undo-tip"))
                 .clicked()
             {
                 self.emit(Command::Undo);
             }
             if ui
-                .add_enabled(self.undo.can_redo(), egui::Button::new("Redo"))
-                .on_hover_text("Redo (Ctrl+Shift+Z or Ctrl+Y)")
+                .add_enabled(self.undo.can_redo(), egui::Button::new(tr!("top-redo")))
+                .on_hover_text(tr!("top-redo-tip"))
                 .clicked()
             {
                 self.emit(Command::Redo);
             }
             if ui
-                .button("Reset view")
-                .on_hover_text("Camera back to the scene's own view (R)")
+                .button(tr!("top-reset-view"))
+                .on_hover_text(tr!("top-reset-view-tip"))
                 .clicked()
             {
                 self.emit(Command::ResetView);
             }
             if ui
-                .selectable_label(self.state.split.enabled, "Split A | B")
-                .on_hover_text("Compare two settings side by side (S)")
+                .selectable_label(self.state.split.enabled, tr!("top-split"))
+                .on_hover_text(tr!("top-split-tip"))
                 .clicked()
             {
                 self.emit(Command::ToggleSplit);
             }
             ui.separator();
             let mut panels = self.state.panels;
-            ui.toggle_value(&mut panels.settings, "Settings")
-                .on_hover_text("Show the settings panel (F9 hides both panels)");
-            ui.toggle_value(&mut panels.analysis, "Analysis")
-                .on_hover_text("Show the probe, energy, reference and timings panel");
+            ui.toggle_value(&mut panels.settings, tr!("top-settings"))
+                .on_hover_text(tr!("top-settings-tip"));
+            ui.toggle_value(&mut panels.analysis, tr!("top-analysis"))
+                .on_hover_text(tr!("top-analysis-tip"));
             if panels != self.state.panels {
                 self.emit(Command::SetPanels(panels));
             }
             if ui
-                .selectable_label(self.help_open, "Help (F1)")
-                .on_hover_text("Keyboard and mouse shortcuts")
+                .selectable_label(self.help_open, tr!("top-help"))
+                .on_hover_text(tr!("top-help-tip"))
                 .clicked()
             {
                 self.emit(Command::ToggleHelp);
             }
+            self.language_menu(ui);
         });
     }
 
@@ -79,20 +81,21 @@ impl LabApp {
                     ui.label(&s.text);
                 }
                 None => {
-                    ui.label("Drag: orbit · Shift+drag: pan · wheel: zoom · click: probe · F1: help");
+                    ui.label(tr!("status-hint"));
                 }
             }
             if let Some(first) = self.impossible_setups().first() {
                 let more = self.impossible_setups().len() - 1;
+                let first = first.as_str();
                 let text = match more {
-                    0 => format!("Impossible set-up: {first}"),
-                    n => format!("Impossible set-up: {first} (+{n} more)"),
+                    0 => tr!("status-impossible", first = first),
+                    n => tr!("status-impossible-more", first = first, more = n),
                 };
                 ui.separator();
                 ui.label(RichText::new(text).color(ui.visuals().warn_fg_color))
-                    .on_hover_text(format!(
-                        "{}\nThe GPU and the CPU reference disagree on such a set-up.",
-                        self.impossible_setups().join("\n")
+                    .on_hover_text(tr!(
+                        "status-impossible-tip",
+                        lines = self.impossible_setups().join("\n")
                     ));
             }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
@@ -137,7 +140,7 @@ impl LabApp {
     }
 
     fn settings_panel(&mut self, ui: &mut egui::Ui) {
-        section(ui, "Experiments", true, |ui| {
+        section(ui, &tr!("section-experiments"), true, |ui| {
             ui.horizontal_wrapped(|ui| {
                 for &preset in Preset::ALL {
                     if ui
@@ -152,7 +155,7 @@ impl LabApp {
         });
         let mut settings = self.state.settings.clone();
         let mut split = self.state.split;
-        section(ui, "Scene", true, |ui| {
+        section(ui, &tr!("section-scene"), true, |ui| {
             let panel = ScenePanel {
                 scene: &self.file_scene,
                 name: &self.scene_name,
@@ -170,20 +173,20 @@ impl LabApp {
             ),
             None => (crate::settings::ShadowSettings::MAX_RESOLUTION, None),
         };
-        section(ui, "Light", true, |ui| {
+        section(ui, &tr!("section-light"), true, |ui| {
             LightPanel {
                 light: &mut settings.light,
                 scale: self.scene.scale,
             }
             .ui(ui)
         });
-        section(ui, "Material", true, |ui| {
+        section(ui, &tr!("section-material"), true, |ui| {
             MaterialPanel {
                 material: &mut settings.material,
             }
             .ui(ui)
         });
-        section(ui, "Shadow", true, |ui| {
+        section(ui, &tr!("section-shadow"), true, |ui| {
             ShadowPanel {
                 shadow: &mut settings.shadow,
                 light_radius_m: &mut settings.light.radius_m,
@@ -193,7 +196,7 @@ impl LabApp {
             }
             .ui(ui)
         });
-        section(ui, "View", true, |ui| {
+        section(ui, &tr!("section-view"), true, |ui| {
             ViewPanel {
                 view: &mut settings.view,
                 split: &mut split,
@@ -207,7 +210,7 @@ impl LabApp {
         if split != self.state.split {
             self.emit(Command::SetSplit(split));
         }
-        section(ui, "Files", false, |ui| {
+        section(ui, &tr!("section-files"), false, |ui| {
             if let Some(command) = self.files.ui(ui, &self.state.paths, &self.scene_name) {
                 self.queue.push(command);
             }
@@ -215,10 +218,10 @@ impl LabApp {
     }
 
     fn analysis_panel(&mut self, ui: &mut egui::Ui) {
-        section(ui, "Pixel probe", true, |ui| self.probe.ui(ui));
+        section(ui, &tr!("section-probe"), true, |ui| self.probe.ui(ui));
         let curves = self.energy_curves();
         let incidence = self.incidence_for_lobe();
-        section(ui, "Energy: albedo a(θ)", true, |ui| {
+        section(ui, &tr!("section-energy"), true, |ui| {
             self.energy
                 .ui(ui, &curves, incidence.as_ref().map(|(t, s)| (*t, s.as_str())))
         });
@@ -228,12 +231,12 @@ impl LabApp {
             Half::A,
             self.viewport_size,
         );
-        section(ui, "Reference and error", true, |ui| {
+        section(ui, &tr!("section-reference"), true, |ui| {
             if let Some(command) = self.reference.ui(ui, &settings_a, self.viewport_size) {
                 self.queue.push(command);
             }
         });
-        section(ui, "Timings", false, |ui| {
+        section(ui, &tr!("section-timings"), false, |ui| {
             super::super::timings::ui(ui, &self.clock, self.gpu.as_ref())
         });
     }
@@ -270,7 +273,7 @@ impl LabApp {
         if let Some(t) = &self.probe.terms {
             return Some((
                 t.cos_theta.clamp(-1.0, 1.0).acos().to_degrees(),
-                "at the probed point".into(),
+                tr!("lobe-at-probe"),
             ));
         }
         let bounds = self.scene.bounds();
@@ -281,9 +284,6 @@ impl LabApp {
         centre.y = bounds.min.y as f64;
         let to_light = self.state.settings.light.position.as_dvec3() - centre;
         let cos = to_light.normalize_or_zero().y;
-        Some((
-            cos.clamp(-1.0, 1.0).acos().to_degrees(),
-            "light to scene centre, n = +Y".into(),
-        ))
+        Some((cos.clamp(-1.0, 1.0).acos().to_degrees(), tr!("lobe-at-centre")))
     }
 }
