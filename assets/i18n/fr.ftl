@@ -213,3 +213,269 @@ material-colour-tip = c (RVB linéaire, chaque composante dans [0, 1])
 ## Widgets (widgets.rs)
 
 slider-zero-tip = Met exactement 0 (un curseur logarithmique ne peut l'atteindre)
+
+## Help: shortcuts and gestures (shortcuts.rs)
+
+shortcut-help = cette aide
+shortcut-redo = rétablir
+shortcut-undo = annuler un changement de réglage
+shortcut-save-settings = enregistrer le fichier de réglages
+shortcut-open-scene = ouvrir un fichier glTF/GLB (boîte de dialogue)
+shortcut-reset-view = revenir à la vue initiale
+shortcut-frame-all = tout cadrer : le modèle remplit la vue
+shortcut-auto-exposure = exposition automatique d'après l'image
+shortcut-split = vue partagée A | B activée/désactivée
+shortcut-previous-view = vue de débogage précédente
+shortcut-next-view = vue de débogage suivante
+shortcut-reference = calculer la référence CPU
+shortcut-cancel = annuler la référence / fermer cette aide
+shortcut-screenshot = enregistrer une capture d'écran
+shortcut-panels = masquer/afficher les panneaux latéraux
+gesture-left-drag = Glisser (bouton gauche)
+gesture-left-drag-does = faire tourner la caméra autour de sa cible
+gesture-pan = Maj + glisser / glisser (bouton du milieu)
+gesture-pan-does = déplacer la vue
+gesture-wheel = Molette
+gesture-wheel-does = zoom
+gesture-click = Clic
+gesture-click-does = sonder le pixel (chaque terme de L = f_r · E · V)
+gesture-double-click = Double-clic
+gesture-double-click-does = tourner autour du point sous le curseur
+gesture-drag-light = Glisser la lumière jaune
+gesture-drag-light-does = déplacer la lumière parallèlement à l'image
+gesture-ctrl-drag-light = Ctrl + glisser la lumière
+gesture-ctrl-drag-light-does = monter ou descendre la lumière
+shortcut-or = {" "}ou{" "}
+help-title = Clavier et souris
+help-footer = Chaque nombre a son unité ; survolez un réglage ou une valeur pour voir sa formule.
+
+## Scene panel (scene_panel.rs)
+
+scene-size = { $triangles } triangles · { $size } de diagonale
+scene-size-tip = La diagonale de la boîte englobante du modèle : les longueurs du labo la suivent
+scene-empty = rien à dessiner : le fichier n'a aucun triangle
+scene-frame-all = Tout cadrer (F)
+scene-frame-all-tip = Avance la caméra selon sa direction jusqu'à ce que le modèle remplisse la vue
+scene-auto-exposure = Exposition auto (E)
+scene-auto-exposure-tip = EV tel que le 95e centile de la luminance des pixels éclairés s'affiche à 0.8 (linéaire)
+scene-cameras = Caméras du fichier :
+scene-camera-tip = La caméra { $index } du fichier (--camera gltf:{ $index })
+scene-file-light = Lumière du fichier « { $name } » : I = { $intensity }
+scene-file-light-tip =
+    KHR_lights_punctual donne des candelas ; I (W/sr) = I (cd) / { $efficacy } lm/W, l'efficacité
+    d'une lumière à 555 nm (une source blanche émet plus de watts pour les mêmes candelas). La
+    lumière du labo y démarre avec Φ = 4π I.
+scene-ground = Sol
+scene-ground-tip = Un sol qui reçoit les ombres au point le plus bas du modèle (--ground)
+scene-ground-auto-tip = Sous un modèle qui n'en a pas
+scene-ground-on-tip = Toujours
+scene-ground-off-tip = Jamais : la géométrie du fichier seule
+scene-ground-k = k du sol
+scene-ground-k-tip = Le mélange diffus/spéculaire du sol : f_r = c (k/π + (1 − k) N(m) cos^m θ_h)
+scene-ground-m = m du sol
+scene-ground-m-tip = L'exposant de Blinn-Phong m du sol
+
+## Energy panel (energy.rs)
+
+energy-curve-tip = a(θ_i) = ∫ f_r(l, o) cos θ_o dω_o sur l'hémisphère, avec c = 1
+energy-lecture-angles = angles du cours
+energy-red-band = bande rouge : a(θ_i) > 1, la BRDF crée de l'énergie
+energy-albedo-tip = Albédo directionnel ; rouge au-dessus de 1 : la BRDF réfléchit plus qu'elle ne reçoit
+energy-default-incidence = 45° par défaut
+energy-lobe = Lobe dans le plan d'incidence, θ_i = { $theta }° ({ $source })
+energy-lobe-tip = Rayon : f_r / c (1/sr) vers chaque direction sortante θ_o ; n pointe vers le haut
+energy-light-l = lumière l
+energy-normal-n = normale n
+energy-surface = surface
+energy-peak = pic f_r / c = { $peak } 1/sr
+
+## Reference panel (reference.rs)
+
+reference-cannot-start = impossible de lancer le fil de la référence : { $message }
+reference-cancelled = référence annulée
+reference-stopped = le fil de la référence s'est arrêté sans résultat
+reference-compute = Calculer la référence (F5)
+reference-compute-tip =
+    Lance des rayons sur la vue courante, sur le CPU en f64 (un fil en arrière-plan) : les L et V
+    exacts que la carte d'ombres approche
+reference-cancel = Annuler (Échap)
+reference-cancel-tip = Arrête le calcul
+reference-progress-tip = { $done } pixels sur { $total }
+reference-none = Pas encore de référence : les vues erreur et visibilité de référence en ont besoin.
+reference-done = { $width }×{ $height } en { $seconds } s
+reference-stale = PÉRIMÉE : la vue, la lumière, le matériau ou la taille ont changé depuis ; recalculez
+reference-rmse-tip = √(moyenne sur les pixels couverts de (L − L_ref)²), luminance
+reference-relative = relative
+reference-max-error = max |erreur|
+reference-pixels = pixels
+reference-pixels-tip = Pixels couverts par la scène
+reference-rmse-in-error-view = RMSE : affichée dans la vue erreur
+reference-error-view = Vue erreur
+reference-error-view-tip = L − L_ref signée en fausses couleurs
+reference-visibility = V de référence
+reference-visibility-tip = La visibilité V_ref de la référence
+
+## Pixel probe (probe.rs)
+
+probe-p-tip = Là où le rayon du pixel rencontre la surface (m)
+probe-n-tip = Normale unitaire d'ombrage (normales des sommets interpolées)
+probe-l-tip = l = (q − p) / r, direction unitaire vers la lumière
+probe-r-tip = r = |q − p|, distance au centre de la lumière (m)
+probe-cos-tip = cos θ = n·l ; négatif : la lumière est sous l'horizon
+probe-e-tip = E = I · max(0, cos θ) / r² (W/m²) ; une sphère lumineuse à cheval sur l'horizon utilise sa forme exacte
+probe-c-tip = La couleur c de la BRDF (RVB linéaire) : couleur de base × texture aux uv du point touché, ou la couleur imposée
+probe-v-map-tip = Visibilité d'après la carte d'ombres avec le filtre et le biais courants, V ∈ [0, 1]
+probe-texels-tip = Texels de la carte d'ombres par pixel de l'écran : sous 1 la carte est agrandie (crénelage)
+probe-l-value-tip = L = f_r · E · V · couleur de la lumière (W/m²/sr), en f64 avec le V du GPU
+probe-l-gpu-tip = La luminance du moteur de rendu en ce pixel (f32)
+probe-reading-tip = Lecture de la cible auxiliaire du moteur de rendu
+probe-unshadowed-tip = L / V = f_r · E · couleur de la lumière
+probe-v-traced-tip = Visibilité de la lumière depuis p, par lancer de rayons sur le CPU en f64 : le V exact que la carte d'ombres approche
+probe-l-traced-tip = La luminance de la référence CPU au centre de ce pixel
+probe-l-image-tip = L'image de référence calculée en ce pixel (F5), à laquelle la vue erreur se compare
+probe-v-map = V (carte d'ombres)
+probe-texels = texels/pixel
+probe-l-gpu = L (GPU)
+probe-v-traced = V (lancer de rayons)
+probe-l-traced = L (lancer de rayons)
+probe-l-image = L (image de référence)
+probe-o-tip = Direction unitaire vers l'œil
+probe-stale = {"  "}(périmée)
+probe-hint = Cliquez un pixel de l'image pour y voir chaque terme de L = f_r · E · V.
+probe-pixel = pixel ({ $x }, { $y }) sur { $width }×{ $height }, moitié { $half }
+probe-background = fond : le rayon du pixel ne rencontre aucune surface
+probe-object = { $object } — matériau { $material }
+
+## Files: menu, panel, dialogs (files.rs)
+
+dialog-open-scene = Ouvrir une scène glTF/GLB
+dialog-load-settings = Charger un fichier de réglages TOML
+dialog-save-settings = Enregistrer les réglages en TOML
+dialog-screenshot = Enregistrer une capture d'écran (PNG)
+dialog-export-exr = Exporter la luminance linéaire (EXR)
+files-open-scene-dialog = Ouvrir une scène…
+files-open-scene-dialog-tip = Un fichier .gltf ou .glb (Ctrl+O ; ou déposez-le sur la fenêtre)
+files-built-in = Scène intégrée
+files-built-in-tip = Retour à la scène propre du labo
+files-load-settings-dialog = Charger des réglages…
+files-load-settings-dialog-tip = Un fichier de réglages TOML, tel que le lit `lumlab render --settings FILE`
+files-save-settings = Enregistrer les réglages
+files-save-settings-tip = Écrit tous les réglages dans le dernier fichier de réglages utilisé (Ctrl+S)
+files-save-settings-as = Enregistrer les réglages sous…
+files-save-settings-as-tip = Écrit tous les réglages dans un nouveau fichier TOML
+files-screenshot-dialog = Enregistrer une capture…
+files-screenshot-dialog-tip = Toute la fenêtre en PNG
+files-export-exr-dialog = Exporter en EXR…
+files-export-exr-dialog-tip = Les valeurs linéaires de la moitié A, sans exposition ni sRGB
+files-browse = Parcourir…
+files-browse-tip = Choisir un fichier .gltf/.glb et l'ouvrir (Ctrl+O)
+files-open-scene = Ouvrir la scène
+files-open-scene-tip = Rouvre le fichier affiché
+files-kind-settings = Réglages
+files-save = Enregistrer (Ctrl+S)
+files-save-tip = Écrit tous les réglages dans le fichier affiché
+files-load = Charger
+files-load-tip = Lit les réglages du fichier affiché (Ctrl+Z pour annuler)
+files-save-as = Enregistrer sous…
+files-save-as-tip = Écrit les réglages dans un autre fichier TOML
+files-load-dialog = Charger…
+files-load-dialog-tip = Choisir un fichier de réglages TOML et le charger
+files-screenshot = Enregistrer une capture (F12)
+files-screenshot-tip = Toute la fenêtre, telle qu'affichée, dans le fichier affiché
+files-screenshot-as-tip = Toute la fenêtre, dans un fichier PNG de votre choix
+files-export-exr = Exporter en EXR
+files-export-exr-tip = Les valeurs linéaires brutes de la moitié A (luminance L en W/m²/sr pour `shaded`) dans le fichier affiché
+files-export-as = Exporter sous…
+files-export-as-tip = La même chose, dans un fichier EXR de votre choix
+replace-title = Remplacer le fichier ?
+replace-exists = « { $path } » existe déjà.
+replace-replace = Remplacer
+replace-cancel = Annuler
+files-scene = Scène : { $name }
+files-reset-everything = Tout réinitialiser
+files-reset-everything-tip =
+    Tous les réglages, la vue partagée, les panneaux et la scène reviennent à leurs valeurs par défaut
+    (Ctrl+Z rend les réglages)
+files-none = (aucun)
+
+## Toasts (toast.rs)
+
+toast-dismiss = Fermer
+
+## Recent files (recent.rs)
+
+recent-scenes = Scènes récentes
+recent-settings = Réglages récents
+recent-none = (aucun pour l'instant)
+recent-missing = { $name } (introuvable)
+
+## Viewport (viewport.rs)
+
+viewport-gizmo-tip =
+    Lumière en ({ $x }, { $y }, { $z }) m
+    Glisser : déplacer parallèlement à l'image
+    Ctrl+glisser : monter ou descendre
+viewport-divider-tip = Glisser pour déplacer la séparation entre A et B
+viewport-no-gpu = pas de moteur de rendu GPU
+viewport-light-off-image = lumière (hors de l'image)
+viewport-light-behind = lumière derrière la caméra
+
+## Legends (legend.rs)
+
+legend-visibility = visibilité V (0 = à l'ombre, 1 = éclairé)
+legend-ref-visibility = visibilité de référence V_ref
+legend-depth = carte de profondeur de la lumière (distance linéaire)
+legend-near = proche
+legend-far = loin
+
+## Background jobs (lab/jobs.rs)
+
+status-reference-ready = référence CPU prête : la vue erreur s'y compare
+error-scene-kept = { $message } ; la scène actuelle est conservée
+status-exposure-no-image = exposition auto : pas encore d'image
+status-exposure = exposition auto : { $ev } EV (Ctrl+Z pour annuler)
+status-exposure-nothing-lit = exposition auto : rien d'éclairé dans l'image
+status-screenshot-saved = capture enregistrée dans { $path }
+
+## Over the image (lab/image.rs)
+
+image-rmse = RMSE = { $rmse } ({ $percent } % de la moyenne de L_ref)
+image-nothing-to-draw = rien à dessiner
+image-reference-running = Calcul de la référence CPU…
+image-reference-none = Pas encore de référence CPU : appuyez sur F5 (panneau Référence)
+image-reference-stale = La référence est PÉRIMÉE : réglages ou taille modifiés depuis (F5 la recalcule)
+
+## Start-up (lab.rs)
+
+error-showing-built-in = { $message } ; affichage de la scène intégrée
+
+## Experiments (names.rs)
+
+preset-shadow-acne = Acné d'ombre
+preset-peter-panning = Peter-panning
+preset-aliasing = Crénelage (aliasing)
+preset-pcf-smoothing = Lissage PCF
+preset-penumbra = Pénombre (sphère lumineuse)
+preset-energy-gain = Gain d'énergie (sans normalisation)
+preset-grazing = Incidence rasante
+preset-shadow-acne-tip =
+    Aucun biais de profondeur (constant, D = 0 m), aucun filtre, carte 1024². Chaque surface éclairée
+    compare sa profondeur à sa propre copie quantifiée et s'ombre elle-même en bandes.
+preset-peter-panning-tip =
+    Biais constant D = 0.5 m, PCF 3×3, lumière en (3.5, 3, 3), une caméra près de la base de la boîte.
+    Trop de biais : l'ombre se détache de l'objet qui la projette.
+preset-aliasing-tip =
+    Carte d'ombres 256², aucun filtre, biais automatique : un texel de la carte couvre de nombreux
+    pixels, les bords des ombres montrent des marches d'escalier.
+preset-pcf-smoothing-tip =
+    La même carte 256² avec un filtrage PCF 7×7 : la moyenne de 49 tests de profondeur
+    change les marches en un bord adouci.
+preset-penumbra-tip =
+    Sphère lumineuse R = 0.4 m en (2.5, 4, 2), PCSS avec 32 échantillons de recherche des bloqueurs et 32
+    de filtrage, carte 2048² : la pénombre s'élargit avec la distance à l'occultant.
+preset-energy-gain-tip =
+    N(m) = 1 à m = 1, k = 0 sur chaque objet : a(0°) ≈ 2.86 > 1, la BRDF crée de
+    l'énergie. Comparez avec la normalisation approchée ou exacte.
+preset-grazing-tip =
+    Lumière basse en (6, 0.8, 0), 2000 W, vue n·l : E = I cos θ / r² tombe à zéro quand
+    la lumière atteint l'horizon.

@@ -31,6 +31,7 @@ use crate::reference::Reference;
 use crate::scene::Scene;
 use crate::scene::framing::with_ground;
 use crate::settings::{GroundSettings, Settings};
+use crate::tr;
 use jobs::{Jobs, Script};
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
@@ -143,7 +144,7 @@ impl LabApp {
                     Ok(scene) => (Some(path), scene),
                     Err(e) => {
                         status = Some(Status {
-                            text: format!("{e}; showing the built-in scene"),
+                            text: tr!("error-showing-built-in", message = e.to_string()),
                             error: true,
                         });
                         (None, crate::scene::default_scene())
@@ -171,7 +172,9 @@ impl LabApp {
             scene,
             file_scene,
             ground,
-            scene_name: path.as_deref().map_or_else(|| "built-in".into(), display_name),
+            scene_name: path
+                .as_deref()
+                .map_or_else(|| tr!("scene-built-in"), display_name),
             probe: Probe::default(),
             tracer: None,
             energy: EnergyPanel::default(),

@@ -26,6 +26,7 @@ mod lab;
 mod legend;
 mod light;
 mod material;
+mod names;
 mod probe;
 mod recent;
 mod reference;

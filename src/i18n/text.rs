@@ -1,6 +1,6 @@
 //! The app's text as Fluent messages: `assets/i18n/en.ftl` and `fr.ftl`,
 //! embedded in the binary, one bundle per language built once. Code names a
-//! message by its key (`tr!("light-power")`, `tr!("toast-error", message =
+//! message by its key (`tr!("light-power")`, `tr!("error-frame", message =
 //! e.to_string())`); the message is looked up in the current language.
 //!
 //! A key missing from the files shows as the key itself, visibly wrong in
@@ -83,7 +83,7 @@ pub fn translate(language: Language, key: &str, args: &[(&str, FluentValue)]) ->
         .into_owned()
 }
 
-/// `tr!("key")` or `tr!("key", name = value, ...)`: the message in the
+/// `tr!(KEY)` or `tr!(KEY, name = value, ...)`: the message in the
 /// current language. Values are strings (numbers formatted with their
 /// unit by the caller) or integers (counts, for plurals).
 #[macro_export]

@@ -3,6 +3,7 @@
 
 use super::super::command::Command;
 use super::super::files::FileAction;
+use super::super::names::preset_title;
 use super::super::state::State;
 use super::super::viewport::Viewport;
 use super::desktop::file_error;
@@ -138,7 +139,7 @@ impl LabApp {
             if let Some(comparison) = preset.comparison() {
                 self.state.split.comparison = comparison;
             }
-            self.say(tr!("status-preset", preset = preset.title()), false);
+            self.say(tr!("status-preset", preset = preset_title(*preset)), false);
         }
     }
 

@@ -7,6 +7,7 @@ use super::super::command::Command;
 use super::super::energy::{Curve, EnergyKey};
 use super::super::light::LightPanel;
 use super::super::material::MaterialPanel;
+use super::super::names::{preset_description, preset_title};
 use super::super::scene_panel::ScenePanel;
 use super::super::shadow::ShadowPanel;
 use super::super::view::ViewPanel;
@@ -144,8 +145,8 @@ impl LabApp {
             ui.horizontal_wrapped(|ui| {
                 for &preset in Preset::ALL {
                     if ui
-                        .button(preset.title())
-                        .on_hover_text(preset.description())
+                        .button(preset_title(preset))
+                        .on_hover_text(preset_description(preset))
                         .clicked()
                     {
                         self.emit(Command::ApplyPreset(preset));
