@@ -3,11 +3,10 @@
 # formatted, with their unit, and keep a decimal point in both languages.
 # Formulas (E = I cos θ / r², f_r = ...) stay as they are in both.
 
-## The language menu, errors
+## The language menu
 
 menu-language = Language
 menu-language-tip = The language of the app's text (the command line stays in English)
-error-frame = Error: { $message }
 
 ## Top bar, status bar, panels (lab/panels.rs)
 

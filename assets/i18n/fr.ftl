@@ -4,11 +4,10 @@
 # décimal (les curseurs et les champs le lisent). Les formules restent telles
 # quelles.
 
-## Le menu des langues, les erreurs
+## Le menu des langues
 
 menu-language = Langue
 menu-language-tip = La langue du texte de l'application (la ligne de commande reste en anglais)
-error-frame = Erreur : { $message }
 
 ## Top bar, status bar, panels (lab/panels.rs)
 

@@ -1,6 +1,6 @@
 //! The app's text as Fluent messages: `assets/i18n/en.ftl` and `fr.ftl`,
 //! embedded in the binary, one bundle per language built once. Code names a
-//! message by its key (`tr!("light-power")`, `tr!("error-frame", message =
+//! message by its key (`tr!("light-power")`, `tr!("error-scene-kept", message =
 //! e.to_string())`); the message is looked up in the current language.
 //!
 //! A key missing from the files shows as the key itself, visibly wrong in
@@ -188,10 +188,13 @@ mod tests {
     fn placeholders_are_placed_without_isolation_marks() {
         let args = [("message", FluentValue::from("disk full"))];
         assert_eq!(
-            translate(Language::Fr, "error-frame", &args),
-            "Erreur : disk full"
+            translate(Language::Fr, "error-scene-kept", &args),
+            "disk full ; la scène actuelle est conservée"
         );
-        assert_eq!(translate(Language::En, "error-frame", &args), "Error: disk full");
+        assert_eq!(
+            translate(Language::En, "error-scene-kept", &args),
+            "disk full; the current scene is kept"
+        );
     }
 
     #[test]
