@@ -7,9 +7,9 @@ mod app_support;
 
 use app_support::harness_with_storage;
 use egui_kittest::kittest::Queryable;
-use lumlab::app::{Command, State};
+use lumlab::app::{Command, MemoryStorage, State};
 use lumlab::i18n::{self, Language, MessageInfo};
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 use std::sync::Mutex;
 
@@ -141,23 +141,6 @@ fn messages_place_their_arguments_in_both_languages() {
     );
 }
 
-/// eframe's storage, in memory.
-#[derive(Default)]
-struct Memory(HashMap<String, String>);
-
-impl eframe::Storage for Memory {
-    fn get_string(&self, key: &str) -> Option<String> {
-        self.0.get(key).cloned()
-    }
-    fn set_string(&mut self, key: &str, value: String) {
-        self.0.insert(key.into(), value);
-    }
-    fn remove_string(&mut self, key: &str) {
-        self.0.remove(key);
-    }
-    fn flush(&mut self) {}
-}
-
 #[test]
 fn french_shows_in_the_panels_and_survives_a_restart() {
     let _one_at_a_time = LANGUAGE.lock().unwrap_or_else(|e| e.into_inner());
@@ -183,7 +166,7 @@ fn french_shows_in_the_panels_and_survives_a_restart() {
     );
 
     // The app stores its state on exit; the next start restores it.
-    let mut storage = Memory::default();
+    let mut storage = MemoryStorage::default();
     harness.state_mut().state_mut().store(&mut storage);
     drop(harness);
     assert_eq!(

@@ -47,7 +47,7 @@ pub use lab::LabApp;
 pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
 pub use reference::{ErrorStats, ReferenceFn};
 pub use shortcuts::{GESTURES, SHORTCUTS, Shortcut};
-pub use state::{SplitLayout, State};
+pub use state::{MemoryStorage, SplitLayout, State};
 
 use crate::scene::Scene;
 use crate::settings::Settings;

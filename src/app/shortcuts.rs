@@ -11,7 +11,7 @@ pub struct Shortcut {
     /// Alternatives; the first is the one a test presses.
     pub keys: &'static [KeyboardShortcut],
     /// What the keys do, in the current language.
-    pub does: fn() -> String,
+    pub does: Text,
     pub command: Command,
 }
 
@@ -108,9 +108,12 @@ pub static SHORTCUTS: &[Shortcut] = &[
     },
 ];
 
+/// A text in the current language, made when shown.
+pub type Text = fn() -> String;
+
 /// (gesture, what it does): the mouse, which has no command of its own
 /// (the viewport turns a drag into new settings).
-pub const GESTURES: &[(fn() -> String, fn() -> String)] = &[
+pub const GESTURES: &[(Text, Text)] = &[
     (|| tr!("gesture-left-drag"), || tr!("gesture-left-drag-does")),
     (|| tr!("gesture-pan"), || tr!("gesture-pan-does")),
     (|| tr!("gesture-wheel"), || tr!("gesture-wheel-does")),

@@ -116,6 +116,24 @@ impl State {
     }
 }
 
+/// eframe's storage kept in memory: what a test stores the state in to
+/// restore it as the next start would.
+#[derive(Default)]
+pub struct MemoryStorage(std::collections::HashMap<String, String>);
+
+impl eframe::Storage for MemoryStorage {
+    fn get_string(&self, key: &str) -> Option<String> {
+        self.0.get(key).cloned()
+    }
+    fn set_string(&mut self, key: &str, value: String) {
+        self.0.insert(key.into(), value);
+    }
+    fn remove_string(&mut self, key: &str) {
+        self.0.remove(key);
+    }
+    fn flush(&mut self) {}
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -144,20 +162,7 @@ mod tests {
     #[test]
     fn invalid_stored_settings_are_dropped() {
         use eframe::Storage;
-        struct Mem(std::collections::HashMap<String, String>);
-        impl eframe::Storage for Mem {
-            fn get_string(&self, key: &str) -> Option<String> {
-                self.0.get(key).cloned()
-            }
-            fn set_string(&mut self, key: &str, value: String) {
-                self.0.insert(key.into(), value);
-            }
-            fn remove_string(&mut self, key: &str) {
-                self.0.remove(key);
-            }
-            fn flush(&mut self) {}
-        }
-        let mut mem = Mem(Default::default());
+        let mut mem = MemoryStorage::default();
         let mut state = State::default();
         state.settings.light.power_w = 7.0;
         state.store(&mut mem);
