@@ -79,7 +79,7 @@ fn every_step_sets_its_settings_opens_its_panel_and_shows_the_physics() {
         assert_eq!(shown, step.settings, "step {} ({})", i + 1, step.id);
         assert_eq!(app.tour_position(), (i, Some(step.panel)), "{}", step.id);
         // The panel is there and open.
-        let header = harness.get_by_label(title(step.panel));
+        let header = harness.get_by_label(&title(step.panel));
         assert_eq!(
             header.accesskit_node().data().is_expanded(),
             Some(true),

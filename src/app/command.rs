@@ -6,6 +6,7 @@
 
 use super::files::FileAction;
 use super::state::{PanelState, SplitState};
+use crate::i18n::Language;
 use crate::presets::Preset;
 use crate::scene::framing::frame_all;
 use crate::scene::{Aabb, Camera, SceneScale};
@@ -67,12 +68,15 @@ pub enum Command {
     ToggleHelp,
     /// Hides both side panels, or shows both.
     TogglePanels,
-    /// Default settings, split and panels, the built-in scene (paths kept).
+    /// Default settings, split and panels, the built-in scene (paths and
+    /// language kept).
     ResetEverything,
     /// Goes to step i of the lecture tour: its scene, and its settings,
     /// camera and view as one undo step; its split view; its panel opened
     /// and highlighted.
     TourStep(usize),
+    /// Shows the app's text in this language from the next frame on (persisted).
+    SetLanguage(Language),
 }
 
 /// What a command needs to know of the scene shown.

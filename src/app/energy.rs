@@ -5,6 +5,7 @@
 use super::widgets::number;
 use crate::physics::energy::{LECTURE_ANGLES_DEG, MAX_THETA_DEG, directional_albedo};
 use crate::physics::{BrdfParams, Normalization, brdf};
+use crate::tr;
 use egui::{Color32, RichText};
 use egui_plot::{Line, Plot, PlotPoints, Points, Span};
 use glam::DVec3;
@@ -139,7 +140,7 @@ impl EnergyPanel {
                 .monospace()
                 .color(*colour),
             )
-            .on_hover_text("a(θ_i) = ∫ f_r(l, o) cos θ_o dω_o over the hemisphere, with c = 1");
+            .on_hover_text(tr!("energy-curve-tip"));
         }
         let max_a = data
             .iter()
@@ -180,7 +181,7 @@ impl EnergyPanel {
                     );
                     plot.add(
                         Points::new(
-                            format!("{}lecture angles", c.name),
+                            format!("{}{}", c.name, tr!("energy-lecture-angles")),
                             PlotPoints::from(a.table.clone()),
                         )
                         .radius(5.0)
@@ -189,11 +190,7 @@ impl EnergyPanel {
                     );
                 }
             });
-        ui.label(
-            RichText::new("red band: a(θ_i) > 1, the BRDF creates energy")
-                .small()
-                .color(GAIN),
-        );
+        ui.label(RichText::new(tr!("energy-red-band")).small().color(GAIN));
         egui::Grid::new("albedo table").striped(true).show(ui, |ui| {
             ui.label(RichText::new("θ_i").strong());
             for theta in LECTURE_ANGLES_DEG {
@@ -202,9 +199,7 @@ impl EnergyPanel {
             ui.end_row();
             for (c, a, colour) in &data {
                 ui.label(RichText::new(format!("{}a(θ_i)", c.name)).strong().color(*colour))
-                    .on_hover_text(
-                        "Directional albedo; red above 1: the BRDF reflects more than it receives",
-                    );
+                    .on_hover_text(tr!("energy-albedo-tip"));
                 for [_, value] in &a.table {
                     let text = RichText::new(format!("{value:.3}")).monospace().size(14.0);
                     ui.label(if *value > 1.0 + 1e-9 {
@@ -218,13 +213,11 @@ impl EnergyPanel {
         });
 
         ui.add_space(6.0);
-        let (theta_i, source) = theta_i_deg.unwrap_or((45.0, "default 45°"));
+        let default_source = tr!("energy-default-incidence");
+        let (theta_i, source) = theta_i_deg.unwrap_or((45.0, default_source.as_str()));
         let theta_i = theta_i.clamp(0.0, MAX_THETA_DEG);
-        ui.label(format!(
-            "Lobe in the plane of incidence, θ_i = {}° ({source})",
-            number(theta_i)
-        ))
-        .on_hover_text("Radius: f_r / c (1/sr) towards each outgoing direction θ_o; n points up");
+        ui.label(tr!("energy-lobe", theta = number(theta_i), source = source))
+            .on_hover_text(tr!("energy-lobe-tip"));
         let lobes: Vec<(&Curve, Vec<[f64; 2]>, Color32)> = data
             .iter()
             .map(|(c, _, colour)| (*c, lobe_polar(&c.key, theta_i), *colour))
@@ -247,20 +240,26 @@ impl EnergyPanel {
             .show(ui, |plot| {
                 plot.add(
                     Line::new(
-                        "light l",
+                        tr!("energy-light-l"),
                         PlotPoints::from(vec![[0.0, 0.0], [-t.sin() * reach, t.cos() * reach]]),
                     )
                     .color(Color32::from_rgb(230, 190, 40))
                     .width(2.0),
                 );
                 plot.add(
-                    Line::new("normal n", PlotPoints::from(vec![[0.0, 0.0], [0.0, reach]]))
-                        .color(Color32::GRAY)
-                        .style(egui_plot::LineStyle::dashed_dense()),
+                    Line::new(
+                        tr!("energy-normal-n"),
+                        PlotPoints::from(vec![[0.0, 0.0], [0.0, reach]]),
+                    )
+                    .color(Color32::GRAY)
+                    .style(egui_plot::LineStyle::dashed_dense()),
                 );
                 plot.add(
-                    Line::new("surface", PlotPoints::from(vec![[-reach, 0.0], [reach, 0.0]]))
-                        .color(Color32::GRAY),
+                    Line::new(
+                        tr!("energy-surface"),
+                        PlotPoints::from(vec![[-reach, 0.0], [reach, 0.0]]),
+                    )
+                    .color(Color32::GRAY),
                 );
                 for (c, lobe, colour) in lobes {
                     plot.add(
@@ -270,7 +269,7 @@ impl EnergyPanel {
                     );
                 }
             });
-        ui.label(format!("peak f_r / c = {} 1/sr", number(reach)));
+        ui.label(tr!("energy-peak", peak = number(reach)));
     }
 }
 

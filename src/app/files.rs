@@ -7,6 +7,7 @@
 use super::command::Command;
 use super::recent::RecentFiles;
 use super::state::Paths;
+use crate::tr;
 use std::path::{Path, PathBuf};
 
 /// What a file dialog is for.
@@ -31,13 +32,13 @@ impl FileAction {
         }
     }
 
-    fn title(self) -> &'static str {
+    fn title(self) -> String {
         match self {
-            Self::OpenScene => "Open a glTF/GLB scene",
-            Self::LoadSettings => "Load a TOML settings file",
-            Self::SaveSettings => "Save the settings as TOML",
-            Self::Screenshot => "Save a screenshot (PNG)",
-            Self::ExportExr => "Export linear radiance (EXR)",
+            Self::OpenScene => tr!("dialog-open-scene"),
+            Self::LoadSettings => tr!("dialog-load-settings"),
+            Self::SaveSettings => tr!("dialog-save-settings"),
+            Self::Screenshot => tr!("dialog-screenshot"),
+            Self::ExportExr => tr!("dialog-export-exr"),
         }
     }
 
@@ -118,7 +119,7 @@ impl FilesPanel {
                 .filename_filter(Box::new(move |name: &str| action.matches(name)))
         };
         dialog = dialog
-            .title(action.title())
+            .title(&action.title())
             .id(Self::dialog_id())
             .show_files_filter(Box::new(move |path: &Path| {
                 path.file_name()
@@ -213,13 +214,13 @@ impl FilesPanel {
         let (action, path) = self.replace.clone()?;
         let mut answer = None;
         let modal = egui::Modal::new(egui::Id::unique("lumlab replace file")).show(ctx, |ui| {
-            ui.heading("Replace the file?");
-            ui.label(format!("'{}' already exists.", path.display()));
+            ui.heading(tr!("replace-title"));
+            ui.label(tr!("replace-exists", path = path.display().to_string()));
             ui.horizontal(|ui| {
-                if ui.button("Replace").clicked() {
+                if ui.button(tr!("replace-replace")).clicked() {
                     answer = Some(true);
                 }
-                if ui.button("Cancel").clicked() {
+                if ui.button(tr!("replace-cancel")).clicked() {
                     answer = Some(false);
                 }
             });
@@ -236,38 +237,38 @@ impl FilesPanel {
     pub fn menu(ui: &mut egui::Ui, recent: &RecentFiles) -> Option<Command> {
         let entries = [
             (
-                "Open scene…",
-                "A .gltf or .glb file (Ctrl+O; or drop it on the window)",
+                tr!("files-open-scene-dialog"),
+                tr!("files-open-scene-dialog-tip"),
                 Command::ChooseFile(FileAction::OpenScene),
             ),
             (
-                "Built-in scene",
-                "Back to the lab's own scene",
+                tr!("files-built-in"),
+                tr!("files-built-in-tip"),
                 Command::BuiltInScene,
             ),
             (
-                "Load settings…",
-                "A TOML settings file, as `lumlab render --settings FILE` reads",
+                tr!("files-load-settings-dialog"),
+                tr!("files-load-settings-dialog-tip"),
                 Command::ChooseFile(FileAction::LoadSettings),
             ),
             (
-                "Save settings",
-                "Write every setting to the settings file used last (Ctrl+S)",
+                tr!("files-save-settings"),
+                tr!("files-save-settings-tip"),
                 Command::SaveSettings(None),
             ),
             (
-                "Save settings as…",
-                "Write every setting to a new TOML file",
+                tr!("files-save-settings-as"),
+                tr!("files-save-settings-as-tip"),
                 Command::ChooseFile(FileAction::SaveSettings),
             ),
             (
-                "Save screenshot…",
-                "The whole window as PNG",
+                tr!("files-screenshot-dialog"),
+                tr!("files-screenshot-dialog-tip"),
                 Command::ChooseFile(FileAction::Screenshot),
             ),
             (
-                "Export EXR…",
-                "Half A's linear values, no exposure, no sRGB",
+                tr!("files-export-exr-dialog"),
+                tr!("files-export-exr-dialog-tip"),
                 Command::ChooseFile(FileAction::ExportExr),
             ),
         ];
@@ -285,96 +286,96 @@ impl FilesPanel {
     /// and a dialog to choose another. Each row of buttons is data.
     pub fn ui(&mut self, ui: &mut egui::Ui, paths: &Paths, scene_name: &str) -> Option<Command> {
         let browse = Command::ChooseFile;
-        type Row = Vec<(&'static str, &'static str, Command)>;
-        let sections: [(&str, &str, Vec<Row>); 4] = [
+        type Row = Vec<(String, String, Command)>;
+        let sections: [(String, &str, Vec<Row>); 4] = [
             (
-                "glTF",
+                "glTF".into(),
                 &paths.scene_file,
                 vec![vec![
                     (
-                        "Browse…",
-                        "Pick a .gltf/.glb file and open it (Ctrl+O)",
+                        tr!("files-browse"),
+                        tr!("files-browse-tip"),
                         browse(FileAction::OpenScene),
                     ),
                     (
-                        "Open scene",
-                        "Open the file shown again",
+                        tr!("files-open-scene"),
+                        tr!("files-open-scene-tip"),
                         Command::OpenScene(None),
                     ),
                     (
-                        "Built-in scene",
-                        "Back to the lab's own scene",
+                        tr!("files-built-in"),
+                        tr!("files-built-in-tip"),
                         Command::BuiltInScene,
                     ),
                 ]],
             ),
             (
-                "Settings",
+                tr!("files-kind-settings"),
                 &paths.settings_file,
                 vec![
                     vec![
                         (
-                            "Save (Ctrl+S)",
-                            "Write every setting to the file shown",
+                            tr!("files-save"),
+                            tr!("files-save-tip"),
                             Command::SaveSettings(None),
                         ),
                         (
-                            "Load",
-                            "Read the settings from the file shown (undo with Ctrl+Z)",
+                            tr!("files-load"),
+                            tr!("files-load-tip"),
                             Command::LoadSettings(None),
                         ),
                     ],
                     vec![
                         (
-                            "Save as…",
-                            "Write the settings to another TOML file",
+                            tr!("files-save-as"),
+                            tr!("files-save-as-tip"),
                             browse(FileAction::SaveSettings),
                         ),
                         (
-                            "Load…",
-                            "Pick a TOML settings file and load it",
+                            tr!("files-load-dialog"),
+                            tr!("files-load-dialog-tip"),
                             browse(FileAction::LoadSettings),
                         ),
                     ],
                 ],
             ),
             (
-                "PNG",
+                "PNG".into(),
                 &paths.screenshot_file,
                 vec![vec![
                     (
-                        "Save screenshot (F12)",
-                        "The whole window, as displayed, to the file shown",
+                        tr!("files-screenshot"),
+                        tr!("files-screenshot-tip"),
                         Command::Screenshot(None),
                     ),
                     (
-                        "Save as…",
-                        "The whole window, to a PNG file you pick",
+                        tr!("files-save-as"),
+                        tr!("files-screenshot-as-tip"),
                         browse(FileAction::Screenshot),
                     ),
                 ]],
             ),
             (
-                "EXR",
+                "EXR".into(),
                 &paths.exr_file,
                 vec![vec![
                     (
-                        "Export EXR",
-                        "Half A's unscaled linear values (radiance L in W/m²/sr for `shaded`) to the file shown",
+                        tr!("files-export-exr"),
+                        tr!("files-export-exr-tip"),
                         Command::ExportExr(None),
                     ),
                     (
-                        "Export as…",
-                        "The same, to an EXR file you pick",
+                        tr!("files-export-as"),
+                        tr!("files-export-as-tip"),
                         browse(FileAction::ExportExr),
                     ),
                 ]],
             ),
         ];
         let mut action = None;
-        ui.label(egui::RichText::new(format!("Scene: {scene_name}")).strong());
+        ui.label(egui::RichText::new(tr!("files-scene", name = scene_name)).strong());
         for (kind, path, rows) in sections {
-            file_row(ui, kind, path);
+            file_row(ui, &kind, path);
             for row in rows {
                 ui.horizontal(|ui| {
                     for (text, help, command) in row {
@@ -387,11 +388,8 @@ impl FilesPanel {
             ui.separator();
         }
         if ui
-            .button("Reset everything")
-            .on_hover_text(
-                "Every setting, the split view, the panels and the scene back to their defaults \
-                 (Ctrl+Z undoes the settings)",
-            )
+            .button(tr!("files-reset-everything"))
+            .on_hover_text(tr!("files-reset-everything-tip"))
             .clicked()
         {
             action = Some(Command::ResetEverything);
@@ -404,7 +402,7 @@ impl FilesPanel {
 fn file_row(ui: &mut egui::Ui, kind: &str, path: &str) {
     let name = Path::new(path)
         .file_name()
-        .map_or_else(|| "(none)".to_owned(), |n| n.to_string_lossy().into_owned());
+        .map_or_else(|| tr!("files-none"), |n| n.to_string_lossy().into_owned());
     ui.horizontal(|ui| {
         ui.label(egui::RichText::new(kind).weak());
         ui.label(name).on_hover_text(path);

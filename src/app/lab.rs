@@ -33,6 +33,7 @@ use crate::reference::Reference;
 use crate::scene::Scene;
 use crate::scene::framing::with_ground;
 use crate::settings::{GroundSettings, Settings};
+use crate::tr;
 use jobs::{Jobs, Script};
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
@@ -132,6 +133,10 @@ impl LabApp {
         } else {
             State::restore(storage).unwrap_or_default()
         };
+        // Else the language set before (the system's, by `app::run`).
+        if let Some(language) = state.language {
+            crate::i18n::set_current(language);
+        }
         if let Some(settings) = preloaded.settings {
             state.settings = settings;
         }
@@ -143,7 +148,7 @@ impl LabApp {
                     Ok(scene) => (Some(path), scene),
                     Err(e) => {
                         status = Some(Status {
-                            text: format!("{e}; showing the built-in scene"),
+                            text: tr!("error-showing-built-in", message = e.to_string()),
                             error: true,
                         });
                         (None, crate::scene::default_scene())
@@ -186,7 +191,9 @@ impl LabApp {
             scene,
             file_scene,
             ground,
-            scene_name: path.as_deref().map_or_else(|| "built-in".into(), display_name),
+            scene_name: path
+                .as_deref()
+                .map_or_else(|| tr!("scene-built-in"), display_name),
             probe: Probe::default(),
             tracer: None,
             energy: EnergyPanel::default(),

@@ -9,9 +9,9 @@
 
 use super::command::Command;
 use super::state::PanelState;
-use crate::i18n::Language;
 use crate::settings::Settings;
 use crate::tour::{Panel, Tour};
+use crate::tr;
 use egui::{Color32, FontFamily, FontId, RichText};
 
 /// Type sizes readable from the back of a room (points).
@@ -23,19 +23,19 @@ const HIGHLIGHT: Color32 = Color32::from_rgb(255, 190, 60);
 const HIGHLIGHT_WIDTH_PT: f32 = 3.0;
 
 /// The title of a side panel's section.
-pub fn panel_title(panel: Panel) -> &'static str {
+pub fn panel_title(panel: Panel) -> String {
     match panel {
-        Panel::Experiments => "Experiments",
-        Panel::Scene => "Scene",
-        Panel::Light => "Light",
-        Panel::Material => "Material",
-        Panel::Shadow => "Shadow",
-        Panel::View => "View",
-        Panel::Files => "Files",
-        Panel::Probe => "Pixel probe",
-        Panel::Energy => "Energy: albedo a(θ)",
-        Panel::Reference => "Reference and error",
-        Panel::Timings => "Timings",
+        Panel::Experiments => tr!("section-experiments"),
+        Panel::Scene => tr!("section-scene"),
+        Panel::Light => tr!("section-light"),
+        Panel::Material => tr!("section-material"),
+        Panel::Shadow => tr!("section-shadow"),
+        Panel::View => tr!("section-view"),
+        Panel::Files => tr!("section-files"),
+        Panel::Probe => tr!("section-probe"),
+        Panel::Energy => tr!("section-energy"),
+        Panel::Reference => tr!("section-reference"),
+        Panel::Timings => tr!("section-timings"),
     }
 }
 
@@ -87,38 +87,6 @@ pub fn section(ui: &mut egui::Ui, panel: Panel, add: impl FnOnce(&mut egui::Ui))
         .show(ui, |ui| header.show(ui, add));
     if highlight.open_now {
         shown.inner.header_response.scroll_to_me(Some(egui::Align::Min));
-    }
-}
-
-/// The words around a step's own, in both languages.
-struct Chrome {
-    previous: &'static str,
-    next: &'static str,
-    observe: &'static str,
-    question: &'static str,
-    close: &'static str,
-    /// The step list's name.
-    steps: &'static str,
-}
-
-fn chrome(language: Language) -> Chrome {
-    match language {
-        Language::Fr => Chrome {
-            previous: "◀ Précédent",
-            next: "Suivant ▶",
-            observe: "À observer :",
-            question: "Question :",
-            close: "Fermer",
-            steps: "Étapes",
-        },
-        Language::En => Chrome {
-            previous: "◀ Previous",
-            next: "Next ▶",
-            observe: "Observe:",
-            question: "Question:",
-            close: "Close",
-            steps: "Steps",
-        },
     }
 }
 
@@ -195,21 +163,20 @@ impl LecturePanel {
     /// The panel's contents; returns the command a button asked for.
     pub fn ui(&mut self, ui: &mut egui::Ui, settings: &Settings, panels: PanelState) -> Option<Command> {
         let language = crate::i18n::current();
-        let words = chrome(language);
         let count = self.tour.steps.len();
         let value = self.observed(settings);
         let Some(step) = self.tour.steps.get(self.current) else {
-            ui.label("The tour has no steps.");
+            ui.label(tr!("lecture-no-steps"));
             return None;
         };
         let text = step.text(language);
         let mut command = None;
         ui.horizontal(|ui| {
             let i = self.current;
-            if ui.add_enabled(i > 0, egui::Button::new(words.previous)).clicked() {
+            if ui.add_enabled(i > 0, egui::Button::new(tr!("lecture-previous"))).clicked() {
                 command = Some(Command::TourStep(i - 1));
             }
-            egui::ComboBox::new("tour step", words.steps)
+            egui::ComboBox::new("tour step", tr!("lecture-steps"))
                 .selected_text(format!("{} / {count}", i + 1))
                 .show_ui(ui, |ui| {
                     for (j, s) in self.tour.steps.iter().enumerate() {
@@ -220,7 +187,7 @@ impl LecturePanel {
                     }
                 });
             if ui
-                .add_enabled(i + 1 < count, egui::Button::new(words.next))
+                .add_enabled(i + 1 < count, egui::Button::new(tr!("lecture-next")))
                 .clicked()
             {
                 command = Some(Command::TourStep(i + 1));
@@ -228,7 +195,7 @@ impl LecturePanel {
             ui.separator();
             ui.label(RichText::new(&text.title).size(TITLE_PT).strong());
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                if ui.button(words.close).clicked() {
+                if ui.button(tr!("lecture-close")).clicked() {
                     command = Some(Command::SetPanels(PanelState {
                         lecture: false,
                         ..panels
@@ -250,7 +217,7 @@ impl LecturePanel {
                 );
             });
             right.label(
-                RichText::new(words.observe)
+                RichText::new(tr!("lecture-observe"))
                     .size(TEXT_PT)
                     .strong()
                     .color(HIGHLIGHT),
@@ -258,7 +225,7 @@ impl LecturePanel {
             right.label(RichText::new(text.observe_with(&number)).size(TEXT_PT));
             right.add_space(10.0);
             right.label(
-                RichText::new(words.question)
+                RichText::new(tr!("lecture-question"))
                     .size(TEXT_PT)
                     .strong()
                     .color(HIGHLIGHT),

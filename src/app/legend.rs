@@ -3,6 +3,7 @@
 
 use crate::gpu::colormap::{self, Legend, STOPS};
 use crate::settings::DebugView;
+use crate::tr;
 use egui::{Align2, Color32, FontId, Pos2, Rect, Stroke, Vec2, epaint::Mesh};
 
 /// Grey views: the display writes the value itself as the sRGB-encoded grey.
@@ -38,13 +39,13 @@ pub fn for_view(view: DebugView, scale: Option<f32>) -> Option<Legend> {
         ticks: quarters(["0", "0.25", "0.5", "0.75", "1"]),
     };
     match view {
-        DebugView::Visibility => Some(grey("visibility V (0 = shadowed, 1 = lit)")),
-        DebugView::RefVisibility => Some(grey("reference visibility V_ref")),
+        DebugView::Visibility => Some(grey(&tr!("legend-visibility"))),
+        DebugView::RefVisibility => Some(grey(&tr!("legend-ref-visibility"))),
         DebugView::Ndotl => Some(grey("cos θ = max(0, n·l)")),
         DebugView::Depth => Some(Legend {
-            title: "light's depth map (linear distance)".into(),
+            title: tr!("legend-depth"),
             ramp: &DEPTH,
-            ticks: quarters(["near", "", "", "", "far"]),
+            ticks: quarters([&tr!("legend-near"), "", "", "", &tr!("legend-far")]),
         }),
         DebugView::TexelDensity => colormap::legend(view, 1.0),
         _ => colormap::legend(view, scale?),

@@ -6,6 +6,7 @@ use super::widgets::{derived, log_slider_with_zero, quantity};
 use crate::physics::radiometry;
 use crate::scene::SceneScale;
 use crate::settings::LightSettings;
+use crate::tr;
 
 /// The largest power the slider offers on the built-in scene (W); the
 /// settings file allows more.
@@ -27,10 +28,8 @@ impl View for LightPanel<'_> {
         } = self.light;
 
         ui.horizontal(|ui| {
-            ui.label("Position q").on_hover_text(
-                "Centre of the light (m). Drag the yellow gizmo in the image: \
-                 parallel to the image, or Ctrl+drag for the height.",
-            );
+            ui.label(tr!("light-position"))
+                .on_hover_text(tr!("light-position-tip"));
             // The built-in scene's ±10 km, moved with the scene.
             let reach = self.scale.length(1e4);
             let anchor = self.scale.anchor;
@@ -47,13 +46,11 @@ impl View for LightPanel<'_> {
                         .prefix(format!("{axis} "))
                         .suffix(" m"),
                 )
-                .on_hover_text(format!("Light position, {axis} coordinate (m); +Y is up"));
+                .on_hover_text(tr!("light-position-axis-tip", axis = axis));
             }
         });
 
-        let label = ui
-            .label("Power Φ")
-            .on_hover_text("Radiant power emitted in all directions (W)");
+        let label = ui.label(tr!("light-power")).on_hover_text(tr!("light-power-tip"));
         log_slider_with_zero(
             ui,
             label.id,
@@ -61,49 +58,52 @@ impl View for LightPanel<'_> {
             self.scale.power(0.01) as f64,
             self.scale.power(MAX_POWER_W) as f64,
             " W",
-            "Φ (W), scaled by the colour. I = Φ / 4π; E = I cos θ / r²",
+            &tr!("light-power-slider-tip"),
         );
         let intensity = radiometry::intensity(*power_w as f64);
         derived(
             ui,
             &format!("I = Φ / 4π = {}", quantity(intensity, "W/sr")),
-            "Intensity of an isotropic point light: power per steradian, I = Φ / 4π (W/sr)",
+            &tr!("light-intensity-tip"),
         );
 
-        let label = ui.label("Sphere radius R").on_hover_text(
-            "R = 0: a point light (hard shadows). R > 0: a sphere light of the same power \
-             (soft shadows with the PCSS filter).",
-        );
+        let label = ui
+            .label(tr!("light-radius"))
+            .on_hover_text(tr!("light-radius-tip"));
         ui.add(
             egui::Slider::new(radius_m, 0.0..=self.scale.max_light_radius_m())
                 .suffix(" m")
                 .custom_formatter(|x, _| super::widgets::number(x)),
         )
         .labelled_by(label.id)
-        .on_hover_text("R (m); the sphere's radiance is L_e = Φ / (4π² R²)");
+        .on_hover_text(tr!("light-radius-slider-tip"));
         if *radius_m > 0.0 {
             let le = radiometry::sphere_radiance(*power_w as f64, *radius_m as f64);
             derived(
                 ui,
                 &format!("L_e = Φ / 4π²R² = {}", quantity(le, "W/m²/sr")),
-                "Uniform radiance of the sphere light's surface (W/m²/sr)",
+                &tr!("light-sphere-radiance-tip"),
             );
         } else {
-            ui.label("point light");
+            ui.label(tr!("light-point"));
         }
 
         ui.horizontal(|ui| {
-            ui.label("Colour")
-                .on_hover_text("Linear RGB factors multiplying Φ");
+            ui.label(tr!("light-colour"))
+                .on_hover_text(tr!("light-colour-tip"));
             let mut rgb = color.to_array();
             if ui
                 .color_edit_button_rgb(&mut rgb)
-                .on_hover_text("Light colour (linear RGB): Φ_rgb = Φ · colour")
+                .on_hover_text(tr!("light-colour-button-tip"))
                 .changed()
             {
                 *color = glam::Vec3::from(rgb);
             }
-            if ui.button("white").on_hover_text("Colour (1, 1, 1)").clicked() {
+            if ui
+                .button(tr!("light-white"))
+                .on_hover_text(tr!("light-white-tip"))
+                .clicked()
+            {
                 *color = glam::Vec3::ONE;
             }
         });

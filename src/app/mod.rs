@@ -27,6 +27,7 @@ mod lecture;
 mod legend;
 mod light;
 mod material;
+mod names;
 mod probe;
 mod recent;
 mod reference;
@@ -49,7 +50,7 @@ pub use lecture::panel_title;
 pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
 pub use reference::{ErrorStats, ReferenceFn};
 pub use shortcuts::{GESTURES, SHORTCUTS, Shortcut};
-pub use state::{SplitLayout, State};
+pub use state::{MemoryStorage, SplitLayout, State};
 
 use crate::scene::Scene;
 use crate::settings::Settings;
@@ -160,6 +161,8 @@ fn check_display() -> anyhow::Result<()> {
 /// Opens the lab and runs until its window closes.
 pub fn run(options: LaunchOptions) -> anyhow::Result<()> {
     let preloaded = preload(&options)?;
+    // The text's language until the stored state names the one picked.
+    crate::i18n::set_current(crate::i18n::system_language());
     check_display()?;
     // No adapter: say so (and what to install) before eframe tries.
     crate::gpu::context::pick_adapter(&crate::gpu::context::instance())

@@ -11,6 +11,7 @@ use crate::presets::Half;
 use crate::reference::{Reference, ReferenceOptions, ShadingSample};
 use crate::scene::Scene;
 use crate::settings::{DebugView, Settings};
+use crate::tr;
 use glam::DVec3;
 
 /// A probed pixel of one half of the image.
@@ -197,80 +198,76 @@ pub struct Probe {
 impl Probe {
     pub fn ui(&self, ui: &mut egui::Ui) {
         let Some(pixel) = self.pixel else {
-            ui.label("Click a pixel of the image to see every term of L = f_r · E · V there.");
+            ui.label(tr!("probe-hint"));
             return;
         };
         let half = match pixel.half {
             Half::A => "A",
             Half::B => "B",
         };
-        ui.label(format!(
-            "pixel ({}, {}) of {}×{}, half {half}",
-            pixel.pixel.0, pixel.pixel.1, pixel.size.0, pixel.size.1
+        ui.label(tr!(
+            "probe-pixel",
+            x = pixel.pixel.0,
+            y = pixel.pixel.1,
+            width = pixel.size.0,
+            height = pixel.size.1,
+            half = half
         ));
         let Some(t) = &self.terms else {
-            ui.label("background: the pixel's ray meets no surface");
+            ui.label(tr!("probe-background"));
             return;
         };
-        ui.label(format!("{} — material {}", t.object, t.material));
+        ui.label(tr!(
+            "probe-object",
+            object = t.object.as_str(),
+            material = t.material.as_str()
+        ));
         egui::Grid::new("probe grid")
             .num_columns(2)
             .striped(true)
             .show(ui, |ui| {
                 for (symbol, value, formula) in self.rows(t) {
-                    value_row(ui, symbol, &value, formula);
+                    value_row(ui, &symbol, &value, &formula);
                 }
             });
     }
 
     /// The probe's read-out: (symbol, value with unit, formula) per row.
-    pub fn rows(&self, t: &ProbeTerms) -> Vec<(&'static str, String, &'static str)> {
+    pub fn rows(&self, t: &ProbeTerms) -> Vec<(String, String, String)> {
         let theta_deg = t.cos_theta.clamp(-1.0, 1.0).acos().to_degrees();
         let times_c = |x: f64| quantity(x, "1/sr  × c");
         let mut rows = vec![
+            ("p".into(), position(t.position), tr!("probe-p-tip")),
+            ("n".into(), vector(t.n, ""), tr!("probe-n-tip")),
+            ("l".into(), vector(t.l, ""), tr!("probe-l-tip")),
+            ("o".into(), vector(t.o, ""), tr!("probe-o-tip")),
+            ("r".into(), length(t.r_m), tr!("probe-r-tip")),
             (
-                "p",
-                position(t.position),
-                "Where the pixel's ray meets the surface (m)",
-            ),
-            (
-                "n",
-                vector(t.n, ""),
-                "Unit shading normal (interpolated vertex normals)",
-            ),
-            (
-                "l",
-                vector(t.l, ""),
-                "l = (q − p) / r, unit direction to the light",
-            ),
-            ("o", vector(t.o, ""), "Unit direction to the eye"),
-            (
-                "r",
-                length(t.r_m),
-                "r = |q − p|, distance to the light's centre (m)",
-            ),
-            (
-                "cos θ",
+                "cos θ".into(),
                 format!("{}  (θ = {}°)", number(t.cos_theta), number(theta_deg)),
-                "cos θ = n·l; negative: the light is below the horizon",
+                tr!("probe-cos-tip"),
             ),
-            ("I", quantity(t.intensity_w_sr, "W/sr"), "I = Φ / 4π (W/sr)"),
             (
-                "E",
+                "I".into(),
+                quantity(t.intensity_w_sr, "W/sr"),
+                "I = Φ / 4π (W/sr)".into(),
+            ),
+            (
+                "E".into(),
                 quantity(t.irradiance_w_m2, "W/m²"),
-                "E = I · max(0, cos θ) / r² (W/m²); a sphere light straddling the horizon uses its closed form",
+                tr!("probe-e-tip"),
             ),
         ];
         if let Some(h) = t.h {
             rows.push((
-                "cos θ_h",
+                "cos θ_h".into(),
                 number(t.n.dot(h).max(0.0)),
-                "cos θ_h = max(0, n·h), h = normalize(l + o)",
+                "cos θ_h = max(0, n·h), h = normalize(l + o)".into(),
             ));
         }
         rows.extend([
             (
-                "k, m, N(m)",
+                "k, m, N(m)".into(),
                 format!(
                     "{}, {}, {} ({})",
                     number(t.k),
@@ -278,78 +275,78 @@ impl Probe {
                     number(t.norm.factor(t.m)),
                     t.norm
                 ),
-                t.norm.formula(),
+                t.norm.formula().into(),
             ),
-            ("f_d", times_c(t.brdf.diffuse), "f_d = c · k / π (1/sr)"),
             (
-                "f_s",
+                "f_d".into(),
+                times_c(t.brdf.diffuse),
+                "f_d = c · k / π (1/sr)".into(),
+            ),
+            (
+                "f_s".into(),
                 times_c(t.brdf.specular),
-                "f_s = c · (1 − k) · N(m) · cos^m θ_h (1/sr)",
+                "f_s = c · (1 − k) · N(m) · cos^m θ_h (1/sr)".into(),
             ),
-            ("f_r", times_c(t.brdf.total()), super::material::BRDF),
             (
-                "c",
-                rgb(t.color, ""),
-                "The BRDF colour c (linear RGB): base colour × texture at the hit's uv, or the override",
+                "f_r".into(),
+                times_c(t.brdf.total()),
+                super::material::BRDF.into(),
             ),
+            ("c".into(), rgb(t.color, ""), tr!("probe-c-tip")),
         ]);
         match &self.gpu {
             Some(g) => {
                 let l = t.unshadowed_radiance() * g.visibility as f64;
                 rows.extend([
                     (
-                        "V (shadow map)",
+                        tr!("probe-v-map"),
                         number(g.visibility as f64),
-                        "Visibility from the shadow map with the current filter and bias, V ∈ [0, 1]",
+                        tr!("probe-v-map-tip"),
                     ),
                     (
-                        "texels/pixel",
+                        tr!("probe-texels"),
                         number(g.texel_density as f64),
-                        "Shadow-map texels per screen pixel: below 1 the map is magnified (aliasing)",
+                        tr!("probe-texels-tip"),
                     ),
-                    (
-                        "L",
-                        rgb(l, "W/m²/sr"),
-                        "L = f_r · E · V · light colour (W/m²/sr), in f64 with the GPU's V",
-                    ),
+                    ("L".into(), rgb(l, "W/m²/sr"), tr!("probe-l-value-tip")),
                 ]);
                 if let Some(gpu_l) = g.radiance {
                     let v = DVec3::from_array(gpu_l.map(f64::from));
-                    rows.push((
-                        "L (GPU)",
-                        rgb(v, "W/m²/sr"),
-                        "The renderer's radiance at this pixel (f32)",
-                    ));
+                    rows.push((tr!("probe-l-gpu"), rgb(v, "W/m²/sr"), tr!("probe-l-gpu-tip")));
                 }
             }
             None => rows.extend([
-                ("V (shadow map)", "…".into(), "Reading the renderer's aux target"),
+                (tr!("probe-v-map"), "…".into(), tr!("probe-reading-tip")),
                 (
-                    "L / V",
+                    "L / V".into(),
                     rgb(t.unshadowed_radiance(), "W/m²/sr"),
-                    "L / V = f_r · E · light colour",
+                    tr!("probe-unshadowed-tip"),
                 ),
             ]),
         }
         rows.extend([
             (
-                "V (ray traced)",
+                tr!("probe-v-traced"),
                 number(t.visibility),
-                "Visibility of the light from p, ray traced on the CPU in f64: the exact V the shadow map approximates",
+                tr!("probe-v-traced-tip"),
             ),
             (
-                "L (ray traced)",
+                tr!("probe-l-traced"),
                 rgb(t.radiance, "W/m²/sr"),
-                "The CPU reference's radiance at this pixel's centre",
+                tr!("probe-l-traced-tip"),
             ),
         ]);
         if let Some(r) = &self.reference {
-            let stale = if r.stale { "  (stale)" } else { "" };
+            let stale = if r.stale {
+                tr!("probe-stale")
+            } else {
+                String::new()
+            };
             let v = DVec3::from_array(r.radiance.map(f64::from));
             rows.push((
-                "L (reference image)",
+                tr!("probe-l-image"),
                 format!("{}{stale}", rgb(v, "W/m²/sr")),
-                "The computed reference image at this pixel (F5), which the error view compares with",
+                tr!("probe-l-image-tip"),
             ));
         }
         rows

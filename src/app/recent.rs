@@ -3,6 +3,7 @@
 //! note; it is never an error at start-up.
 
 use super::command::Command;
+use crate::tr;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -29,8 +30,10 @@ impl RecentFiles {
 
     /// The two lists as menu entries; the command of the one clicked.
     pub fn menu(&self, ui: &mut egui::Ui) -> Option<Command> {
-        let scenes = section(ui, "Recent scenes", &self.scenes, |p| Command::OpenScene(Some(p)));
-        let settings = section(ui, "Recent settings", &self.settings, |p| {
+        let scenes = section(ui, &tr!("recent-scenes"), &self.scenes, |p| {
+            Command::OpenScene(Some(p))
+        });
+        let settings = section(ui, &tr!("recent-settings"), &self.settings, |p| {
             Command::LoadSettings(Some(p))
         });
         scenes.or(settings)
@@ -55,7 +58,7 @@ pub fn entry_text(path: &Path) -> String {
     if path.exists() {
         name
     } else {
-        format!("{name} (missing)")
+        tr!("recent-missing", name = name)
     }
 }
 
@@ -67,7 +70,7 @@ fn section(
 ) -> Option<Command> {
     ui.label(egui::RichText::new(title).weak());
     if paths.is_empty() {
-        ui.label(egui::RichText::new("(none yet)").weak().italics());
+        ui.label(egui::RichText::new(tr!("recent-none")).weak().italics());
     }
     let mut chosen = None;
     for path in paths {

@@ -12,6 +12,7 @@ use crate::gpu::ComparisonImage;
 use crate::reference::{Reference, ReferenceOptions, RenderControl};
 use crate::scene::Scene;
 use crate::settings::{DebugView, Settings, ShadowSettings, ViewSettings};
+use crate::tr;
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::{Receiver, TryRecvError};
@@ -184,7 +185,7 @@ impl ReferencePanel {
                     result: receiver,
                 });
             }
-            Err(e) => self.message = Some(format!("cannot start the reference thread: {e}")),
+            Err(e) => self.message = Some(tr!("reference-cannot-start", message = e.to_string())),
         }
     }
 
@@ -192,7 +193,7 @@ impl ReferencePanel {
     pub fn cancel(&mut self) {
         if let Some(job) = self.job.take() {
             job.control.cancel();
-            self.message = Some("reference cancelled".into());
+            self.message = Some(tr!("reference-cancelled"));
         }
     }
 
@@ -204,7 +205,7 @@ impl ReferencePanel {
         match job.result.try_recv() {
             Err(TryRecvError::Empty) => false,
             Err(TryRecvError::Disconnected) => {
-                self.message = Some("the reference thread stopped without a result".into());
+                self.message = Some(tr!("reference-stopped"));
                 self.job = None;
                 false
             }
@@ -240,19 +241,16 @@ impl ReferencePanel {
         let mut action = None;
         ui.horizontal(|ui| {
             if ui
-                .add_enabled(self.job.is_none(), egui::Button::new("Compute reference (F5)"))
-                .on_hover_text(
-                    "Ray trace the current view on the CPU in f64 (a background thread): the exact \
-                     L and V that the shadow map approximates",
-                )
+                .add_enabled(self.job.is_none(), egui::Button::new(tr!("reference-compute")))
+                .on_hover_text(tr!("reference-compute-tip"))
                 .clicked()
             {
                 action = Some(Command::StartReference);
             }
             if self.job.is_some()
                 && ui
-                    .button("Cancel (Esc)")
-                    .on_hover_text("Stop the computation")
+                    .button(tr!("reference-cancel"))
+                    .on_hover_text(tr!("reference-cancel-tip"))
                     .clicked()
             {
                 action = Some(Command::Cancel);
@@ -262,25 +260,25 @@ impl ReferencePanel {
             let done = job.control.pixels_done.load(Ordering::Relaxed).min(job.total);
             let fraction = done as f32 / job.total as f32;
             ui.add(egui::ProgressBar::new(fraction).show_percentage().animate(true))
-                .on_hover_text(format!("{done} of {} pixels", job.total));
+                .on_hover_text(tr!("reference-progress-tip", done = done, total = job.total));
             ui.label(format!("{} s", number(job.started.elapsed().as_secs_f64())));
         }
         if let Some(message) = &self.message {
             ui.label(egui::RichText::new(message).color(ui.visuals().warn_fg_color));
         }
         let Some(result) = &self.result else {
-            ui.label("No reference yet: the error and ref-visibility views need one.");
+            ui.label(tr!("reference-none"));
             return action;
         };
-        ui.label(format!(
-            "{}×{} in {} s",
-            result.image.width,
-            result.image.height,
-            number(result.elapsed.as_secs_f64())
+        ui.label(tr!(
+            "reference-done",
+            width = result.image.width,
+            height = result.image.height,
+            seconds = number(result.elapsed.as_secs_f64())
         ));
         if result.is_stale(settings, size) {
             ui.label(
-                egui::RichText::new("STALE: the view, light, material or size changed since; recompute")
+                egui::RichText::new(tr!("reference-stale"))
                     .color(ui.visuals().warn_fg_color)
                     .strong(),
             );
@@ -291,36 +289,41 @@ impl ReferencePanel {
                     ui,
                     "RMSE",
                     &quantity(s.rmse, "W/m²/sr"),
-                    "√(mean over covered pixels of (L − L_ref)²), luminance",
+                    &tr!("reference-rmse-tip"),
                 );
                 super::widgets::value_row(
                     ui,
-                    "relative",
+                    &tr!("reference-relative"),
                     &format!("{} %", number(100.0 * s.relative)),
                     "RMSE / mean L_ref",
                 );
                 super::widgets::value_row(
                     ui,
-                    "max |error|",
+                    &tr!("reference-max-error"),
                     &quantity(s.max_abs, "W/m²/sr"),
                     "max |L − L_ref|",
                 );
-                super::widgets::value_row(ui, "pixels", &s.pixels.to_string(), "Pixels covered by the scene");
+                super::widgets::value_row(
+                    ui,
+                    &tr!("reference-pixels"),
+                    &s.pixels.to_string(),
+                    &tr!("reference-pixels-tip"),
+                );
             });
         } else {
-            ui.label("RMSE: shown in the error view");
+            ui.label(tr!("reference-rmse-in-error-view"));
         }
         ui.horizontal(|ui| {
             if ui
-                .button("Error view")
-                .on_hover_text("Signed L − L_ref in false colour")
+                .button(tr!("reference-error-view"))
+                .on_hover_text(tr!("reference-error-view-tip"))
                 .clicked()
             {
                 action = Some(Command::ShowView(DebugView::Error));
             }
             if ui
-                .button("Reference V")
-                .on_hover_text("The reference's visibility V_ref")
+                .button(tr!("reference-visibility"))
+                .on_hover_text(tr!("reference-visibility-tip"))
                 .clicked()
             {
                 action = Some(Command::ShowView(DebugView::RefVisibility));

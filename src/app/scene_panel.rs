@@ -5,6 +5,7 @@ use super::command::Command;
 use super::widgets::{length, quantity};
 use crate::scene::Scene;
 use crate::settings::{GroundMode, GroundSettings};
+use crate::tr;
 
 pub struct ScenePanel<'a> {
     pub scene: &'a Scene,
@@ -21,28 +22,26 @@ impl ScenePanel<'_> {
         ui.label(egui::RichText::new(name).strong());
         if !bounds.is_empty() {
             let size = bounds.extent().length() as f64;
-            ui.label(format!(
-                "{} triangles · {} across",
-                scene.triangle_count(),
-                length(size)
+            ui.label(tr!(
+                "scene-size",
+                triangles = scene.triangle_count(),
+                size = length(size)
             ))
-            .on_hover_text("The model's bounding-box diagonal: the lab's lengths follow it");
+            .on_hover_text(tr!("scene-size-tip"));
         } else {
-            ui.label("nothing to draw: the file has no triangles");
+            ui.label(tr!("scene-empty"));
         }
         ui.horizontal(|ui| {
             if ui
-                .button("Frame all (F)")
-                .on_hover_text("Move the camera along its direction until the model fills the view")
+                .button(tr!("scene-frame-all"))
+                .on_hover_text(tr!("scene-frame-all-tip"))
                 .clicked()
             {
                 command = Some(Command::FrameAll);
             }
             if ui
-                .button("Auto exposure (E)")
-                .on_hover_text(
-                    "EV such that the 95th percentile of the lit pixels' luminance shows at 0.8 (linear)",
-                )
+                .button(tr!("scene-auto-exposure"))
+                .on_hover_text(tr!("scene-auto-exposure-tip"))
                 .clicked()
             {
                 command = Some(Command::AutoExposure);
@@ -50,11 +49,11 @@ impl ScenePanel<'_> {
         });
         if !scene.cameras.is_empty() {
             ui.horizontal_wrapped(|ui| {
-                ui.label("File cameras:");
+                ui.label(tr!("scene-cameras"));
                 for (i, c) in scene.cameras.iter().enumerate() {
                     if ui
                         .button(&c.name)
-                        .on_hover_text(format!("The file's camera {i} (--camera gltf:{i})"))
+                        .on_hover_text(tr!("scene-camera-tip", index = i))
                         .clicked()
                     {
                         command = Some(Command::UseSceneCamera(i));
@@ -63,39 +62,37 @@ impl ScenePanel<'_> {
             });
         }
         for light in &scene.lights {
-            ui.label(format!(
-                "File light '{}': I = {}",
-                light.name,
-                quantity(light.intensity_w_sr as f64, "W/sr")
+            ui.label(tr!(
+                "scene-file-light",
+                name = light.name.as_str(),
+                intensity = quantity(light.intensity_w_sr as f64, "W/sr")
             ))
-            .on_hover_text(format!(
-                "KHR_lights_punctual gives candela; I (W/sr) = I (cd) / {} lm/W, the efficacy of \
-                 555 nm light (a white source emits more watts for the same candela). The lab's \
-                 light starts there with Φ = 4π I.",
-                crate::scene::gltf::LUMINOUS_EFFICACY_LM_PER_W
+            .on_hover_text(tr!(
+                "scene-file-light-tip",
+                efficacy = crate::scene::gltf::LUMINOUS_EFFICACY_LM_PER_W.to_string()
             ));
         }
         let GroundSettings { mode, k, m } = ground;
         ui.horizontal(|ui| {
-            ui.label("Ground")
-                .on_hover_text("A shadow-receiving ground at the model's lowest point (--ground)");
+            ui.label(tr!("scene-ground"))
+                .on_hover_text(tr!("scene-ground-tip"));
             for &choice in GroundMode::ALL {
                 ui.selectable_value(mode, choice, choice.name())
                     .on_hover_text(match choice {
-                        GroundMode::Auto => "Under a model that has none",
-                        GroundMode::On => "Always",
-                        GroundMode::Off => "Never: the file's geometry only",
+                        GroundMode::Auto => tr!("scene-ground-auto-tip"),
+                        GroundMode::On => tr!("scene-ground-on-tip"),
+                        GroundMode::Off => tr!("scene-ground-off-tip"),
                     });
             }
         });
-        ui.add(egui::Slider::new(k, 0.0..=1.0).text("ground k"))
-            .on_hover_text("The ground's diffuse/specular mix: f_r = c (k/π + (1 − k) N(m) cos^m θ_h)");
+        ui.add(egui::Slider::new(k, 0.0..=1.0).text(tr!("scene-ground-k")))
+            .on_hover_text(tr!("scene-ground-k-tip"));
         ui.add(
             egui::Slider::new(m, 0.0..=1000.0)
                 .logarithmic(true)
-                .text("ground m"),
+                .text(tr!("scene-ground-m")),
         )
-        .on_hover_text("The ground's Blinn-Phong exponent m");
+        .on_hover_text(tr!("scene-ground-m-tip"));
         command
     }
 }

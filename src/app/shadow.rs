@@ -4,6 +4,7 @@ use super::View;
 use super::widgets::{number, warning};
 use crate::scene::SceneScale;
 use crate::settings::{BiasMode, BiasSettings, Filter, ShadowSettings};
+use crate::tr;
 
 pub struct ShadowPanel<'a> {
     pub shadow: &'a mut ShadowSettings,
@@ -18,31 +19,26 @@ pub struct ShadowPanel<'a> {
 }
 
 /// Tooltip of each filter.
-pub fn filter_help(filter: Filter) -> &'static str {
+pub fn filter_help(filter: Filter) -> String {
     match filter {
-        Filter::None => "One depth test at the nearest texel: V ∈ {0, 1}, hard aliased edges",
-        Filter::Hw2x2 => "The hardware comparison sampler: 2×2 depth tests, bilinearly weighted",
-        Filter::Pcf => "Percentage-closer filtering: V = mean of n×n depth tests (blurs, not physical)",
-        Filter::Poisson => "Poisson-disc depth tests rotated per pixel: noise instead of banding",
-        Filter::Pcss => {
-            "Percentage-closer soft shadows: a blocker search estimates the penumbra width \
-             w = R · (d_receiver − d_blocker) / d_blocker, then filters over w"
-        }
-        Filter::Vsm => "Variance shadow map: blurred moments (μ, σ²), V ≤ σ² / (σ² + (d − μ)²) (Chebyshev)",
-        Filter::Evsm => "Exponential VSM: moments of e^(c·d), less light bleeding than VSM",
-        Filter::Msm => {
-            "Moment shadow map: moments d, d², d³, d⁴, Hamburger reconstruction (Peters & Klein 2015)"
-        }
+        Filter::None => tr!("filter-none-tip"),
+        Filter::Hw2x2 => tr!("filter-hw2x2-tip"),
+        Filter::Pcf => tr!("filter-pcf-tip"),
+        Filter::Poisson => tr!("filter-poisson-tip"),
+        Filter::Pcss => tr!("filter-pcss-tip"),
+        Filter::Vsm => tr!("filter-vsm-tip"),
+        Filter::Evsm => tr!("filter-evsm-tip"),
+        Filter::Msm => tr!("filter-msm-tip"),
     }
 }
 
 /// Tooltip of each bias mode.
-pub fn bias_help(mode: BiasMode) -> &'static str {
+pub fn bias_help(mode: BiasMode) -> String {
     match mode {
-        BiasMode::Auto => "The receiver's tangent plane predicts its depth at each texel, plus a small slack",
-        BiasMode::Constant => "d_compared = d − D: too little gives acne, too much peter-panning",
-        BiasMode::Slope => "d_compared = d − (D + S · texel · tan θ): more bias at grazing light",
-        BiasMode::Normal => "The lookup point moves N texel footprints along the surface normal",
+        BiasMode::Auto => tr!("bias-auto-tip"),
+        BiasMode::Constant => tr!("bias-constant-tip"),
+        BiasMode::Slope => tr!("bias-slope-tip"),
+        BiasMode::Normal => tr!("bias-normal-tip"),
     }
 }
 
@@ -64,8 +60,8 @@ impl View for ShadowPanel<'_> {
             bias,
         } = self.shadow;
 
-        ui.checkbox(enabled, "Shadows")
-            .on_hover_text("L = f_r · E · V; off: V = 1 everywhere");
+        ui.checkbox(enabled, tr!("shadow-enabled"))
+            .on_hover_text(tr!("shadow-enabled-tip"));
         ui.add_enabled_ui(*enabled, |ui| {
             resolution_ui(
                 ui,
@@ -74,8 +70,8 @@ impl View for ShadowPanel<'_> {
                 self.resolution_note.as_ref(),
             );
             ui.horizontal(|ui| {
-                ui.label("Filter")
-                    .on_hover_text("How depth tests become a visibility V ∈ [0, 1]");
+                ui.label(tr!("shadow-filter"))
+                    .on_hover_text(tr!("shadow-filter-tip"));
                 egui::ComboBox::from_id_salt("shadow filter")
                     .selected_text(filter.name())
                     .show_ui(ui, |ui| {
@@ -91,74 +87,65 @@ impl View for ShadowPanel<'_> {
                 Filter::None | Filter::Hw2x2 => {}
                 Filter::Pcf => {
                     ui.horizontal(|ui| {
-                        ui.label("Kernel")
-                            .on_hover_text("n×n depth tests one texel apart");
+                        ui.label(tr!("shadow-kernel"))
+                            .on_hover_text(tr!("shadow-kernel-tip"));
                         for n in ShadowSettings::PCF_SIZES {
                             ui.selectable_value(pcf_size, n, format!("{n}×{n}"))
-                                .on_hover_text(format!("V = mean of {} depth tests", n * n));
+                                .on_hover_text(tr!("shadow-kernel-size-tip", tests = n * n));
                         }
                     });
                 }
                 Filter::Poisson => {
-                    samples(ui, poisson_samples, "Samples", "Depth tests on a Poisson disc");
+                    samples(
+                        ui,
+                        poisson_samples,
+                        &tr!("shadow-samples"),
+                        &tr!("shadow-samples-tip"),
+                    );
                     ui.add(
                         egui::Slider::new(poisson_radius_texels, 0.0..=16.0)
-                            .text("radius")
-                            .suffix(" texels"),
+                            .text(tr!("shadow-radius"))
+                            .suffix(tr!("unit-texels")),
                     )
-                    .on_hover_text("Radius of the disc (shadow-map texels): wider is softer");
+                    .on_hover_text(tr!("shadow-radius-tip"));
                 }
                 Filter::Pcss => {
                     ui.add(
                         egui::Slider::new(self.light_radius_m, 0.0..=self.scale.max_light_radius_m())
-                            .text("light R")
+                            .text(tr!("shadow-light-radius"))
                             .suffix(" m")
                             .custom_formatter(|x, _| number(x)),
                     )
-                    .on_hover_text(
-                        "The light's radius R (same as in the Light panel): the penumbra width is \
-                         w = R · (d_receiver − d_blocker) / d_blocker. R = 0 gives hard shadows.",
-                    );
+                    .on_hover_text(tr!("shadow-light-radius-tip"));
                     samples(
                         ui,
                         pcss_blocker_samples,
-                        "Blocker samples",
-                        "Depth tests of the blocker search",
+                        &tr!("shadow-blocker-samples"),
+                        &tr!("shadow-blocker-samples-tip"),
                     );
                     samples(
                         ui,
                         poisson_samples,
-                        "Filter samples",
-                        "Depth tests over the estimated penumbra",
+                        &tr!("shadow-filter-samples"),
+                        &tr!("shadow-filter-samples-tip"),
                     );
                 }
                 Filter::Vsm | Filter::Evsm => {
+                    blur(ui, vsm_blur_texels);
                     ui.add(
-                        egui::Slider::new(vsm_blur_texels, 0..=16)
-                            .text("blur")
-                            .suffix(" texels"),
+                        egui::Slider::new(vsm_bleed_reduction, 0.0..=0.99)
+                            .text(tr!("shadow-bleed-reduction")),
                     )
-                    .on_hover_text("Radius of the separable blur of the moments (texels)");
-                    ui.add(egui::Slider::new(vsm_bleed_reduction, 0.0..=0.99).text("bleed reduction"))
-                        .on_hover_text(
-                            "V' = clamp((V − b) / (1 − b), 0, 1): cuts Chebyshev's light bleeding",
-                        );
+                    .on_hover_text(tr!("shadow-bleed-reduction-tip"));
                 }
                 Filter::Msm => {
-                    ui.add(
-                        egui::Slider::new(vsm_blur_texels, 0..=16)
-                            .text("blur")
-                            .suffix(" texels"),
-                    )
-                    .on_hover_text("Radius of the separable blur of the moments (texels)");
+                    blur(ui, vsm_blur_texels);
                     ui.add(
                         egui::Slider::new(msm_bias, 0.0..=0.01)
                             .logarithmic(true)
-                            .text("moment bias α"),
+                            .text(tr!("shadow-moment-bias")),
                     )
-                    .on_hover_text(
-                        "b' = (1 − α) b + α (½, ½, ½, ½): larger α, more light leaking, less noise",
-                    );
+                    .on_hover_text(tr!("shadow-moment-bias-tip"));
                 }
             }
             bias_ui(ui, bias, self.scale);
@@ -168,7 +155,17 @@ impl View for ShadowPanel<'_> {
 
 fn samples(ui: &mut egui::Ui, value: &mut u32, label: &str, help: &str) {
     ui.add(egui::Slider::new(value, 4..=64).text(label))
-        .on_hover_text(format!("{help} (4 … 64): more is smoother and slower"));
+        .on_hover_text(tr!("shadow-samples-range-tip", help = help));
+}
+
+/// The radius of the moments' blur (VSM, EVSM, MSM).
+fn blur(ui: &mut egui::Ui, texels: &mut u32) {
+    ui.add(
+        egui::Slider::new(texels, 0..=16)
+            .text(tr!("shadow-blur"))
+            .suffix(tr!("unit-texels")),
+    )
+    .on_hover_text(tr!("shadow-blur-tip"));
 }
 
 /// The resolutions offered: powers of two from the minimum to the adapter's limit.
@@ -186,24 +183,25 @@ fn resolution_ui(
     note: Option<&(u32, String)>,
 ) {
     ui.horizontal(|ui| {
-        ui.label("Resolution").on_hover_text(
-            "Texels per side of the shadow map: one texel covers (frustum width / resolution) \
-             metres; too few texels per pixel → aliasing",
-        );
+        ui.label(tr!("shadow-resolution"))
+            .on_hover_text(tr!("shadow-resolution-tip"));
         egui::ComboBox::from_id_salt("shadow resolution")
             .selected_text(format!("{resolution}²"))
             .show_ui(ui, |ui| {
                 for r in resolution_choices(max_texture_side) {
                     let mib = (r as f64).powi(2) * 4.0 / (1024.0 * 1024.0);
                     ui.selectable_value(resolution, r, format!("{r}²"))
-                        .on_hover_text(format!("{r} × {r} texels, {} MiB of depth", number(mib)));
+                        .on_hover_text(tr!("shadow-resolution-size-tip", side = r, mib = number(mib)));
                 }
             })
             .response
-            .on_hover_text(format!("Adapter limit: {max_texture_side} texels per side"));
+            .on_hover_text(tr!("shadow-adapter-limit-tip", side = max_texture_side));
     });
     if let Some((used, why)) = note {
-        warning(ui, &format!("using {used}²: {why}"));
+        warning(
+            ui,
+            &tr!("shadow-resolution-used", used = *used, why = why.as_str()),
+        );
     }
 }
 
@@ -215,8 +213,7 @@ fn bias_ui(ui: &mut egui::Ui, bias: &mut BiasSettings, scale: SceneScale) {
         normal_texels,
     } = bias;
     ui.horizontal(|ui| {
-        ui.label("Bias")
-            .on_hover_text("Offsets the compared depth: acne (too little) against peter-panning (too much)");
+        ui.label(tr!("shadow-bias")).on_hover_text(tr!("shadow-bias-tip"));
         egui::ComboBox::from_id_salt("shadow bias")
             .selected_text(mode.name())
             .show_ui(ui, |ui| {
@@ -237,25 +234,25 @@ fn bias_ui(ui: &mut egui::Ui, bias: &mut BiasSettings, scale: SceneScale) {
                 .suffix(" m")
                 .custom_formatter(|x, _| number(x)),
         )
-        .on_hover_text("Constant depth offset D towards the light (m)");
+        .on_hover_text(tr!("shadow-bias-depth-tip"));
     };
     match mode {
         BiasMode::Auto => {
-            ui.label("from the receiver's plane and the texel footprint");
+            ui.label(tr!("shadow-bias-auto"));
         }
         BiasMode::Constant => depth(ui, depth_m),
         BiasMode::Slope => {
             depth(ui, depth_m);
             ui.add(egui::Slider::new(slope, 0.0..=10.0).text("S"))
-                .on_hover_text("Slope factor S: bias D + S · texel footprint · tan θ");
+                .on_hover_text(tr!("shadow-bias-slope-tip"));
         }
         BiasMode::Normal => {
             ui.add(
                 egui::Slider::new(normal_texels, 0.0..=8.0)
                     .text("N")
-                    .suffix(" texels"),
+                    .suffix(tr!("unit-texels")),
             )
-            .on_hover_text("Normal offset N: the lookup moves N texel footprints along n");
+            .on_hover_text(tr!("shadow-bias-normal-tip"));
         }
     }
 }

@@ -3,13 +3,15 @@
 //! gestures the help lists beside them.
 
 use super::command::Command;
+use crate::tr;
 use egui::{Key, KeyboardShortcut, ModifierNames, Modifiers};
 
 /// One row of the help: the keys that emit `command`.
 pub struct Shortcut {
     /// Alternatives; the first is the one a test presses.
     pub keys: &'static [KeyboardShortcut],
-    pub does: &'static str,
+    /// What the keys do, in the current language.
+    pub does: Text,
     pub command: Command,
 }
 
@@ -31,91 +33,100 @@ pub static SHORTCUTS: &[Shortcut] = &[
             key(SHIFT, Key::Questionmark),
             key(NONE, Key::Questionmark),
         ],
-        does: "this help",
+        does: || tr!("shortcut-help"),
         command: Command::ToggleHelp,
     },
     Shortcut {
         keys: &[key(CMD_SHIFT, Key::Z), key(CMD, Key::Y)],
-        does: "redo",
+        does: || tr!("shortcut-redo"),
         command: Command::Redo,
     },
     Shortcut {
         keys: &[key(CMD, Key::Z)],
-        does: "undo a settings change",
+        does: || tr!("shortcut-undo"),
         command: Command::Undo,
     },
     Shortcut {
         keys: &[key(CMD, Key::S)],
-        does: "save the settings file",
+        does: || tr!("shortcut-save-settings"),
         command: Command::SaveSettings(None),
     },
     Shortcut {
         keys: &[key(CMD, Key::O)],
-        does: "open a glTF/GLB file (file dialog)",
+        does: || tr!("shortcut-open-scene"),
         command: Command::ChooseFile(super::files::FileAction::OpenScene),
     },
     Shortcut {
         keys: &[key(NONE, Key::R)],
-        does: "reset the view",
+        does: || tr!("shortcut-reset-view"),
         command: Command::ResetView,
     },
     Shortcut {
         keys: &[key(NONE, Key::F)],
-        does: "frame all: the model fills the view",
+        does: || tr!("shortcut-frame-all"),
         command: Command::FrameAll,
     },
     Shortcut {
         keys: &[key(NONE, Key::E)],
-        does: "auto exposure from the image",
+        does: || tr!("shortcut-auto-exposure"),
         command: Command::AutoExposure,
     },
     Shortcut {
         keys: &[key(NONE, Key::S)],
-        does: "split view A | B on/off",
+        does: || tr!("shortcut-split"),
         command: Command::ToggleSplit,
     },
     Shortcut {
         keys: &[key(SHIFT, Key::V)],
-        does: "previous debug view",
+        does: || tr!("shortcut-previous-view"),
         command: Command::StepView(-1),
     },
     Shortcut {
         keys: &[key(NONE, Key::V)],
-        does: "next debug view",
+        does: || tr!("shortcut-next-view"),
         command: Command::StepView(1),
     },
     Shortcut {
         keys: &[key(NONE, Key::F5)],
-        does: "compute the CPU reference",
+        does: || tr!("shortcut-reference"),
         command: Command::StartReference,
     },
     Shortcut {
         keys: &[key(NONE, Key::Escape)],
-        does: "cancel the reference / close this help",
+        does: || tr!("shortcut-cancel"),
         command: Command::Cancel,
     },
     Shortcut {
         keys: &[key(NONE, Key::F12)],
-        does: "save a screenshot",
+        does: || tr!("shortcut-screenshot"),
         command: Command::Screenshot(None),
     },
     Shortcut {
         keys: &[key(NONE, Key::F9)],
-        does: "hide/show the side panels",
+        does: || tr!("shortcut-panels"),
         command: Command::TogglePanels,
     },
 ];
 
+/// A text in the current language, made when shown.
+pub type Text = fn() -> String;
+
 /// (gesture, what it does): the mouse, which has no command of its own
 /// (the viewport turns a drag into new settings).
-pub const GESTURES: &[(&str, &str)] = &[
-    ("Left drag", "orbit the camera around its target"),
-    ("Shift + drag / middle drag", "pan"),
-    ("Wheel", "zoom"),
-    ("Click", "probe the pixel (every term of L = f_r · E · V)"),
-    ("Double-click", "orbit around the point under the cursor"),
-    ("Drag the yellow light", "move the light parallel to the image"),
-    ("Ctrl + drag the light", "move the light up and down"),
+pub const GESTURES: &[(Text, Text)] = &[
+    (|| tr!("gesture-left-drag"), || tr!("gesture-left-drag-does")),
+    (|| tr!("gesture-pan"), || tr!("gesture-pan-does")),
+    (|| tr!("gesture-wheel"), || tr!("gesture-wheel-does")),
+    (|| tr!("gesture-click"), || tr!("gesture-click-does")),
+    (
+        || tr!("gesture-double-click"),
+        || tr!("gesture-double-click-does"),
+    ),
+    (|| tr!("gesture-drag-light"), || tr!("gesture-drag-light-does")),
+    (
+        || tr!("gesture-ctrl-drag-light"),
+        || tr!("gesture-ctrl-drag-light-does"),
+    ),
 ];
 
 impl Shortcut {
@@ -131,7 +142,7 @@ impl Shortcut {
             .iter()
             .map(|k| k.format(&names, mac))
             .collect::<Vec<_>>()
-            .join(" or ")
+            .join(&tr!("shortcut-or"))
     }
 }
 
@@ -156,7 +167,7 @@ pub fn pressed(ctx: &egui::Context) -> Vec<Command> {
 
 /// The help window: the shortcut table, then the gestures.
 pub fn help_window(ctx: &egui::Context, open: &mut bool) {
-    egui::Window::new("Keyboard and mouse")
+    egui::Window::new(tr!("help-title"))
         .open(open)
         .collapsible(false)
         .resizable(false)
@@ -166,8 +177,8 @@ pub fn help_window(ctx: &egui::Context, open: &mut bool) {
                 .num_columns(2)
                 .striped(true)
                 .show(ui, |ui| {
-                    let keys = SHORTCUTS.iter().map(|s| (s.keys_text(), s.does));
-                    let gestures = GESTURES.iter().map(|&(g, does)| (g.to_owned(), does));
+                    let keys = SHORTCUTS.iter().map(|s| (s.keys_text(), (s.does)()));
+                    let gestures = GESTURES.iter().map(|(g, does)| (g(), does()));
                     for (keys, does) in keys.chain(gestures) {
                         ui.label(egui::RichText::new(keys).strong().monospace());
                         ui.label(does);
@@ -175,7 +186,7 @@ pub fn help_window(ctx: &egui::Context, open: &mut bool) {
                     }
                 });
             ui.add_space(6.0);
-            ui.label("Every number has its unit; hover a control or a value to see its formula.");
+            ui.label(tr!("help-footer"));
         });
 }
 

@@ -1,10 +1,11 @@
 //! What the app remembers between runs (eframe storage), apart from every
 //! GPU object: the settings, the split comparison, panel visibility and
-//! the paths last used, the folder the file dialog was last in and the
-//! recent files. Unknown or invalid stored state falls back to the
+//! the paths last used, the folder the file dialog was last in, the
+//! recent files and the language picked. Unknown or invalid stored state falls back to the
 //! defaults.
 
 use super::recent::RecentFiles;
+use crate::i18n::Language;
 use crate::presets::Comparison;
 use crate::settings::Settings;
 use serde::{Deserialize, Serialize};
@@ -21,6 +22,8 @@ pub struct State {
     pub panels: PanelState,
     pub paths: Paths,
     pub recent: RecentFiles,
+    /// The language picked in the Language menu (None: the system's).
+    pub language: Option<Language>,
 }
 
 /// How the split view shows A and B.
@@ -116,6 +119,24 @@ impl State {
     }
 }
 
+/// eframe's storage kept in memory: what a test stores the state in to
+/// restore it as the next start would.
+#[derive(Default)]
+pub struct MemoryStorage(std::collections::HashMap<String, String>);
+
+impl eframe::Storage for MemoryStorage {
+    fn get_string(&self, key: &str) -> Option<String> {
+        self.0.get(key).cloned()
+    }
+    fn set_string(&mut self, key: &str, value: String) {
+        self.0.insert(key.into(), value);
+    }
+    fn remove_string(&mut self, key: &str) {
+        self.0.remove(key);
+    }
+    fn flush(&mut self) {}
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -125,6 +146,7 @@ mod tests {
         let mut state = State::default();
         state.settings.light.power_w = 42.0;
         state.split.enabled = true;
+        state.language = Some(Language::Fr);
         let text = serde_json::to_string(&state).unwrap();
         let back: State = serde_json::from_str(&text).unwrap();
         assert_eq!(back, state);
@@ -137,25 +159,13 @@ mod tests {
         assert_eq!(state.paths.settings_file, "a.toml");
         assert_eq!(state.paths.last_folder, None);
         assert_eq!(state.recent, RecentFiles::default());
+        assert_eq!(state.language, None);
     }
 
     #[test]
     fn invalid_stored_settings_are_dropped() {
         use eframe::Storage;
-        struct Mem(std::collections::HashMap<String, String>);
-        impl eframe::Storage for Mem {
-            fn get_string(&self, key: &str) -> Option<String> {
-                self.0.get(key).cloned()
-            }
-            fn set_string(&mut self, key: &str, value: String) {
-                self.0.insert(key.into(), value);
-            }
-            fn remove_string(&mut self, key: &str) {
-                self.0.remove(key);
-            }
-            fn flush(&mut self) {}
-        }
-        let mut mem = Mem(Default::default());
+        let mut mem = MemoryStorage::default();
         let mut state = State::default();
         state.settings.light.power_w = 7.0;
         state.store(&mut mem);

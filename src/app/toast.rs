@@ -43,7 +43,7 @@ impl Toasts {
                             ui.horizontal(|ui| {
                                 ui.label(egui::RichText::new("⚠").color(ui.visuals().error_fg_color));
                                 ui.add(egui::Label::new(message).wrap());
-                                if ui.small_button("Dismiss").clicked() {
+                                if ui.small_button(crate::tr!("toast-dismiss")).clicked() {
                                     dismissed = Some(i);
                                 }
                             });

@@ -6,6 +6,7 @@ use super::state::{SplitLayout, SplitState};
 use crate::physics::Normalization;
 use crate::presets::{Comparison, ComparisonAxis, Half};
 use crate::settings::{BiasMode, DebugView, Filter, ViewSettings};
+use crate::tr;
 
 pub struct ViewPanel<'a> {
     pub view: &'a mut ViewSettings,
@@ -15,22 +16,20 @@ pub struct ViewPanel<'a> {
 }
 
 /// What each debug view shows, with its unit.
-pub fn view_help(view: DebugView) -> &'static str {
+pub fn view_help(view: DebugView) -> String {
     match view {
-        DebugView::Shaded => "Reflected radiance L = f_r · E · V (W/m²/sr), exposed and sRGB encoded",
-        DebugView::Depth => "The light's depth map (normalized distance from the light)",
-        DebugView::Visibility => "V ∈ [0, 1] from the shadow map: black = shadowed, white = lit",
-        DebugView::Ndotl => "cos θ = max(0, n·l): black at the horizon, white facing the light",
-        DebugView::Irradiance => "E · V = I cos θ / r² · V (W/m²), false colour",
-        DebugView::Brdf => "f_r / c (1/sr), false colour, log scale over two decades",
-        DebugView::Diffuse => "The diffuse part c · k/π · E · V (W/m²/sr)",
-        DebugView::Specular => "The specular part c · (1 − k) N(m) cos^m θ_h · E · V (W/m²/sr)",
-        DebugView::TexelDensity => "Shadow-map texels per screen pixel (log₂), red: magnified and aliased",
-        DebugView::Frustum => "The light's frustum (or cube faces) drawn over the shaded image",
-        DebugView::RefVisibility => {
-            "The CPU reference's visibility V_ref (compute it in the Reference panel)"
-        }
-        DebugView::Error => "Signed error of luminance L − L_ref against the CPU reference (W/m²/sr)",
+        DebugView::Shaded => tr!("view-shaded-tip"),
+        DebugView::Depth => tr!("view-depth-tip"),
+        DebugView::Visibility => tr!("view-visibility-tip"),
+        DebugView::Ndotl => tr!("view-ndotl-tip"),
+        DebugView::Irradiance => tr!("view-irradiance-tip"),
+        DebugView::Brdf => tr!("view-brdf-tip"),
+        DebugView::Diffuse => tr!("view-diffuse-tip"),
+        DebugView::Specular => tr!("view-specular-tip"),
+        DebugView::TexelDensity => tr!("view-texel-density-tip"),
+        DebugView::Frustum => tr!("view-frustum-tip"),
+        DebugView::RefVisibility => tr!("view-ref-visibility-tip"),
+        DebugView::Error => tr!("view-error-tip"),
     }
 }
 
@@ -38,8 +37,7 @@ impl View for ViewPanel<'_> {
     fn ui(&mut self, ui: &mut egui::Ui) {
         let ViewSettings { mode, exposure_ev } = self.view;
         ui.horizontal(|ui| {
-            ui.label("Show")
-                .on_hover_text("What the image shows (V: next view)");
+            ui.label(tr!("view-show")).on_hover_text(tr!("view-show-tip"));
             egui::ComboBox::from_id_salt("debug view")
                 .selected_text(mode.name())
                 .width(180.0)
@@ -54,10 +52,10 @@ impl View for ViewPanel<'_> {
         });
         ui.add(
             egui::Slider::new(exposure_ev, -10.0..=10.0)
-                .text("exposure")
+                .text(tr!("view-exposure"))
                 .suffix(" EV"),
         )
-        .on_hover_text("Displayed value = L · 2^EV, then the sRGB transfer (shaded, diffuse, specular)");
+        .on_hover_text(tr!("view-exposure-tip"));
 
         ui.separator();
         split_ui(ui, self.split, self.max_texture_side);
@@ -71,10 +69,8 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
         wipe,
         layout,
     } = split;
-    ui.checkbox(enabled, "Split view A | B  (S)").on_hover_text(
-        "Both halves show the current settings; B differs from A in one setting. \
-         Drag the divider to wipe between them.",
-    );
+    ui.checkbox(enabled, tr!("split-enabled"))
+        .on_hover_text(tr!("split-enabled-tip"));
     if !*enabled {
         return;
     }
@@ -94,8 +90,8 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
         }
     });
     ui.horizontal(|ui| {
-        ui.label("Compare")
-            .on_hover_text("The setting that differs between A and B");
+        ui.label(tr!("split-compare"))
+            .on_hover_text(tr!("split-compare-tip"));
         egui::ComboBox::from_id_salt("comparison axis")
             .selected_text(comparison.axis.name())
             .show_ui(ui, |ui| {
@@ -104,7 +100,7 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
                 }
             })
             .response
-            .on_hover_text("The setting that differs between A and B");
+            .on_hover_text(tr!("split-compare-tip"));
     });
     for (half, name) in [(Half::A, "A"), (Half::B, "B")] {
         let i = half as usize;
@@ -139,17 +135,15 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
         });
     }
     ui.horizontal(|ui| {
-        ui.label("Layout");
-        ui.selectable_value(layout, SplitLayout::Wipe, "wipe")
-            .on_hover_text("One image: A left of the divider, B right of it");
-        ui.selectable_value(layout, SplitLayout::SideBySide, "side by side")
-            .on_hover_text("Two whole images of the same view, cameras linked: A left, B right");
+        ui.label(tr!("split-layout"));
+        ui.selectable_value(layout, SplitLayout::Wipe, tr!("split-wipe"))
+            .on_hover_text(tr!("split-wipe-tip"));
+        ui.selectable_value(layout, SplitLayout::SideBySide, tr!("split-side-by-side"))
+            .on_hover_text(tr!("split-side-by-side-tip"));
     });
     if *layout == SplitLayout::Wipe {
-        ui.add(egui::Slider::new(wipe, 0.0..=1.0).text("divider"))
-            .on_hover_text(
-                "Where A ends and B begins (fraction of the width); or drag the line in the image",
-            );
+        ui.add(egui::Slider::new(wipe, 0.0..=1.0).text(tr!("split-divider")))
+            .on_hover_text(tr!("split-divider-tip"));
     }
 }
 

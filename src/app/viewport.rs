@@ -10,6 +10,7 @@ use super::state::{SplitLayout, SplitState};
 use crate::presets::Half;
 use crate::scene::SceneScale;
 use crate::settings::{DebugView, Settings};
+use crate::tr;
 use egui::emath::GuiRounding;
 use egui::{Align2, Color32, CursorIcon, FontId, PointerButton, Pos2, Rect, Sense, Stroke, Vec2};
 use glam::DVec2;
@@ -152,9 +153,11 @@ impl Viewport<'_> {
                     ui.make_persistent_id("light gizmo"),
                     Sense::drag(),
                 )
-                .on_hover_text(format!(
-                    "Light at ({:.2}, {:.2}, {:.2}) m\nDrag: move parallel to the image\nCtrl+drag: move up and down",
-                    settings.light.position.x, settings.light.position.y, settings.light.position.z
+                .on_hover_text(tr!(
+                    "viewport-gizmo-tip",
+                    x = format!("{:.2}", settings.light.position.x),
+                    y = format!("{:.2}", settings.light.position.y),
+                    z = format!("{:.2}", settings.light.position.z)
                 ));
             if gizmo.hovered() || gizmo.dragged() {
                 ui.ctx().set_cursor_icon(CursorIcon::Grab);
@@ -185,7 +188,7 @@ impl Viewport<'_> {
                     ui.make_persistent_id("split divider"),
                     Sense::drag(),
                 )
-                .on_hover_text("Drag to move the divider between A and B");
+                .on_hover_text(tr!("viewport-divider-tip"));
             if divider.hovered() || divider.dragged() {
                 ui.ctx().set_cursor_icon(CursorIcon::ResizeHorizontal);
             }
@@ -269,7 +272,7 @@ impl Viewport<'_> {
             painter.text(
                 rect.center(),
                 Align2::CENTER_CENTER,
-                "no GPU renderer",
+                tr!("viewport-no-gpu"),
                 FontId::proportional(20.0),
                 Color32::WHITE,
             );
@@ -385,13 +388,18 @@ impl Viewport<'_> {
                     Align2::LEFT_CENTER
                 };
                 let offset = if towards_left { -1.0 } else { 1.0 } * (GIZMO_RADIUS + 14.0);
-                label(ui, p + Vec2::new(offset, 0.0), side, "light (off the image)");
+                label(
+                    ui,
+                    p + Vec2::new(offset, 0.0),
+                    side,
+                    &tr!("viewport-light-off-image"),
+                );
             }
             None => label(
                 ui,
                 rect.right_top() + Vec2::new(-10.0, 44.0),
                 Align2::RIGHT_TOP,
-                "light behind the camera",
+                &tr!("viewport-light-behind"),
             ),
         }
         if let Some(probe) = probe

@@ -1,6 +1,7 @@
 //! Small building blocks the panels share: numbers with units, read-only
 //! value rows with a formula tooltip, a logarithmic slider that also offers 0.
 
+use crate::tr;
 use egui::{RichText, Ui};
 
 /// A number with four significant digits, switching to scientific notation
@@ -126,7 +127,7 @@ pub fn log_slider_with_zero(
         .on_hover_text(tooltip);
         if ui
             .add_enabled(*value != 0.0, egui::Button::new("0"))
-            .on_hover_text("Set exactly 0 (a log slider cannot reach it)")
+            .on_hover_text(tr!("slider-zero-tip"))
             .clicked()
         {
             *value = 0.0;

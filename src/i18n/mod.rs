@@ -3,6 +3,10 @@
 //! the lecture tour, set by the language menu (and restored from the
 //! persisted state at start-up).
 
+mod text;
+
+pub use text::{FluentValue, MessageInfo, messages, source, tr, tr_args, translate};
+
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicU8, Ordering};
 
@@ -44,6 +48,12 @@ impl Language {
             Language::En
         }
     }
+}
+
+/// The language of the system's locale (`LC_ALL`, `LC_MESSAGES`, `LANG` on
+/// Unix): the app's language until the user picks one.
+pub fn system_language() -> Language {
+    sys_locale::get_locale().map_or(Language::En, |tag| Language::from_locale(&tag))
 }
 
 static CURRENT: AtomicU8 = AtomicU8::new(Language::En as u8);

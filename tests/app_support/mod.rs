@@ -12,6 +12,11 @@ pub const SIZE: egui::Vec2 = egui::vec2(1280.0, 800.0);
 /// The lab on our own device (the adapter's limits and features), with a
 /// kittest renderer sharing it so native textures can be drawn.
 pub fn harness() -> Harness<'static, LabApp> {
+    harness_with_storage(None)
+}
+
+/// The lab as `harness`, its state restored from `storage` as at start-up.
+pub fn harness_with_storage(storage: Option<&dyn eframe::Storage>) -> Harness<'static, LabApp> {
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.instance_descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
     setup.device_descriptor = Arc::new(lumlab::gpu::context::device_descriptor);
@@ -21,7 +26,7 @@ pub fn harness() -> Harness<'static, LabApp> {
     );
     let app = LabApp::new(
         Some(render_state.clone()),
-        None,
+        storage,
         &LaunchOptions::default(),
         Preloaded::default(),
         Arc::default(),

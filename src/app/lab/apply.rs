@@ -3,6 +3,7 @@
 
 use super::super::command::Command;
 use super::super::files::FileAction;
+use super::super::names::preset_title;
 use super::super::state::State;
 use super::super::viewport::Viewport;
 use super::desktop::file_error;
@@ -11,6 +12,7 @@ use crate::presets::Half;
 use crate::scene::Scene;
 use crate::scene::framing::with_ground;
 use crate::settings::Settings;
+use crate::tr;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -60,7 +62,8 @@ impl LabApp {
                 match self.state.settings.save(&path) {
                     Ok(()) => {
                         self.settings_match_file(&path);
-                        self.say(format!("settings saved to {}", path.display()), false);
+                        let path = path.display().to_string();
+                        self.say(tr!("status-settings-saved", path = path), false);
                     }
                     Err(e) => self.say(file_error(&path, e), true),
                 }
@@ -72,7 +75,10 @@ impl LabApp {
             Command::ExportExr(path) => {
                 let path = chosen(path, &mut self.state.paths.exr_file);
                 match self.export_exr(&path) {
-                    Ok(()) => self.say(format!("linear values written to {}", path.display()), false),
+                    Ok(()) => {
+                        let path = path.display().to_string();
+                        self.say(tr!("status-exr-written", path = path), false)
+                    }
                     Err(e) => self.say(file_error(&path, crate::cli::one_line(&e)), true),
                 }
             }
@@ -91,6 +97,10 @@ impl LabApp {
             }
             Command::ToggleSplit => self.state.split.enabled = !self.state.split.enabled,
             Command::ToggleHelp => self.help_open = !self.help_open,
+            Command::SetLanguage(language) => {
+                self.state.language = Some(language);
+                crate::i18n::set_current(language);
+            }
             Command::TogglePanels => {
                 let show = !(self.state.panels.settings || self.state.panels.analysis);
                 self.state.panels.settings = show;
@@ -101,15 +111,17 @@ impl LabApp {
                 self.undo.checkpoint(&self.state.settings);
                 let paths = self.state.paths.clone();
                 let recent = self.state.recent.clone();
+                let language = self.state.language;
                 self.state = State {
                     paths,
                     recent,
+                    language,
                     ..State::default()
                 };
                 ctx.memory_mut(|m| *m = Default::default());
                 self.use_scene(None, crate::scene::default_scene());
                 self.undo.checkpoint(&self.state.settings);
-                self.say("everything reset (Ctrl+Z brings the settings back)", false);
+                self.say(tr!("status-reset-everything"), false);
             }
         }
     }
@@ -128,7 +140,7 @@ impl LabApp {
             if let Some(comparison) = preset.comparison() {
                 self.state.split.comparison = comparison;
             }
-            self.say(format!("preset: {} (Ctrl+Z to undo)", preset.title()), false);
+            self.say(tr!("status-preset", preset = preset_title(*preset)), false);
         }
     }
 
@@ -148,7 +160,10 @@ impl LabApp {
             .and_then(|s| match &s.scene {
                 Some(scene) if !scene.is_file() => Err(file_error(
                     path,
-                    format!("its scene '{}' cannot be found", scene.display()),
+                    tr!(
+                        "error-settings-scene-missing",
+                        scene = scene.display().to_string()
+                    ),
                 )),
                 _ => Ok(s),
             });
@@ -158,10 +173,8 @@ impl LabApp {
                 let scene = loaded.scene.clone();
                 self.settings_in_one_step(|s| *s = loaded);
                 self.settings_match_file(path);
-                self.say(
-                    format!("settings loaded from {} (Ctrl+Z to undo)", path.display()),
-                    false,
-                );
+                let shown = path.display().to_string();
+                self.say(tr!("status-settings-loaded", path = shown), false);
                 if scene_changes {
                     match scene {
                         Some(p) => self.open_scene(p, ctx),
@@ -175,13 +188,16 @@ impl LabApp {
 
     /// Shows `scene` (from `path`; None: built-in) from now on.
     pub(super) fn use_scene(&mut self, path: Option<PathBuf>, scene: Scene) {
-        let name = path.as_deref().map_or_else(|| "built-in".into(), display_name);
-        let mut text = format!("scene: {name}, {} triangles", scene.triangle_count());
+        let name = path
+            .as_deref()
+            .map_or_else(|| tr!("scene-built-in"), display_name);
+        let triangles = scene.triangle_count();
+        let mut text = tr!("status-scene", name = name.as_str(), triangles = triangles);
         if !scene.warnings.is_empty() {
-            text += &format!(
-                " ({} warnings: {})",
-                scene.warnings.len(),
-                scene.warnings.join("; ")
+            text += &tr!(
+                "status-scene-warnings",
+                count = scene.warnings.len(),
+                warnings = scene.warnings.join("; ")
             );
         }
         self.settings_in_one_step(|s| adopt_scene(s, path.as_deref(), &scene));
@@ -220,8 +236,11 @@ impl LabApp {
     /// Loads a scene on a thread; the current one stays until it succeeds.
     fn open_scene(&mut self, path: PathBuf, ctx: &egui::Context) {
         match self.jobs.load_scene(path.clone(), ctx) {
-            Ok(()) => self.say(format!("loading {}…", path.display()), false),
-            Err(e) => self.say(file_error(&path, format!("cannot start loading: {e}")), true),
+            Ok(()) => self.say(tr!("status-loading", path = path.display().to_string()), false),
+            Err(e) => {
+                let reason = tr!("error-cannot-start-loading", message = e.to_string());
+                self.say(file_error(&path, reason), true)
+            }
         }
     }
 
@@ -246,13 +265,13 @@ impl LabApp {
             .as_ref()
             .and_then(|g| g.half(Half::A))
             .filter(|h| h.report.size != (0, 0))
-            .ok_or_else(|| anyhow::anyhow!("no image to export yet"))?;
+            .ok_or_else(|| anyhow::anyhow!(tr!("error-no-image-to-export")))?;
         let renderer = half.renderer();
         let (w, h) = half.report.size;
         let texels = renderer.read_quantity();
         let flat: Vec<f32> = texels.iter().flatten().copied().collect();
         let image = image::Rgba32FImage::from_raw(w, h, flat)
-            .ok_or_else(|| anyhow::anyhow!("the image changed size while reading it; try again"))?;
+            .ok_or_else(|| anyhow::anyhow!(tr!("error-image-changed-size")))?;
         crate::image_io::write_exr(path, &image)
     }
 }

@@ -3,6 +3,9 @@
 
 use super::super::files::FilesPanel;
 use super::LabApp;
+use crate::app::command::Command;
+use crate::i18n::Language;
+use crate::tr;
 use std::path::Path;
 
 impl LabApp {
@@ -39,11 +42,26 @@ impl LabApp {
 
     /// The File menu in the top bar.
     pub(super) fn file_menu(&mut self, ui: &mut egui::Ui) {
-        ui.menu_button("File", |ui| {
+        ui.menu_button(tr!("menu-file"), |ui| {
             if let Some(command) = FilesPanel::menu(ui, &self.state.recent) {
                 self.emit(command);
             }
         });
+    }
+
+    /// The Language menu in the top bar: each language by its own name.
+    pub(super) fn language_menu(&mut self, ui: &mut egui::Ui) {
+        let current = crate::i18n::current();
+        ui.menu_button(format!("{} ({})", tr!("menu-language"), current.code()), |ui| {
+            for language in Language::ALL {
+                if ui.radio(language == current, language.native_name()).clicked() {
+                    self.emit(Command::SetLanguage(language));
+                    ui.close();
+                }
+            }
+        })
+        .response
+        .on_hover_text(tr!("menu-language-tip"));
     }
 
     /// The settings now match the file at `path` (just loaded or saved).

@@ -11,6 +11,7 @@ use crate::presets::Half;
 use crate::reference::Reference;
 use crate::scene::Scene;
 use crate::settings::{DebugView, Settings};
+use crate::tr;
 
 impl LabApp {
     /// The image; a drag in it (camera, light, divider) edits copies that
@@ -72,10 +73,10 @@ impl LabApp {
             .reference
             .stats
             .filter(|_| self.state.settings.view.mode == DebugView::Error)?;
-        Some(format!(
-            "RMSE = {} ({} % of mean L_ref)",
-            super::super::widgets::quantity(stats.rmse, "W/m²/sr"),
-            super::super::widgets::number(100.0 * stats.relative)
+        Some(tr!(
+            "image-rmse",
+            rmse = super::super::widgets::quantity(stats.rmse, "W/m²/sr"),
+            percent = super::super::widgets::number(100.0 * stats.relative)
         ))
     }
 
@@ -90,7 +91,7 @@ impl LabApp {
             .iter()
             .find(|w| w.starts_with("nothing to draw"))
             .cloned()
-            .unwrap_or_else(|| "nothing to draw".into());
+            .unwrap_or_else(|| tr!("image-nothing-to-draw"));
         Some(format!("{}: {why}", self.scene_name))
     }
 
@@ -100,11 +101,9 @@ impl LabApp {
             return None;
         }
         match &self.reference.result {
-            None if self.reference.is_running() => Some("Computing the CPU reference…".into()),
-            None => Some("No CPU reference yet: press F5 (Reference panel)".into()),
-            Some(r) if r.key != self.keyed(Half::A) => {
-                Some("Reference is STALE: settings or size changed since (F5 recomputes)".into())
-            }
+            None if self.reference.is_running() => Some(tr!("image-reference-running")),
+            None => Some(tr!("image-reference-none")),
+            Some(r) if r.key != self.keyed(Half::A) => Some(tr!("image-reference-stale")),
             Some(_) => None,
         }
     }

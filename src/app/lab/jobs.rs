@@ -9,6 +9,7 @@ use super::super::reference::error_stats;
 use super::LabApp;
 use crate::gpu::readback::ReadState;
 use crate::scene::Scene;
+use crate::tr;
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender};
@@ -130,7 +131,7 @@ impl LabApp {
         }
         if self.reference.poll() {
             self.reference_generation += 1;
-            self.say("CPU reference ready: the error view compares with it", false);
+            self.say(tr!("status-reference-ready"), false);
             self.refresh_probe();
         }
         if let Some(rx) = &self.jobs.scene_load
@@ -139,7 +140,7 @@ impl LabApp {
             self.jobs.scene_load = None;
             match result {
                 Ok(scene) => self.use_scene(Some(path), scene),
-                Err(e) => self.say(format!("{e}; the current scene is kept"), true),
+                Err(e) => self.say(tr!("error-scene-kept", message = e.to_string()), true),
             }
         }
         while let Ok(image) = self.jobs.screenshot_rx.try_recv() {
@@ -151,7 +152,7 @@ impl LabApp {
     pub(super) fn start_auto_exposure(&mut self) {
         self.jobs.pending_exposure = self.gpu.as_ref().and_then(GpuViews::request_frame);
         if self.jobs.pending_exposure.is_none() {
-            self.say("auto exposure: no image yet", true);
+            self.say(tr!("status-exposure-no-image"), true);
         }
     }
 
@@ -167,9 +168,9 @@ impl LabApp {
         match crate::physics::display::auto_exposure_ev(&lit) {
             Some(ev) => {
                 self.settings_in_one_step(|s| s.view.exposure_ev = ev as f32);
-                self.say(format!("auto exposure: {ev:+.2} EV (Ctrl+Z to undo)"), false);
+                self.say(tr!("status-exposure", ev = format!("{ev:+.2}")), false);
             }
-            None => self.say("auto exposure: nothing lit in the image", true),
+            None => self.say(tr!("status-exposure-nothing-lit"), true),
         }
     }
 
@@ -220,7 +221,10 @@ impl LabApp {
             return;
         }
         match result {
-            Ok(()) => self.say(format!("screenshot saved to {}", path.display()), false),
+            Ok(()) => {
+                let path = path.display().to_string();
+                self.say(tr!("status-screenshot-saved", path = path), false)
+            }
             Err(e) => self.say(super::desktop::file_error(&path, crate::cli::one_line(&e)), true),
         }
     }

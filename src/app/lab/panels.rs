@@ -8,6 +8,7 @@ use super::super::energy::{Curve, EnergyKey};
 use super::super::lecture::section;
 use super::super::light::LightPanel;
 use super::super::material::MaterialPanel;
+use super::super::names::{preset_description, preset_title};
 use super::super::scene_panel::ScenePanel;
 use super::super::shadow::ShadowPanel;
 use super::super::view::ViewPanel;
@@ -15,6 +16,7 @@ use super::super::viewport::Viewport;
 use super::LabApp;
 use crate::presets::{ComparisonAxis, Half, Preset};
 use crate::tour::Panel;
+use crate::tr;
 use egui::RichText;
 
 impl LabApp {
@@ -25,51 +27,52 @@ impl LabApp {
             ui.separator();
             let can_undo = self.undo.can_undo(&self.state.settings);
             if ui
-                .add_enabled(can_undo, egui::Button::new("Undo"))
-                .on_hover_text("Undo the last settings change (Ctrl+Z)")
+                .add_enabled(can_undo, egui::Button::new(tr!("top-undo")))
+                .on_hover_text(tr!("top-undo-tip"))
                 .clicked()
             {
                 self.emit(Command::Undo);
             }
             if ui
-                .add_enabled(self.undo.can_redo(), egui::Button::new("Redo"))
-                .on_hover_text("Redo (Ctrl+Shift+Z or Ctrl+Y)")
+                .add_enabled(self.undo.can_redo(), egui::Button::new(tr!("top-redo")))
+                .on_hover_text(tr!("top-redo-tip"))
                 .clicked()
             {
                 self.emit(Command::Redo);
             }
             if ui
-                .button("Reset view")
-                .on_hover_text("Camera back to the scene's own view (R)")
+                .button(tr!("top-reset-view"))
+                .on_hover_text(tr!("top-reset-view-tip"))
                 .clicked()
             {
                 self.emit(Command::ResetView);
             }
             if ui
-                .selectable_label(self.state.split.enabled, "Split A | B")
-                .on_hover_text("Compare two settings side by side (S)")
+                .selectable_label(self.state.split.enabled, tr!("top-split"))
+                .on_hover_text(tr!("top-split-tip"))
                 .clicked()
             {
                 self.emit(Command::ToggleSplit);
             }
             ui.separator();
             let mut panels = self.state.panels;
-            ui.toggle_value(&mut panels.settings, "Settings")
-                .on_hover_text("Show the settings panel (F9 hides both panels)");
-            ui.toggle_value(&mut panels.analysis, "Analysis")
-                .on_hover_text("Show the probe, energy, reference and timings panel");
-            ui.toggle_value(&mut panels.lecture, "Lecture")
-                .on_hover_text("Show the guided tour of the lecture (lumlab --tour)");
+            ui.toggle_value(&mut panels.settings, tr!("top-settings"))
+                .on_hover_text(tr!("top-settings-tip"));
+            ui.toggle_value(&mut panels.analysis, tr!("top-analysis"))
+                .on_hover_text(tr!("top-analysis-tip"));
+            ui.toggle_value(&mut panels.lecture, tr!("top-lecture"))
+                .on_hover_text(tr!("top-lecture-tip"));
             if panels != self.state.panels {
                 self.emit(Command::SetPanels(panels));
             }
             if ui
-                .selectable_label(self.help_open, "Help (F1)")
-                .on_hover_text("Keyboard and mouse shortcuts")
+                .selectable_label(self.help_open, tr!("top-help"))
+                .on_hover_text(tr!("top-help-tip"))
                 .clicked()
             {
                 self.emit(Command::ToggleHelp);
             }
+            self.language_menu(ui);
         });
     }
 
@@ -83,20 +86,21 @@ impl LabApp {
                     ui.label(&s.text);
                 }
                 None => {
-                    ui.label("Drag: orbit · Shift+drag: pan · wheel: zoom · click: probe · F1: help");
+                    ui.label(tr!("status-hint"));
                 }
             }
             if let Some(first) = self.impossible_setups().first() {
                 let more = self.impossible_setups().len() - 1;
+                let first = first.as_str();
                 let text = match more {
-                    0 => format!("Impossible set-up: {first}"),
-                    n => format!("Impossible set-up: {first} (+{n} more)"),
+                    0 => tr!("status-impossible", first = first),
+                    n => tr!("status-impossible-more", first = first, more = n),
                 };
                 ui.separator();
                 ui.label(RichText::new(text).color(ui.visuals().warn_fg_color))
-                    .on_hover_text(format!(
-                        "{}\nThe GPU and the CPU reference disagree on such a set-up.",
-                        self.impossible_setups().join("\n")
+                    .on_hover_text(tr!(
+                        "status-impossible-tip",
+                        lines = self.impossible_setups().join("\n")
                     ));
             }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
@@ -145,8 +149,8 @@ impl LabApp {
             ui.horizontal_wrapped(|ui| {
                 for &preset in Preset::ALL {
                     if ui
-                        .button(preset.title())
-                        .on_hover_text(preset.description())
+                        .button(preset_title(preset))
+                        .on_hover_text(preset_description(preset))
                         .clicked()
                     {
                         self.emit(Command::ApplyPreset(preset));
@@ -274,7 +278,7 @@ impl LabApp {
         if let Some(t) = &self.probe.terms {
             return Some((
                 t.cos_theta.clamp(-1.0, 1.0).acos().to_degrees(),
-                "at the probed point".into(),
+                tr!("lobe-at-probe"),
             ));
         }
         let bounds = self.scene.bounds();
@@ -285,9 +289,6 @@ impl LabApp {
         centre.y = bounds.min.y as f64;
         let to_light = self.state.settings.light.position.as_dvec3() - centre;
         let cos = to_light.normalize_or_zero().y;
-        Some((
-            cos.clamp(-1.0, 1.0).acos().to_degrees(),
-            "light to scene centre, n = +Y".into(),
-        ))
+        Some((cos.clamp(-1.0, 1.0).acos().to_degrees(), tr!("lobe-at-centre")))
     }
 }
