@@ -79,13 +79,14 @@ fn every_step_sets_its_settings_opens_its_panel_and_shows_the_physics() {
         assert_eq!(shown, step.settings, "step {} ({})", i + 1, step.id);
         assert_eq!(app.tour_position(), (i, Some(step.panel)), "{}", step.id);
         // The panel is there and open.
-        let header = harness.get_by_label(&title(step.panel));
+        let panel_title = title(step.panel);
+        let header = harness.get_by_label(&panel_title);
         assert_eq!(
             header.accesskit_node().data().is_expanded(),
             Some(true),
             "step {}: {} is not open",
             step.id,
-            title(step.panel)
+            panel_title
         );
         // The number is physics' for the settings shown, and it is shown.
         let settings = harness.state().settings().clone();

@@ -173,7 +173,10 @@ impl LecturePanel {
         let mut command = None;
         ui.horizontal(|ui| {
             let i = self.current;
-            if ui.add_enabled(i > 0, egui::Button::new(tr!("lecture-previous"))).clicked() {
+            if ui
+                .add_enabled(i > 0, egui::Button::new(tr!("lecture-previous")))
+                .clicked()
+            {
                 command = Some(Command::TourStep(i - 1));
             }
             egui::ComboBox::new("tour step", tr!("lecture-steps"))
