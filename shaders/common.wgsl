@@ -43,6 +43,7 @@ const NORM_EXACT: u32 = 3u;
 
 // Visibility sources, in settings::Visibility order.
 const VISIBILITY_SHADOW_MAP: u32 = 0u;
+const VISIBILITY_RAY_TRACED: u32 = 1u;
 
 // Everything the camera pass needs that changes per frame (gpu::uniforms::GlobalsRaw).
 struct Globals {

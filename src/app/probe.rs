@@ -10,7 +10,7 @@ use crate::physics::{Normalization, brdf, colour, radiometry};
 use crate::presets::Half;
 use crate::reference::{Reference, ReferenceOptions, ShadingSample};
 use crate::scene::Scene;
-use crate::settings::{DebugView, Settings};
+use crate::settings::{DebugView, Settings, Visibility};
 use glam::DVec3;
 
 /// A probed pixel of one half of the image.
@@ -146,8 +146,10 @@ pub fn evaluate(
 /// What the GPU says at the probed pixel (from its aux and quantity targets).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GpuSample {
-    /// V from the shadow map.
+    /// V from the half's visibility method.
     pub visibility: f32,
+    /// That method: shadow map or GPU ray traced.
+    pub method: Visibility,
     /// Shadow-map texels per pixel.
     pub texel_density: f32,
     /// The GPU's L (W/m²/sr), when the view's quantity is the radiance.
@@ -296,12 +298,20 @@ impl Probe {
         match &self.gpu {
             Some(g) => {
                 let l = t.unshadowed_radiance() * g.visibility as f64;
-                rows.extend([
-                    (
+                rows.push(match g.method {
+                    Visibility::ShadowMap => (
                         "V (shadow map)",
                         number(g.visibility as f64),
                         "Visibility from the shadow map with the current filter and bias, V ∈ [0, 1]",
                     ),
+                    Visibility::RayTraced => (
+                        "V (GPU ray traced)",
+                        number(g.visibility as f64),
+                        "Visibility traced on the GPU in f32 through the BVH: exact for a point light, \
+                         the mean of the accumulated frames' samples for a sphere light",
+                    ),
+                });
+                rows.extend([
                     (
                         "texels/pixel",
                         number(g.texel_density as f64),

@@ -3,7 +3,7 @@
 use super::View;
 use super::widgets::{number, warning};
 use crate::scene::SceneScale;
-use crate::settings::{BiasMode, BiasSettings, Filter, ShadowSettings};
+use crate::settings::{BiasMode, BiasSettings, Filter, ShadowSettings, Visibility};
 
 pub struct ShadowPanel<'a> {
     pub shadow: &'a mut ShadowSettings,
@@ -50,8 +50,7 @@ impl View for ShadowPanel<'_> {
     fn ui(&mut self, ui: &mut egui::Ui) {
         let ShadowSettings {
             enabled,
-            // One source for now (the shadow map): its menu comes with the second.
-            visibility: _,
+            visibility,
             resolution,
             filter,
             pcf_size,
@@ -62,11 +61,16 @@ impl View for ShadowPanel<'_> {
             vsm_bleed_reduction,
             msm_bias,
             bias,
+            rt_light_samples,
+            rt_max_frames,
         } = self.shadow;
 
         ui.checkbox(enabled, "Shadows")
             .on_hover_text("L = f_r · E · V; off: V = 1 everywhere");
         ui.add_enabled_ui(*enabled, |ui| {
+            super::visibility::visibility_ui(ui, visibility, rt_light_samples, rt_max_frames);
+        });
+        ui.add_enabled_ui(*enabled && *visibility == Visibility::ShadowMap, |ui| {
             resolution_ui(
                 ui,
                 resolution,

@@ -9,6 +9,7 @@ use super::capabilities::Capabilities;
 use super::display::{DisplayInputs, DisplayPass};
 use super::light_frustum::{Frustum, LayoutKind, ShadowLayout, shadow_apex};
 use super::lines::FrustumOverlay;
+use super::raytrace::{Accumulation, RayTracePass};
 use super::readback::{PendingRead, read_texture};
 use super::shade::ShadePass;
 use super::shared::SharedScene;
@@ -77,6 +78,7 @@ pub struct Renderer {
     /// The shared scene's generation the camera pass is bound to.
     scene_generation: Option<u64>,
     shade: ShadePass,
+    raytrace: RayTracePass,
     /// This view's shadow uniforms (filter and bias may differ between views
     /// that share a map).
     shadow_uniform: wgpu::Buffer,
@@ -110,6 +112,7 @@ impl Renderer {
         let view = lock(&shared).add_view();
         let shade = ShadePass::new(device, caps.hdr_format);
         Self {
+            raytrace: RayTracePass::new(device, &shade.raytrace_layout, caps.hdr_format),
             overlay: FrustumOverlay::new(device, &shade.globals),
             display: DisplayPass::new(device),
             timer: GpuTimer::new(device, queue),
@@ -312,6 +315,14 @@ impl Renderer {
         let shadow_group = self
             .shade
             .shadow_group(&self.device, shadow_textures, &shared.dummy_moments);
+        let raytrace_group = self.raytrace.prepare(
+            &self.device,
+            &self.queue,
+            settings,
+            targets.size,
+            &shared.scene,
+            shared.generation,
+        );
         let writes = self
             .timer
             .as_mut()
@@ -320,12 +331,15 @@ impl Renderer {
             encoder,
             &shared.scene,
             &shadow_group,
+            raytrace_group,
             &targets.quantity_view,
             &targets.aux_view,
             &targets.depth_view,
             visible,
             writes,
         );
+        self.raytrace
+            .encode_history(encoder, &targets.quantity, &targets.aux);
         let inputs = DisplayInputs {
             quantity: &targets.quantity_view,
             aux: &targets.aux_view,
@@ -344,6 +358,12 @@ impl Renderer {
             self.overlay
                 .encode(encoder, &targets.display_view, &targets.depth_view);
         }
+    }
+
+    /// The ray-traced visibility's accumulation after the last frame (None
+    /// when V comes from the shadow map).
+    pub fn accumulation(&self) -> Option<Accumulation> {
+        self.raytrace.accumulation()
     }
 
     /// The display texture (8-bit sRGB) of the last frame.

@@ -12,6 +12,8 @@ pub struct ShadePass {
     pub globals: wgpu::Buffer,
     scene_layout: wgpu::BindGroupLayout,
     shadow_layout: wgpu::BindGroupLayout,
+    /// Group 2: the ray tracer's (gpu::raytrace).
+    pub raytrace_layout: wgpu::BindGroupLayout,
     pipeline: wgpu::RenderPipeline,
     texture_sampler: wgpu::Sampler,
     compare_sampler: wgpu::Sampler,
@@ -64,8 +66,12 @@ impl ShadePass {
                 ),
             ],
         );
-        let pipeline_layout =
-            binding::pipeline_layout(device, "camera pass", &[&scene_layout, &shadow_layout]);
+        let raytrace_layout = super::raytrace::layout(device);
+        let pipeline_layout = binding::pipeline_layout(
+            device,
+            "camera pass",
+            &[&scene_layout, &shadow_layout, &raytrace_layout],
+        );
         let module = Shader::Shade.module(device);
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some("camera pass"),
@@ -120,6 +126,7 @@ impl ShadePass {
             moments_sampler: sampler("shadow moments", linear, wgpu::AddressMode::ClampToEdge, None),
             scene_layout,
             shadow_layout,
+            raytrace_layout,
             pipeline,
             scene_group: None,
         }
@@ -169,6 +176,7 @@ impl ShadePass {
         encoder: &mut wgpu::CommandEncoder,
         scene: &GpuScene,
         shadow_group: &wgpu::BindGroup,
+        raytrace_group: &wgpu::BindGroup,
         quantity: &wgpu::TextureView,
         aux: &wgpu::TextureView,
         depth: &wgpu::TextureView,
@@ -193,6 +201,7 @@ impl ShadePass {
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, scene_group, &[]);
         pass.set_bind_group(1, shadow_group, &[]);
+        pass.set_bind_group(2, raytrace_group, &[]);
         scene.bind_buffers(&mut pass);
         for &object in visible {
             scene.draw(&mut pass, object);

@@ -1,0 +1,88 @@
+//! The visibility method: shadow map or ray traced, and the ray tracer's
+//! sampling (a part of the shadow panel).
+
+use crate::gpu::raytrace::Accumulation;
+use crate::settings::{ShadowSettings, Visibility};
+
+/// Tooltip of each visibility method.
+pub fn visibility_help(visibility: Visibility) -> &'static str {
+    match visibility {
+        Visibility::ShadowMap => {
+            "Shadow map: depth from the light, then a filtered depth test per pixel (fast, approximate)"
+        }
+        Visibility::RayTraced => {
+            "Ray traced on the GPU through a BVH: a shadow ray from p to the light. Point light: \
+             exact V ∈ {0, 1}. Sphere light: V = Σ V_i cos θ_i / Σ cos θ_i over S stratified \
+             directions of its cone per frame, averaged over the frames while nothing changes"
+        }
+    }
+}
+
+/// The method's menu, and the ray tracer's samples and frames when chosen.
+pub fn visibility_ui(
+    ui: &mut egui::Ui,
+    visibility: &mut Visibility,
+    samples: &mut u32,
+    max_frames: &mut u32,
+) {
+    ui.horizontal(|ui| {
+        ui.label("Visibility")
+            .on_hover_text("Where V(p, q) ∈ [0, 1] comes from: L = f_r · E · V");
+        egui::ComboBox::from_id_salt("visibility method")
+            .selected_text(visibility.name())
+            .show_ui(ui, |ui| {
+                for &choice in Visibility::ALL {
+                    ui.selectable_value(visibility, choice, choice.name())
+                        .on_hover_text(visibility_help(choice));
+                }
+            })
+            .response
+            .on_hover_text(visibility_help(*visibility));
+    });
+    if *visibility == Visibility::RayTraced {
+        ui.add(
+            egui::Slider::new(samples, 1..=ShadowSettings::MAX_RT_LIGHT_SAMPLES)
+                .logarithmic(true)
+                .text("rays / frame"),
+        )
+        .on_hover_text(
+            "S: shadow rays per pixel and frame towards a sphere light, on nx × ny strata of its \
+             solid angle (squares stratify best); a point light needs one",
+        );
+        ui.add(
+            egui::Slider::new(max_frames, 1..=ShadowSettings::MAX_RT_FRAMES)
+                .logarithmic(true)
+                .text("frames"),
+        )
+        .on_hover_text(
+            "N: frames averaged while nothing changes; the noise of V falls as 1/√(N·S), \
+             then the image holds",
+        );
+    }
+}
+
+/// "ray traced: 37 / 256 frames × 4 rays, noise ≤ 0.041": the accumulation
+/// so far, at the bottom left of a half.
+pub fn accumulation_text(a: &Accumulation) -> String {
+    let noise = if a.noise_bound > 0.0 {
+        format!("noise σ(V) ≤ {:.3}", a.noise_bound)
+    } else {
+        "exact".into()
+    };
+    format!(
+        "ray traced: {} / {} frames × {} ray(s), {noise}",
+        a.frames, a.max_frames, a.rays_per_frame
+    )
+}
+
+pub fn paint_accumulation(painter: &egui::Painter, area: egui::Rect, a: &Accumulation) {
+    let at = area.left_bottom() + egui::vec2(10.0, -10.0);
+    let text = accumulation_text(a);
+    let font = egui::FontId::proportional(14.0);
+    let galley = painter.layout_no_wrap(text, font, egui::Color32::WHITE);
+    let rect = egui::Align2::LEFT_BOTTOM
+        .anchor_size(at, galley.size())
+        .expand(4.0);
+    painter.rect_filled(rect, 3.0, egui::Color32::from_black_alpha(160));
+    painter.galley(rect.min + egui::vec2(4.0, 4.0), galley, egui::Color32::WHITE);
+}
