@@ -22,7 +22,7 @@ fn accumulation_restarts_on_every_setting_change() {
     harness
         .state_mut()
         .emit(Command::SetSettings(Box::new(s.clone())));
-    step_until(&mut harness, "frames to accumulate", |app| frames(app) >= 4);
+    step_until(&mut harness, "frames to accumulate", |app| frames(app) >= 2);
     let changes: [(&str, fn(&mut Settings)); 9] = [
         ("light position", |s| s.light.position.x += 0.1),
         ("light radius", |s| s.light.radius_m = 0.2),
@@ -45,16 +45,16 @@ fn accumulation_restarts_on_every_setting_change() {
             1,
             "{what} did not restart the accumulation"
         );
-        step_until(&mut harness, what, |app| frames(app) >= 3);
+        step_until(&mut harness, what, |app| frames(app) >= 2);
     }
     // Done accumulating: the image holds.
-    s.shadow.rt_max_frames = 5;
+    s.shadow.rt_max_frames = 3;
     harness
         .state_mut()
         .emit(Command::SetSettings(Box::new(s.clone())));
-    step_until(&mut harness, "the last frame", |app| frames(app) == 5);
+    step_until(&mut harness, "the last frame", |app| frames(app) == 3);
     for _ in 0..3 {
         harness.step();
     }
-    assert_eq!(frames(harness.state()), 5);
+    assert_eq!(frames(harness.state()), 3);
 }

@@ -144,7 +144,7 @@ fn trace(gpu: &GpuContext, flat: &FlatBvh, rays: &[[f32; 4]]) -> Vec<[u32; 2]> {
         .slice(..)
         .map_async(wgpu::MapMode::Read, |r| r.expect("map"));
     device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
-    let bytes = readback.slice(..).get_mapped_range().to_vec();
+    let bytes = readback.slice(..).get_mapped_range().expect("mapped").to_vec();
     bytemuck::pod_collect_to_vec(&bytes)
 }
 
@@ -194,9 +194,14 @@ fn bvh_traversal_answers_what_testing_every_triangle_answers() {
     assert!(differ.is_empty(), "the BVH disagrees on rays {differ:?}");
 }
 
-/// V of the ray tracer (aux.x) after `frames` frames, the reference's V
-/// and coverage.
-fn ray_traced_v(gpu: &GpuContext, scene: &Scene, settings: &Settings, frames: &[u32]) -> Vec<Vec<f32>> {
+/// The aux target (x: V, z: max(0, n·l)) of the ray tracer after each
+/// number of `frames`.
+fn ray_traced_aux(
+    gpu: &GpuContext,
+    scene: &Scene,
+    settings: &Settings,
+    frames: &[u32],
+) -> Vec<Vec<[f32; 4]>> {
     let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, scene);
     let size = (settings.image.width, settings.image.height);
     let mut out = Vec::new();
@@ -208,7 +213,7 @@ fn ray_traced_v(gpu: &GpuContext, scene: &Scene, settings: &Settings, frames: &[
         }
         let a = renderer.accumulation().expect("ray traced");
         assert_eq!(a.frames, n.min(settings.shadow.rt_max_frames));
-        out.push(renderer.read_aux().iter().map(|t| t[0]).collect());
+        out.push(renderer.read_aux());
     }
     out
 }
@@ -235,7 +240,10 @@ fn on_silhouette(v: &[f32], coverage: &[f32], width: usize, i: usize) -> bool {
 /// the reference's V, each on a silhouette.
 fn point_light_matches_the_reference(scene: &Scene, settings: &Settings) {
     let gpu = common::gpu();
-    let gpu_v = &ray_traced_v(&gpu, scene, settings, &[1])[0];
+    let gpu_v: Vec<f32> = ray_traced_aux(&gpu, scene, settings, &[1])[0]
+        .iter()
+        .map(|t| t[0])
+        .collect();
     let reference = Reference::new(scene)
         .render(settings, &ReferenceOptions::DEFAULT, &RenderControl::default())
         .unwrap();
@@ -262,7 +270,7 @@ fn point_light_matches_the_reference(scene: &Scene, settings: &Settings) {
         "{} of {pixels} pixels differ ({shadowed} in shadow)",
         differ.len()
     );
-    assert!(shadowed > pixels / 50, "only {shadowed} pixels in shadow");
+    assert!(shadowed > pixels / 100, "only {shadowed} pixels in shadow");
     assert!(
         differ.len() as f64 <= 1e-4 * pixels as f64,
         "{} pixels differ",
@@ -289,7 +297,8 @@ fn point_light_shadows_are_the_references_on_a_100k_triangle_scene() {
     assert!(scene.triangle_count() >= 100_000);
     let mut settings = ray_traced(320, 180);
     lumlab::scene::framing::adopt(&mut settings, &scene);
-    settings.light.radius_m = 0.0;
+    // Low and to the side: long shadows across the ground and the spheres.
+    settings.light.position = Vec3::new(2.5, 1.2, 1.0);
     point_light_matches_the_reference(&scene, &settings);
 }
 
@@ -300,17 +309,46 @@ fn sphere_light_accumulation_converges_to_the_reference_as_one_over_root_n() {
     let mut settings = ray_traced(96, 54);
     settings.light.radius_m = 0.3;
     let frames = [1, 4, 16, 64, 256];
-    let runs = ray_traced_v(&gpu, &scene, &settings, &frames);
+    let runs = ray_traced_aux(&gpu, &scene, &settings, &frames);
     let options = ReferenceOptions {
         light_samples: 4096,
         ..ReferenceOptions::DEFAULT
     };
-    let reference = Reference::new(&scene)
+    let tracer = Reference::new(&scene);
+    let reference = tracer
         .render(&settings, &options, &RenderControl::default())
         .unwrap();
-    let covered: Vec<usize> = (0..reference.coverage.len())
+    // Pixels where both see the same surface (the same cos θ to the light's
+    // centre: a pixel centre on an object's silhouette can fall on the
+    // object for the rasterizer and beside it for the ray), away from the
+    // terminator: where the sphere straddles the horizon (|cos θ| < R / d)
+    // V hangs on rays grazing the facets, which f32 and f64 offsets treat
+    // differently, and the radiance there is nearly 0.
+    let width = settings.image.width;
+    let one_sample = ReferenceOptions {
+        light_samples: 1,
+        ..ReferenceOptions::DEFAULT
+    };
+    let all: Vec<usize> = (0..reference.coverage.len())
         .filter(|&i| reference.coverage[i] > 0.0)
         .collect();
+    let covered: Vec<usize> = all
+        .iter()
+        .copied()
+        .filter(|&i| {
+            let (x, y) = ((i as u32 % width) as f64 + 0.5, (i as u32 / width) as f64 + 0.5);
+            tracer.trace_pixel(&settings, &one_sample, x, y).is_some_and(|s| {
+                let straddles = s.cos_theta.abs() < 0.3 / s.light_distance_m;
+                (s.cos_theta.max(0.0) - runs[0][i][2] as f64).abs() < 1e-3 && !straddles
+            })
+        })
+        .collect();
+    eprintln!(
+        "{} of {} covered pixels on the same surface, off the terminator",
+        covered.len(),
+        all.len()
+    );
+    assert!(covered.len() as f64 > 0.97 * all.len() as f64);
     let mean = covered
         .iter()
         .map(|&i| reference.visibility[i] as f64)
@@ -321,7 +359,7 @@ fn sphere_light_accumulation_converges_to_the_reference_as_one_over_root_n() {
         .map(|v| {
             let sum: f64 = covered
                 .iter()
-                .map(|&i| (v[i] as f64 - reference.visibility[i] as f64).powi(2))
+                .map(|&i| (v[i][0] as f64 - reference.visibility[i] as f64).powi(2))
                 .sum();
             (sum / covered.len() as f64).sqrt()
         })
