@@ -7,6 +7,9 @@ use lumlab::settings::{DebugView, Filter, Settings, Visibility};
 mod app_support;
 use app_support::{harness, step_until};
 
+/// A setting's name and how to change it.
+type Change = (&'static str, fn(&mut Settings));
+
 fn frames(app: &LabApp) -> u32 {
     app.renderer()
         .and_then(|r| r.accumulation())
@@ -23,7 +26,7 @@ fn accumulation_restarts_on_every_setting_change() {
         .state_mut()
         .emit(Command::SetSettings(Box::new(s.clone())));
     step_until(&mut harness, "frames to accumulate", |app| frames(app) >= 2);
-    let changes: [(&str, fn(&mut Settings)); 9] = [
+    let changes: [Change; 9] = [
         ("light position", |s| s.light.position.x += 0.1),
         ("light radius", |s| s.light.radius_m = 0.2),
         ("power", |s| s.light.power_w *= 2.0),
@@ -57,4 +60,47 @@ fn accumulation_restarts_on_every_setting_change() {
         harness.step();
     }
     assert_eq!(frames(harness.state()), 3);
+}
+
+#[test]
+fn split_shows_shadow_map_against_ray_traced_under_a_sphere_light() {
+    use egui_kittest::kittest::Queryable;
+    use lumlab::presets::{Comparison, ComparisonAxis};
+    let mut harness = harness();
+    let app = harness.state_mut();
+    let split = &mut app.state_mut().split;
+    split.enabled = true;
+    split.layout = lumlab::app::SplitLayout::SideBySide;
+    split.comparison = Comparison {
+        axis: ComparisonAxis::Visibility,
+        ..Comparison::default()
+    };
+    let s = app.settings_mut();
+    s.light.radius_m = 0.3;
+    s.shadow.filter = Filter::Pcss;
+    s.shadow.rt_light_samples = 16;
+    s.shadow.rt_max_frames = 16;
+    // Accumulating frames ask for the next: step, never run to rest.
+    harness.run_steps(2);
+    harness.get_by_label("A: shadow map");
+    harness.get_by_label("B: ray traced");
+    step_until(&mut harness, "the accumulation", |app| {
+        app.renderer_of(lumlab::presets::Half::B)
+            .and_then(|r| r.accumulation())
+            .is_some_and(|a| a.is_complete())
+    });
+    // Half A keeps its shadow map: no accumulation there.
+    assert!(
+        harness
+            .state()
+            .renderer()
+            .and_then(|r| r.accumulation())
+            .is_none()
+    );
+    let image = harness.render().expect("the harness renders");
+    if let Some(dir) = std::env::var_os("LUMLAB_SCREENSHOTS") {
+        image
+            .save(std::path::Path::new(&dir).join("app-raytraced.png"))
+            .expect("the screenshot is written");
+    }
 }

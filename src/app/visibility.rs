@@ -61,16 +61,17 @@ pub fn visibility_ui(
     }
 }
 
-/// "ray traced: 37 / 256 frames × 4 rays, noise ≤ 0.041": the accumulation
-/// so far, at the bottom left of a half.
+/// "37 / 256 frames × 4 rays, σ(V) ≤ 0.041": the ray-traced accumulation
+/// so far, at the bottom left of a half; σ(V) ≤ 0.5 / √(N·S) bounds the
+/// noise left in V.
 pub fn accumulation_text(a: &Accumulation) -> String {
     let noise = if a.noise_bound > 0.0 {
-        format!("noise σ(V) ≤ {:.3}", a.noise_bound)
+        format!("σ(V) ≤ {:.3}", a.noise_bound)
     } else {
         "exact".into()
     };
     format!(
-        "ray traced: {} / {} frames × {} ray(s), {noise}",
+        "{} / {} frames × {} rays, {noise}",
         a.frames, a.max_frames, a.rays_per_frame
     )
 }

@@ -217,7 +217,7 @@ pub fn strata(n: u32) -> (u32, u32) {
     let n = n.max(1);
     let nx = (1..=n)
         .take_while(|d| d * d <= n)
-        .filter(|d| n % d == 0)
+        .filter(|d| n.is_multiple_of(*d))
         .last()
         .unwrap_or(1);
     (nx, n / nx)
