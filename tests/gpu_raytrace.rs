@@ -376,3 +376,42 @@ fn sphere_light_accumulation_converges_to_the_reference_as_one_over_root_n() {
         rmse[4]
     );
 }
+
+#[test]
+fn accumulate_needs_ray_traced_visibility_and_renders_n_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("v.png");
+    let run = |extra: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_lumlab"))
+            .args([
+                "render",
+                "--size",
+                "64x36",
+                "--light-radius",
+                "0.3",
+                "--accumulate",
+                "3",
+            ])
+            .args(extra)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap()
+    };
+    let refused = run(&[]);
+    assert_eq!(refused.status.code(), Some(2));
+    let message = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        message.contains("--accumulate needs --visibility ray-traced"),
+        "{message}"
+    );
+    assert!(!out.exists());
+    let traced = run(&["--visibility", "ray-traced"]);
+    let message = String::from_utf8_lossy(&traced.stderr);
+    assert!(traced.status.success(), "{message}");
+    assert!(
+        message.contains("ray traced, 3 frame(s) × 4 ray(s) per pixel"),
+        "{message}"
+    );
+    assert!(out.exists());
+}
