@@ -43,6 +43,7 @@ const NORM_EXACT: u32 = 3u;
 
 // Visibility sources, in settings::Visibility order.
 const VISIBILITY_SHADOW_MAP: u32 = 0u;
+const VISIBILITY_RAY_TRACED: u32 = 1u;
 
 // A specialisation constant's value for "any": read the uniform instead.
 const SPECIALISE_ANY: u32 = 0xffffffffu;

@@ -10,7 +10,8 @@
 @group(0) @binding(2) var<storage, read> materials: array<Material>;
 @group(0) @binding(3) var base_textures: texture_2d_array<f32>;
 @group(0) @binding(4) var base_sampler: sampler;
-// Group 1: the visibility source's resources (shadow_map.wgsl).
+// Group 1: the visibility source's resources (shadow_map.wgsl); group 2:
+// the ray tracer's (bvh.wgsl, raytrace.wgsl).
 
 // Pipeline-overridable constants: a pipeline specialised to one view and one
 // visibility source (gpu::specialise) holds its VIEW_* / VISIBILITY_* here,
@@ -112,6 +113,10 @@ fn surface_at(in: VsOut, front_facing: bool) -> Surface {
 // (a V texture, a GPU ray tracer) is one more case here; the radiance code
 // does not change. p_l: the point relative to the light.
 fn visibility(p_l: vec3<f32>, s: Surface, incidence: LightIncidence, pixel: vec2<f32>) -> f32 {
+    if visibility_mode() == VISIBILITY_RAY_TRACED {
+        // Its own attached-shadow rule: a sphere light straddling the horizon is partly seen.
+        return ray_traced_visibility(p_l + globals.shadow_apex_rel, s.n, s.n_geo, pixel);
+    }
     if shadow.enabled == 0u {
         return 1.0;
     }
@@ -163,6 +168,9 @@ fn shade_fragment(in: VsOut, front_facing: bool) -> FsOut {
     var out: FsOut;
     out.quantity = vec4<f32>(view_quantity(s, incidence, v, density), 1.0);
     out.aux = vec4<f32>(v, density, max(incidence.cos_theta, 0.0), 1.0);
+    let mean = accumulated(out.quantity, out.aux, in.clip.xy);
+    out.quantity = mean[0];
+    out.aux = mean[1];
     return out;
 }
 

@@ -10,7 +10,7 @@
 
 use crate::physics::Normalization;
 use crate::scene::SceneScale;
-use crate::settings::{BiasMode, DebugView, Filter, Settings};
+use crate::settings::{BiasMode, DebugView, Filter, Settings, Visibility};
 use glam::Vec3;
 
 named_enum! {
@@ -199,6 +199,8 @@ named_enum! {
         Resolution = "resolution",
         /// The bias mode.
         Bias = "bias",
+        /// Where V comes from: shadow map or ray traced.
+        Visibility = "visibility",
     }
 }
 
@@ -212,6 +214,7 @@ pub struct Comparison {
     pub filter: [Filter; 2],
     pub resolution: [u32; 2],
     pub bias: [BiasMode; 2],
+    pub visibility: [Visibility; 2],
 }
 
 impl Default for Comparison {
@@ -223,6 +226,7 @@ impl Default for Comparison {
             filter: [Filter::None, Filter::Pcf],
             resolution: [256, 2048],
             bias: [BiasMode::Constant, BiasMode::Auto],
+            visibility: [Visibility::ShadowMap, Visibility::RayTraced],
         }
     }
 }
@@ -236,7 +240,7 @@ pub enum Half {
 
 impl Comparison {
     /// The named comparisons offered as one-click choices.
-    pub fn presets() -> [(&'static str, Comparison); 4] {
+    pub fn presets() -> [(&'static str, Comparison); 5] {
         let base = Comparison::default();
         [
             ("norm none | approx", base),
@@ -262,6 +266,13 @@ impl Comparison {
                     ..base
                 },
             ),
+            (
+                "shadow map | ray traced",
+                Comparison {
+                    axis: ComparisonAxis::Visibility,
+                    ..base
+                },
+            ),
         ]
     }
 
@@ -274,6 +285,7 @@ impl Comparison {
             ComparisonAxis::Filter => s.shadow.filter = self.filter[i],
             ComparisonAxis::Resolution => s.shadow.resolution = self.resolution[i],
             ComparisonAxis::Bias => s.shadow.bias.mode = self.bias[i],
+            ComparisonAxis::Visibility => s.shadow.visibility = self.visibility[i],
         }
         s
     }
@@ -286,6 +298,7 @@ impl Comparison {
             ComparisonAxis::Filter => format!("filter {}", self.filter[i]),
             ComparisonAxis::Resolution => format!("shadow map {}²", self.resolution[i]),
             ComparisonAxis::Bias => format!("bias {}", self.bias[i]),
+            ComparisonAxis::Visibility => self.visibility[i].name().replace('-', " "),
         }
     }
 }
@@ -326,6 +339,16 @@ mod tests {
             ("norm none".into(), "norm approx".into())
         );
         assert!(Preset::Grazing.comparison().is_none());
+        let (name, c) = Comparison::presets()[4];
+        assert_eq!(name, "shadow map | ray traced");
+        assert_eq!(
+            (c.label(Half::A), c.label(Half::B)),
+            ("shadow map".into(), "ray traced".into())
+        );
+        assert_eq!(
+            c.settings_for(Half::B, &base).shadow.visibility,
+            Visibility::RayTraced
+        );
     }
 
     #[test]

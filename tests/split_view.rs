@@ -122,7 +122,7 @@ fn a_normalization_split_draws_the_shadow_map_once_per_change() {
 
 #[test]
 fn visibility_is_a_setting_of_its_own_and_defaults_to_the_shadow_map() {
-    assert_eq!(Visibility::ALL, &[Visibility::ShadowMap]);
+    assert_eq!(Visibility::ALL, &[Visibility::ShadowMap, Visibility::RayTraced]);
     assert_eq!(Visibility::ShadowMap.name(), "shadow-map");
     let old =
         Settings::from_toml("[shadow]\nfilter = \"pcss\"\n").expect("a file without `visibility` loads");

@@ -483,3 +483,17 @@ lecture-steps = Steps
 lecture-close = Close
 lecture-observe = Observe:
 lecture-question = Question:
+
+## Visibility (visibility.rs)
+visibility-shadow-map-tip = Shadow map: depth from the light, then a filtered depth test per pixel (fast, approximate)
+visibility-ray-traced-tip = Ray traced on the GPU through a BVH: a shadow ray from p to the light. Point light: exact V ∈ {"{"}0, 1{"}"}. Sphere light: V = Σ V_i cos θ_i / Σ cos θ_i over S stratified directions of its cone per frame, averaged over the frames while nothing changes
+visibility-label = Visibility
+visibility-label-tip = Where V(p, q) ∈ [0, 1] comes from: L = f_r · E · V
+visibility-rays = rays / frame
+visibility-rays-tip = S: shadow rays per pixel and frame towards a sphere light, on nx × ny strata of its solid angle (squares stratify best); a point light needs one
+visibility-frames = frames
+visibility-frames-tip = N: frames averaged while nothing changes; the noise of V falls as 1/√(N·S), then the image holds
+visibility-exact = exact
+visibility-accumulation = { $frames } / { $max } frames × { $rays } rays, { $noise }
+probe-v-gpu-traced = V (GPU ray traced)
+probe-v-gpu-traced-tip = Visibility traced on the GPU in f32 through the BVH: exact for a point light, the mean of the accumulated frames' samples for a sphere light

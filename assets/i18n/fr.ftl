@@ -489,3 +489,17 @@ lecture-steps = Étapes
 lecture-close = Fermer
 lecture-observe = À observer :
 lecture-question = Question :
+
+## Visibility (visibility.rs)
+visibility-shadow-map-tip = Carte d'ombres : profondeur vue de la lumière, puis un test de profondeur filtré par pixel (rapide, approché)
+visibility-ray-traced-tip = Lancer de rayons sur le GPU à travers un BVH : un rayon d'ombre de p vers la lumière. Lumière ponctuelle : V ∈ {"{"}0, 1{"}"} exact. Lumière sphérique : V = Σ V_i cos θ_i / Σ cos θ_i sur S directions stratifiées de son cône par image, moyennées sur les images tant que rien ne change
+visibility-label = Visibilité
+visibility-label-tip = D'où vient V(p, q) ∈ [0, 1] : L = f_r · E · V
+visibility-rays = rayons / image
+visibility-rays-tip = S : rayons d'ombre par pixel et par image vers une lumière sphérique, sur nx × ny strates de son angle solide (les carrés stratifient le mieux) ; une lumière ponctuelle n'en demande qu'un
+visibility-frames = images
+visibility-frames-tip = N : images moyennées tant que rien ne change ; le bruit de V décroît en 1/√(N·S), puis l'image reste fixe
+visibility-exact = exact
+visibility-accumulation = { $frames } / { $max } images × { $rays } rayons, { $noise }
+probe-v-gpu-traced = V (lancer de rayons GPU)
+probe-v-gpu-traced-tip = Visibilité tracée sur le GPU en f32 à travers le BVH : exacte pour une lumière ponctuelle, moyenne des échantillons des images accumulées pour une lumière sphérique

@@ -13,7 +13,7 @@ use crate::gpu::{Capabilities, ShadeOptions};
 use crate::gpu::{ComparisonImage, FloatTarget, FrameReport, PendingScale, PendingTexels, Renderer};
 use crate::presets::Half;
 use crate::scene::Scene;
-use crate::settings::{DebugView, Settings};
+use crate::settings::{DebugView, Settings, Visibility};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -61,6 +61,7 @@ pub struct HalfView {
 /// A pixel of a half being read back for the probe.
 pub struct PendingProbe {
     view: DebugView,
+    method: Visibility,
     aux: PendingTexels,
     quantity: PendingTexels,
     aux_value: Option<[f32; 4]>,
@@ -181,7 +182,9 @@ impl GpuViews {
             scene_generation: h.scene_generation,
             comparison_generation: h.comparison_generation,
         };
-        if h.rendered.as_ref() == Some(&key) {
+        // A ray-traced image still accumulating renders on, unchanged settings or not.
+        let accumulating = h.renderer.accumulation().is_some_and(|a| !a.is_complete());
+        if h.rendered.as_ref() == Some(&key) && !accumulating {
             return false;
         }
         h.renderer.set_shade_options(ShadeOptions {
@@ -212,6 +215,11 @@ impl GpuViews {
     /// The render scale of a half's last frame (1: full resolution).
     pub fn rendered_scale(&self, half: Half) -> f64 {
         self.half(half).map_or(1.0, |h| h.rendered_scale)
+    }
+
+    /// A half's ray-traced accumulation (None: V from the shadow map).
+    pub fn accumulation(&self, half: Half) -> Option<crate::gpu::raytrace::Accumulation> {
+        self.half(half)?.renderer.accumulation()
     }
 
     /// The texture showing a half's last frame.
@@ -255,9 +263,10 @@ impl GpuViews {
     /// Starts reading pixel `pixel` of a half's last frame for the probe.
     pub fn request_probe(&self, half: Half, pixel: (u32, u32)) -> Option<PendingProbe> {
         let h = self.half(half)?;
-        let view = h.rendered.as_ref()?.settings.view.mode;
+        let settings = &h.rendered.as_ref()?.settings;
         Some(PendingProbe {
-            view,
+            view: settings.view.mode,
+            method: settings.shadow.visibility,
             aux: h.renderer.request_texels(FloatTarget::Aux, pixel, (1, 1))?,
             quantity: h.renderer.request_texels(FloatTarget::Quantity, pixel, (1, 1))?,
             aux_value: None,
@@ -379,6 +388,7 @@ impl PendingProbe {
         match (self.aux_value, self.quantity_value) {
             (Some(aux), Some(quantity)) => ReadState::Ready(GpuSample {
                 visibility: aux[0],
+                method: self.method,
                 texel_density: aux[1],
                 radiance: quantity_is_radiance(self.view).then_some([quantity[0], quantity[1], quantity[2]]),
             }),

@@ -262,7 +262,12 @@ impl LabApp {
 
     /// The renderer of half A (B is the split view's right half).
     pub fn renderer(&self) -> Option<&crate::gpu::Renderer> {
-        self.gpu.as_ref().and_then(|g| g.renderer(Half::A))
+        self.renderer_of(Half::A)
+    }
+
+    /// A half's renderer (B exists while the split view is on).
+    pub fn renderer_of(&self, half: Half) -> Option<&crate::gpu::Renderer> {
+        self.gpu.as_ref().and_then(|g| g.renderer(half))
     }
 
     /// A CPU reference is being computed.

@@ -41,6 +41,7 @@ mod toast;
 mod undo;
 mod view;
 mod viewport;
+mod visibility;
 mod widgets;
 
 pub use command::Command;

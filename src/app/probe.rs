@@ -10,7 +10,7 @@ use crate::physics::{Normalization, brdf, colour, radiometry};
 use crate::presets::Half;
 use crate::reference::{Reference, ReferenceOptions, ShadingSample};
 use crate::scene::Scene;
-use crate::settings::{DebugView, Settings};
+use crate::settings::{DebugView, Settings, Visibility};
 use crate::tr;
 use glam::DVec3;
 
@@ -147,8 +147,10 @@ pub fn evaluate(
 /// What the GPU says at the probed pixel (from its aux and quantity targets).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GpuSample {
-    /// V from the shadow map.
+    /// V from the half's visibility method.
     pub visibility: f32,
+    /// That method: shadow map or GPU ray traced.
+    pub method: Visibility,
     /// Shadow-map texels per pixel.
     pub texel_density: f32,
     /// The GPU's L (W/m²/sr), when the view's quantity is the radiance.
@@ -297,12 +299,19 @@ impl Probe {
         match &self.gpu {
             Some(g) => {
                 let l = t.unshadowed_radiance() * g.visibility as f64;
-                rows.extend([
-                    (
+                rows.push(match g.method {
+                    Visibility::ShadowMap => (
                         tr!("probe-v-map"),
                         number(g.visibility as f64),
                         tr!("probe-v-map-tip"),
                     ),
+                    Visibility::RayTraced => (
+                        tr!("probe-v-gpu-traced"),
+                        number(g.visibility as f64),
+                        tr!("probe-v-gpu-traced-tip"),
+                    ),
+                });
+                rows.extend([
                     (
                         tr!("probe-texels"),
                         number(g.texel_density as f64),

@@ -3,7 +3,7 @@
 use super::View;
 use super::widgets::{number, warning};
 use crate::scene::SceneScale;
-use crate::settings::{BiasMode, BiasSettings, Filter, ShadowSettings};
+use crate::settings::{BiasMode, BiasSettings, Filter, ShadowSettings, Visibility};
 use crate::tr;
 
 pub struct ShadowPanel<'a> {
@@ -46,8 +46,7 @@ impl View for ShadowPanel<'_> {
     fn ui(&mut self, ui: &mut egui::Ui) {
         let ShadowSettings {
             enabled,
-            // One source for now (the shadow map): its menu comes with the second.
-            visibility: _,
+            visibility,
             resolution,
             filter,
             pcf_size,
@@ -58,11 +57,16 @@ impl View for ShadowPanel<'_> {
             vsm_bleed_reduction,
             msm_bias,
             bias,
+            rt_light_samples,
+            rt_max_frames,
         } = self.shadow;
 
         ui.checkbox(enabled, tr!("shadow-enabled"))
             .on_hover_text(tr!("shadow-enabled-tip"));
         ui.add_enabled_ui(*enabled, |ui| {
+            super::visibility::visibility_ui(ui, visibility, rt_light_samples, rt_max_frames);
+        });
+        ui.add_enabled_ui(*enabled && *visibility == Visibility::ShadowMap, |ui| {
             resolution_ui(
                 ui,
                 resolution,

@@ -5,7 +5,7 @@ use super::View;
 use super::state::{SplitLayout, SplitState};
 use crate::physics::Normalization;
 use crate::presets::{Comparison, ComparisonAxis, Half};
-use crate::settings::{BiasMode, DebugView, Filter, ViewSettings};
+use crate::settings::{BiasMode, DebugView, Filter, ViewSettings, Visibility};
 use crate::tr;
 
 pub struct ViewPanel<'a> {
@@ -125,6 +125,13 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
                         b.name().into()
                     })
                 }
+                ComparisonAxis::Visibility => choose(
+                    ui,
+                    (&id, label),
+                    &mut comparison.visibility[i],
+                    Visibility::ALL,
+                    |v| v.name().into(),
+                ),
                 ComparisonAxis::Resolution => {
                     let choices = super::shadow::resolution_choices(max_texture_side);
                     choose(ui, (&id, label), &mut comparison.resolution[i], &choices, |r| {

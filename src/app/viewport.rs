@@ -335,6 +335,15 @@ impl Viewport<'_> {
                 legend::paint(&painter, area, &l);
             }
         }
+        for &half in halves {
+            if let Some(a) = gpu.accumulation(half) {
+                let (area, _) = part(half);
+                super::visibility::paint_accumulation(&painter, area, &a);
+                if !a.is_complete() {
+                    ui.ctx().request_repaint();
+                }
+            }
+        }
         if split.enabled {
             let labels = if side_by_side {
                 [

@@ -1,7 +1,7 @@
 //! Value parsers and the shared options of the commands that render.
 
 use crate::physics::Normalization;
-use crate::settings::{BiasSettings, DebugView, Filter, GroundMode, Settings, ShadowSettings};
+use crate::settings::{BiasSettings, DebugView, Filter, GroundMode, Settings, ShadowSettings, Visibility};
 use glam::Vec3;
 use std::path::PathBuf;
 
@@ -129,6 +129,10 @@ fn filter(text: &str) -> Result<Filter, String> {
     text.parse()
 }
 
+fn visibility(text: &str) -> Result<Visibility, String> {
+    text.parse()
+}
+
 fn ground(text: &str) -> Result<GroundMode, String> {
     text.parse()
 }
@@ -195,6 +199,12 @@ pub struct SceneOptions {
     /// Shadow filter: none|hw2x2|pcf|poisson|pcss|vsm|evsm|msm.
     #[arg(long, value_name = "NAME", value_parser = filter)]
     pub filter: Option<Filter>,
+    /// Where V comes from: shadow-map (default) | ray-traced (GPU shadow rays through a BVH).
+    #[arg(long, value_name = "NAME", value_parser = visibility)]
+    pub visibility: Option<Visibility>,
+    /// Ray-traced shadow rays per pixel and frame towards a sphere light (1 … 256).
+    #[arg(long, value_name = "S")]
+    pub rt_samples: Option<u32>,
     /// PCF kernel size: 3|5|7|9.
     #[arg(long, value_name = "N", value_parser = pcf_size)]
     pub pcf_size: Option<u32>,
@@ -280,6 +290,8 @@ impl SceneOptions {
         shadow.resolution = self.shadow_res.unwrap_or(shadow.resolution);
         shadow.filter = self.filter.unwrap_or(shadow.filter);
         shadow.pcf_size = self.pcf_size.unwrap_or(shadow.pcf_size);
+        shadow.visibility = self.visibility.unwrap_or(shadow.visibility);
+        shadow.rt_light_samples = self.rt_samples.unwrap_or(shadow.rt_light_samples);
         if let Some(bias) = &self.bias {
             shadow.bias = shadow
                 .bias

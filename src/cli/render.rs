@@ -6,7 +6,7 @@ use crate::gpu::{GpuContext, Renderer};
 use crate::image_io::{ImageFormat, write_exr, write_png_rgba8};
 use crate::reference::{Reference, ReferenceOptions};
 use crate::scene::Scene;
-use crate::settings::{DebugView, Settings};
+use crate::settings::{DebugView, Settings, Visibility};
 use anyhow::Context;
 use std::path::{Path, PathBuf};
 
@@ -17,6 +17,10 @@ pub struct RenderArgs {
     /// Output image: .png (displayed) or .exr (linear values).
     #[arg(long, value_name = "FILE.png|FILE.exr", value_parser = super::reference::output_path)]
     pub out: PathBuf,
+    /// Ray-traced visibility: render N frames and average them (the sphere
+    /// light's noise falls as 1/√N); needs `--visibility ray-traced`.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=65536))]
+    pub accumulate: Option<u32>,
     /// Print the GPU adapter used.
     #[arg(long)]
     pub adapter_info: bool,
@@ -71,7 +75,14 @@ pub fn check_out(flag: &str, path: &Path) -> anyhow::Result<PathBuf> {
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let format = ImageFormat::of_path(&args.out)?;
     check_out("--out", &args.out)?;
-    let (settings, scene) = load(&args.scene)?;
+    let (mut settings, scene) = load(&args.scene)?;
+    let frames = args.accumulate.unwrap_or(1);
+    if args.accumulate.is_some() {
+        if settings.shadow.visibility != Visibility::RayTraced {
+            return Err(super::usage("--accumulate needs --visibility ray-traced"));
+        }
+        settings.shadow.rt_max_frames = frames;
+    }
     // These views compare with the CPU reference of the same settings.
     let compare = matches!(settings.view.mode, DebugView::Error | DebugView::RefVisibility);
     let reference_options = ReferenceOptions::DEFAULT;
@@ -91,7 +102,10 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         let image = super::reference::render_with_progress(&reference, &settings, &reference_options)?;
         renderer.set_comparison(Some(image.to_comparison()));
     }
-    let report = renderer.render(&settings, size);
+    let mut report = renderer.render(&settings, size);
+    for _ in 1..frames {
+        report = renderer.render(&settings, size);
+    }
     if let Some(note) = &report.resolution_note {
         eprintln!(
             "lumlab: shadow-map resolution clamped to {}: {note}",
@@ -116,14 +130,19 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
     }
     let times = renderer.wait_timings();
+    let visibility = match renderer.accumulation() {
+        Some(a) => format!(
+            "ray traced, {} frame(s) × {} ray(s) per pixel",
+            a.frames, a.rays_per_frame
+        ),
+        None => format!("shadow map {}² ({})", report.resolution, report.layout_summary()),
+    };
     eprintln!(
-        "rendered {}×{} ({}, {} triangles); shadow map {}² ({}); GPU {}",
+        "rendered {}×{} ({}, {} triangles); {visibility}; GPU {}",
         size.0,
         size.1,
         settings.view.mode,
         scene.triangle_count(),
-        report.resolution,
-        report.layout_summary(),
         times.map_or("time n/a".into(), |t| t.to_string()),
     );
     Ok(())

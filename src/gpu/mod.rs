@@ -6,10 +6,11 @@
 //! shadow maps); `renderer` is one view over it, drawing into its `targets`.
 //! Visibility V is a source of its own (settings::Visibility): the camera
 //! pass's `visibility` in shaders/shade.wgsl dispatches on it, today to the
-//! shadow map (shaders/shadow_map.wgsl); the scene's vertex and index
-//! buffers can be read by a compute pass for another source.
+//! shadow map (shaders/shadow_map.wgsl) or the ray tracer (`raytrace`, over
+//! the casters' BVH in `bvh`).
 
 pub mod binding;
+pub mod bvh;
 pub mod capabilities;
 pub mod colormap;
 pub mod context;
@@ -17,6 +18,7 @@ pub mod display;
 pub mod flat;
 pub mod light_frustum;
 pub mod lines;
+pub mod raytrace;
 pub mod readback;
 pub mod renderer;
 pub mod scene_buffers;

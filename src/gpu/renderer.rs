@@ -10,6 +10,7 @@ use super::display::{DisplayInputs, DisplayPass};
 use super::flat::{FlatTargets, time_flat_pass};
 use super::light_frustum::{Frustum, LayoutKind, ShadowLayout, shadow_apex};
 use super::lines::FrustumOverlay;
+use super::raytrace::{Accumulation, RayTracePass};
 use super::readback::{PendingRead, read_texture};
 use super::shade::ShadePass;
 use super::shared::SharedScene;
@@ -80,6 +81,7 @@ pub struct Renderer {
     scene_generation: Option<u64>,
     shade: ShadePass,
     shade_options: ShadeOptions,
+    raytrace: RayTracePass,
     /// This view's shadow uniforms (filter and bias may differ between views
     /// that share a map).
     shadow_uniform: wgpu::Buffer,
@@ -113,6 +115,7 @@ impl Renderer {
         let view = lock(&shared).add_view();
         let shade = ShadePass::new(device, caps.hdr_format);
         Self {
+            raytrace: RayTracePass::new(device, &shade.raytrace_layout, caps.hdr_format),
             overlay: FrustumOverlay::new(device, &shade.globals),
             display: DisplayPass::new(device),
             timer: GpuTimer::new(device, queue),
@@ -324,6 +327,14 @@ impl Renderer {
             .shadow_group(&self.device, shadow_textures, &shared.dummy_moments);
         let specialisation = Specialisation::for_frame(settings, self.shade_options);
         self.shade.prepare(&self.device, specialisation);
+        let raytrace_group = self.raytrace.prepare(
+            &self.device,
+            &self.queue,
+            settings,
+            targets.size,
+            &shared.scene,
+            shared.generation,
+        );
         let writes = self
             .timer
             .as_mut()
@@ -333,12 +344,15 @@ impl Renderer {
             specialisation,
             &shared.scene,
             &shadow_group,
+            raytrace_group,
             &targets.quantity_view,
             &targets.aux_view,
             &targets.depth_view,
             visible,
             writes,
         );
+        self.raytrace
+            .encode_history(encoder, &targets.quantity, &targets.aux);
         let inputs = DisplayInputs {
             quantity: &targets.quantity_view,
             comparison: &targets.comparison_view,
@@ -377,6 +391,12 @@ impl Renderer {
             &self.shade.globals,
             &flat,
         ))
+    }
+
+    /// The ray-traced visibility's accumulation after the last frame (None
+    /// when V comes from the shadow map).
+    pub fn accumulation(&self) -> Option<Accumulation> {
+        self.raytrace.accumulation()
     }
 
     /// The display texture (8-bit sRGB) of the last frame.

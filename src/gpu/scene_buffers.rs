@@ -2,6 +2,7 @@
 //! object, the materials as a storage buffer and the base-colour textures as
 //! one texture array.
 
+use super::bvh::{FlatBvh, GpuBvh};
 use super::uniforms::MaterialRaw;
 use crate::scene::{Aabb, Material, Scene};
 use bytemuck::{Pod, Zeroable};
@@ -63,6 +64,8 @@ pub struct GpuScene {
     pub textures: wgpu::Texture,
     pub texture_view: wgpu::TextureView,
     pub triangle_count: usize,
+    /// The shadow casters' BVH, for the ray-traced visibility.
+    pub bvh: GpuBvh,
 }
 
 impl GpuScene {
@@ -172,6 +175,7 @@ impl GpuScene {
             }),
             textures,
             triangle_count: scene.triangle_count(),
+            bvh: GpuBvh::new(device, &FlatBvh::of_scene(scene)),
         }
     }
 

@@ -19,6 +19,8 @@ pub struct ShadePass {
     hdr_format: wgpu::TextureFormat,
     /// Compiled on first use, kept: switching views or filters back is free.
     pipelines: HashMap<Specialisation, wgpu::RenderPipeline>,
+    /// Group 2: the ray tracer's (gpu::raytrace).
+    pub raytrace_layout: wgpu::BindGroupLayout,
     texture_sampler: wgpu::Sampler,
     compare_sampler: wgpu::Sampler,
     moments_sampler: wgpu::Sampler,
@@ -70,8 +72,12 @@ impl ShadePass {
                 ),
             ],
         );
-        let pipeline_layout =
-            binding::pipeline_layout(device, "camera pass", &[&scene_layout, &shadow_layout]);
+        let raytrace_layout = super::raytrace::layout(device);
+        let pipeline_layout = binding::pipeline_layout(
+            device,
+            "camera pass",
+            &[&scene_layout, &shadow_layout, &raytrace_layout],
+        );
         let sampler = |label: &str, filter: wgpu::FilterMode, address: wgpu::AddressMode, compare| {
             device.create_sampler(&wgpu::SamplerDescriptor {
                 label: Some(label),
@@ -101,6 +107,7 @@ impl ShadePass {
             module: Shader::Shade.module(device),
             hdr_format,
             pipelines: HashMap::new(),
+            raytrace_layout,
             scene_group: None,
         }
     }
@@ -162,6 +169,7 @@ impl ShadePass {
         specialisation: Specialisation,
         scene: &GpuScene,
         shadow_group: &wgpu::BindGroup,
+        raytrace_group: &wgpu::BindGroup,
         quantity: &wgpu::TextureView,
         aux: &wgpu::TextureView,
         depth: &wgpu::TextureView,
@@ -188,6 +196,7 @@ impl ShadePass {
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, scene_group, &[]);
         pass.set_bind_group(1, shadow_group, &[]);
+        pass.set_bind_group(2, raytrace_group, &[]);
         scene.bind_buffers(&mut pass);
         for &object in visible {
             scene.draw(&mut pass, object);

@@ -80,6 +80,8 @@ impl Shader {
             Self::Blur => include_str!("../../shaders/blur.wgsl"),
             Self::Shade => concat!(
                 include_str!("../../shaders/shadow_map.wgsl"),
+                include_str!("../../shaders/bvh.wgsl"),
+                include_str!("../../shaders/raytrace.wgsl"),
                 include_str!("../../shaders/shade.wgsl")
             ),
             Self::Reduce => include_str!("../../shaders/reduce.wgsl"),

@@ -21,22 +21,7 @@ pub(super) struct FrameTargets {
 
 impl FrameTargets {
     pub(super) fn new(device: &wgpu::Device, size: (u32, u32), hdr: wgpu::TextureFormat) -> Self {
-        let texture = |label: &str, format, usage| {
-            device.create_texture(&wgpu::TextureDescriptor {
-                label: Some(label),
-                size: wgpu::Extent3d {
-                    width: size.0,
-                    height: size.1,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format,
-                usage,
-                view_formats: &[],
-            })
-        };
+        let texture = |label: &str, format, usage| image_texture(device, label, size, format, usage);
         use wgpu::TextureUsages as U;
         let target = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
         let quantity = texture("quantity", hdr, target);
@@ -62,6 +47,30 @@ impl FrameTargets {
             comparison,
         }
     }
+}
+
+/// A 2D texture of one layer sized like the image.
+pub(super) fn image_texture(
+    device: &wgpu::Device,
+    label: &str,
+    size: (u32, u32),
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
+    device.create_texture(&wgpu::TextureDescriptor {
+        label: Some(label),
+        size: wgpu::Extent3d {
+            width: size.0,
+            height: size.1,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format,
+        usage,
+        view_formats: &[],
+    })
 }
 
 /// The frame's float targets that can be read back.

@@ -15,7 +15,7 @@ use crate::gpu::{GpuContext, Renderer};
 use crate::physics::{Normalization, energy};
 use crate::reference::{Reference, ReferenceError, ReferenceOptions, RenderControl};
 use crate::scene::Scene;
-use crate::settings::{DebugView, Settings, ShadowSettings};
+use crate::settings::{DebugView, Settings, ShadowSettings, Visibility};
 use metrics::{Comparison, ErrorMetrics, Frame};
 use std::time::{Duration, Instant};
 use sweep::SweepPoint;
@@ -208,7 +208,15 @@ fn measure(
     options: &ReportOptions,
 ) -> (Measured, bool) {
     let size = (settings.image.width, settings.image.height);
-    let report = renderer.render(settings, size);
+    // A ray-traced point is its accumulated image: N frames of S rays.
+    let frames = match settings.shadow.visibility {
+        Visibility::RayTraced => settings.shadow.rt_max_frames.max(1),
+        Visibility::ShadowMap => 1,
+    };
+    let mut report = renderer.render(settings, size);
+    for _ in 1..frames {
+        report = renderer.render(settings, size);
+    }
     let frame = Frame::from_gpu(&renderer.read_quantity(), &renderer.read_aux());
     let error = comparison.measure(&frame);
     let error_image = page::error_image(&comparison.signed_error(&frame), &frame, size, error_scale);
@@ -228,10 +236,13 @@ fn measure(
     let timestamps = !passes.is_empty();
     let pass =
         |f: fn(&PassTimes) -> Option<f64>| median(passes.iter().map(|p| f(p).unwrap_or(0.0)).collect());
-    let wall_ms = median(walls);
+    // The time to the measured image: every frame of an accumulation.
+    let frames = frames as f64;
+    let pass = |f: fn(&PassTimes) -> Option<f64>| frames * pass(f);
+    let wall_ms = frames * median(walls);
     let times = FrameTimes {
         frame_ms: if timestamps {
-            median(passes.iter().map(PassTimes::total_ms).collect())
+            frames * median(passes.iter().map(PassTimes::total_ms).collect())
         } else {
             wall_ms
         },

@@ -7,7 +7,7 @@ use super::{Measured, Report};
 use crate::gpu::colormap;
 use crate::physics::energy::LECTURE_ANGLES_DEG;
 use crate::plot::{FONT, PALETTE};
-use crate::settings::{DebugView, Filter};
+use crate::settings::{DebugView, Filter, Visibility};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -114,7 +114,11 @@ pub fn csv(report: &Report) -> String {
             out,
             "{},gpu,{},{},{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{},{}",
             field(&c.label),
-            c.shadow.filter,
+            // The filter column names the method when there is no shadow map.
+            match c.shadow.visibility {
+                Visibility::ShadowMap => c.shadow.filter.to_string(),
+                Visibility::RayTraced => Visibility::RayTraced.to_string(),
+            },
             c.resolution_used,
             field(&c.shadow.bias.describe()),
             t.frame_ms,
@@ -240,7 +244,9 @@ fn pareto_plot(report: &Report, path: &Path) -> anyhow::Result<()> {
                 .iter()
                 .zip(&points)
                 .zip(&report.pareto)
-                .filter(|((c, _), _)| c.shadow.filter == filter)
+                .filter(|((c, _), _)| {
+                    c.shadow.visibility == Visibility::ShadowMap && c.shadow.filter == filter
+                })
                 .map(|((_, p), on)| (p.0, p.1, *on))
                 .collect();
             if ours.is_empty() {
@@ -253,6 +259,24 @@ fn pareto_plot(report: &Report, path: &Path) -> anyhow::Result<()> {
                 }))?
                 .label(format!("{filter}"))
                 .legend(move |(x, y)| Circle::new((x + 9, y), 5, color.filled()));
+        }
+        let traced: Vec<(f64, f64, bool)> = report
+            .configurations
+            .iter()
+            .zip(&points)
+            .zip(&report.pareto)
+            .filter(|((c, _), _)| c.shadow.visibility == Visibility::RayTraced)
+            .map(|((_, p), on)| (p.0, p.1, *on))
+            .collect();
+        if !traced.is_empty() {
+            let color = BLACK.mix(0.8);
+            chart
+                .draw_series(traced.iter().map(|&(t, e, on)| {
+                    let style = if on { color.filled() } else { color.stroke_width(2) };
+                    Cross::new((t, e), 6, style)
+                }))?
+                .label("GPU ray traced (rays per frame × frames)")
+                .legend(move |(x, y)| Cross::new((x + 9, y), 5, color.filled()));
         }
         chart
             .draw_series(std::iter::once(TriangleMarker::new(

@@ -17,7 +17,7 @@
 //! bias = ["auto", "slope:0.002,1.5"]
 //! ```
 
-use crate::settings::{BiasMode, Filter, Settings, ShadowSettings};
+use crate::settings::{BiasMode, Filter, Settings, ShadowSettings, Visibility};
 use std::path::Path;
 
 /// One configuration of the sweep: the base settings' shadow section with
@@ -29,12 +29,44 @@ pub struct SweepPoint {
     pub shadow: ShadowSettings,
 }
 
-/// The default sweep: 2 resolutions × 7 filters × 2 biases = 28 points.
+/// The default sweep: 2 resolutions × 7 filters × 2 biases = 28 shadow
+/// maps, and 6 ray-traced points (shadow rays per frame × frames
+/// accumulated) from 1 ray to 256 rays per pixel: 34 points.
 pub const DEFAULT_SWEEP: &str = r#"
 [cross]
 resolution = [512, 2048]
 filter = ["none", "hw2x2", "pcf", "poisson", "vsm", "evsm", "msm"]
 bias = ["auto", "constant:0.02"]
+
+[[config]]
+visibility = "ray-traced"
+rt_light_samples = 1
+rt_max_frames = 1
+
+[[config]]
+visibility = "ray-traced"
+rt_light_samples = 4
+rt_max_frames = 1
+
+[[config]]
+visibility = "ray-traced"
+rt_light_samples = 16
+rt_max_frames = 1
+
+[[config]]
+visibility = "ray-traced"
+rt_light_samples = 4
+rt_max_frames = 4
+
+[[config]]
+visibility = "ray-traced"
+rt_light_samples = 4
+rt_max_frames = 16
+
+[[config]]
+visibility = "ray-traced"
+rt_light_samples = 16
+rt_max_frames = 16
 "#;
 
 #[derive(Debug, thiserror::Error)]
@@ -206,6 +238,18 @@ fn point(table: &toml::Table, base: &ShadowSettings) -> Result<SweepPoint, Sweep
 /// set to its default, so that two points that render alike are equal.
 fn effective(mut s: ShadowSettings) -> ShadowSettings {
     let d = ShadowSettings::default();
+    if s.visibility == Visibility::RayTraced {
+        // No shadow map: only the rays and frames matter.
+        return ShadowSettings {
+            enabled: s.enabled,
+            visibility: s.visibility,
+            rt_light_samples: s.rt_light_samples,
+            rt_max_frames: s.rt_max_frames,
+            ..d
+        };
+    }
+    s.rt_light_samples = d.rt_light_samples;
+    s.rt_max_frames = d.rt_max_frames;
     let uses = |filters: &[Filter]| filters.contains(&s.filter);
     if !uses(&[Filter::Pcf]) {
         s.pcf_size = d.pcf_size;
@@ -245,6 +289,9 @@ fn effective(mut s: ShadowSettings) -> ShadowSettings {
 /// and any of its other parameters that differ from the defaults.
 pub fn label(s: &ShadowSettings) -> String {
     let d = ShadowSettings::default();
+    if s.visibility == Visibility::RayTraced {
+        return format!("ray-traced {}×{}", s.rt_light_samples, s.rt_max_frames);
+    }
     let mut filter = match s.filter {
         Filter::Pcf => format!("pcf{}", s.pcf_size),
         Filter::Poisson => format!("poisson{}", s.poisson_samples),
@@ -301,13 +348,19 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_default_sweep_has_28_distinct_points() {
+    fn the_default_sweep_has_34_distinct_points_of_both_methods() {
         let points = parse(DEFAULT_SWEEP, &Settings::default()).unwrap();
-        assert_eq!(points.len(), 28);
+        assert_eq!(points.len(), 34);
         let mut labels: Vec<_> = points.iter().map(|p| p.label.clone()).collect();
         labels.sort();
         labels.dedup();
-        assert_eq!(labels.len(), 28);
+        assert_eq!(labels.len(), 34);
+        let traced = points
+            .iter()
+            .filter(|p| p.shadow.visibility == Visibility::RayTraced)
+            .count();
+        assert_eq!(traced, 6);
+        assert!(labels.contains(&"ray-traced 4×16".to_string()));
     }
 
     #[test]

@@ -128,10 +128,12 @@ named_enum! {
     /// radiance are computed the same whatever gives V.
     #[derive(Default)]
     pub enum Visibility {
-        /// The shadow map, filtered by `ShadowSettings::filter`. A GPU
-        /// ray-traced source (`"ray-traced"`) comes with a later issue.
+        /// The shadow map, filtered by `ShadowSettings::filter`.
         #[default]
         ShadowMap = "shadow-map",
+        /// Shadow rays traced on the GPU through a BVH: exact for a point
+        /// light; a sphere light is sampled per frame and accumulated.
+        RayTraced = "ray-traced",
     }
 }
 
@@ -272,6 +274,12 @@ pub struct ShadowSettings {
     /// where rounding shows; larger: more light leaking).
     pub msm_bias: f32,
     pub bias: BiasSettings,
+    /// Shadow rays per pixel per frame towards a sphere light (`ray-traced`):
+    /// strata of the light's solid angle.
+    pub rt_light_samples: u32,
+    /// Frames accumulated by `ray-traced` while nothing changes; then the
+    /// image holds (N frames × `rt_light_samples` rays per pixel).
+    pub rt_max_frames: u32,
 }
 
 impl ShadowSettings {
@@ -280,6 +288,8 @@ impl ShadowSettings {
     pub const PCF_SIZES: [u32; 4] = [3, 5, 7, 9];
     /// Peters & Klein 2015's α for moments stored in 32-bit floats.
     pub const DEFAULT_MSM_BIAS: f32 = 3e-5;
+    pub const MAX_RT_LIGHT_SAMPLES: u32 = 256;
+    pub const MAX_RT_FRAMES: u32 = 65536;
 }
 
 impl Default for ShadowSettings {
@@ -297,6 +307,8 @@ impl Default for ShadowSettings {
             vsm_bleed_reduction: 0.2,
             msm_bias: Self::DEFAULT_MSM_BIAS,
             bias: BiasSettings::default(),
+            rt_light_samples: 4,
+            rt_max_frames: 256,
         }
     }
 }

@@ -55,6 +55,18 @@ impl Settings {
         check("shadow.bias.depth_m", s.bias.depth_m, 0.0, far)?;
         check("shadow.bias.slope", s.bias.slope, 0.0, 1e3)?;
         check("shadow.bias.normal_texels", s.bias.normal_texels, 0.0, 1e3)?;
+        check_int(
+            "shadow.rt_light_samples",
+            s.rt_light_samples,
+            1,
+            ShadowSettings::MAX_RT_LIGHT_SAMPLES,
+        )?;
+        check_int(
+            "shadow.rt_max_frames",
+            s.rt_max_frames,
+            1,
+            ShadowSettings::MAX_RT_FRAMES,
+        )?;
         check("view.exposure_ev", self.view.exposure_ev, -30.0, 30.0)?;
         check("ground.k", self.ground.k, 0.0, 1.0)?;
         check("ground.m", self.ground.m, 0.0, 1e6)?;

@@ -1,0 +1,111 @@
+// The shadow casters' BVH (gpu::bvh): any-hit traversal of a segment, for the
+// ray-traced visibility. Portable: storage buffers and a loop with a small
+// stack, no ray-query extension.
+
+struct BvhNode {
+    min: vec3<f32>,
+    // Triangles in this leaf; 0: an inner node.
+    count: u32,
+    max: vec3<f32>,
+    // Inner node: first child (the second follows it); leaf: first triangle.
+    first: u32,
+}
+
+// Corner v0 and the edges e1 = v1 − v0, e2 = v2 − v0 (m, world).
+struct BvhTriangle {
+    v0: vec3<f32>,
+    e1: vec3<f32>,
+    e2: vec3<f32>,
+}
+
+@group(2) @binding(1) var<storage, read> bvh_nodes: array<BvhNode>;
+@group(2) @binding(2) var<storage, read> bvh_triangles: array<BvhTriangle>;
+
+// Nodes waiting to be visited: far more than a BVH of millions of triangles
+// is deep.
+const BVH_STACK_SIZE: u32 = 64u;
+// Barycentric slack of the triangle test: triangles grow by 2·10⁻⁶ of their
+// size, so that a ray through an edge shared by two triangles hits one of
+// them despite f32 rounding (no light leaking through a closed mesh).
+const BARYCENTRIC_SLACK: f32 = 2e-6;
+
+// Möller–Trumbore: does o + t d meet the triangle for 0 < t < t_max?
+fn bvh_hits_triangle(tri: BvhTriangle, o: vec3<f32>, d: vec3<f32>, t_max: f32) -> bool {
+    let p = cross(d, tri.e2);
+    let det = dot(tri.e1, p);
+    if det == 0.0 {
+        return false;
+    }
+    let inv_det = 1.0 / det;
+    let s = o - tri.v0;
+    let u = dot(s, p) * inv_det;
+    if u < -BARYCENTRIC_SLACK || u > 1.0 + BARYCENTRIC_SLACK {
+        return false;
+    }
+    let q = cross(s, tri.e1);
+    let v = dot(d, q) * inv_det;
+    if v < -BARYCENTRIC_SLACK || u + v > 1.0 + BARYCENTRIC_SLACK {
+        return false;
+    }
+    let t = dot(tri.e2, q) * inv_det;
+    return t > 0.0 && t < t_max;
+}
+
+// Slab test of the segment's parameters [0, t_max] against a node's box.
+fn bvh_hits_box(node: BvhNode, o: vec3<f32>, inv_d: vec3<f32>, t_max: f32) -> bool {
+    let t0 = (node.min - o) * inv_d;
+    let t1 = (node.max - o) * inv_d;
+    let near = min(t0, t1);
+    let far = max(t0, t1);
+    let enter = max(max(near.x, near.y), max(near.z, 0.0));
+    let leave = min(min(far.x, far.y), min(far.z, t_max));
+    return enter <= leave;
+}
+
+// Whether any caster meets o + t d for 0 < t < t_max (d need not be unit).
+fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, node_count: u32) -> bool {
+    // A zero component becomes a tiny one: its slabs then span ±∞, never NaN.
+    let safe_d = select(d, vec3<f32>(1e-30), abs(d) < vec3<f32>(1e-30));
+    let inv_d = 1.0 / safe_d;
+    if node_count == 0u || !bvh_hits_box(bvh_nodes[0], o, inv_d, t_max) {
+        return false;
+    }
+    var stack: array<u32, BVH_STACK_SIZE>;
+    var depth = 0u;
+    var index = 0u;
+    loop {
+        let node = bvh_nodes[index];
+        if node.count > 0u {
+            for (var i = node.first; i < node.first + node.count; i++) {
+                if bvh_hits_triangle(bvh_triangles[i], o, d, t_max) {
+                    return true;
+                }
+            }
+        } else {
+            let a = node.first;
+            let b = node.first + 1u;
+            let hit_a = bvh_hits_box(bvh_nodes[a], o, inv_d, t_max);
+            let hit_b = bvh_hits_box(bvh_nodes[b], o, inv_d, t_max);
+            if hit_a && hit_b && depth < BVH_STACK_SIZE {
+                stack[depth] = b;
+                depth += 1u;
+                index = a;
+                continue;
+            }
+            if hit_a {
+                index = a;
+                continue;
+            }
+            if hit_b {
+                index = b;
+                continue;
+            }
+        }
+        if depth == 0u {
+            break;
+        }
+        depth -= 1u;
+        index = stack[depth];
+    }
+    return false;
+}

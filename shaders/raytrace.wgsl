@@ -1,0 +1,132 @@
+// Ray-traced visibility (settings::Visibility::RayTraced): shadow rays from
+// the shaded point through the casters' BVH (bvh.wgsl), and the progressive
+// accumulation of the frames while nothing changes (gpu::raytrace).
+//
+// Conventions of the CPU reference (reference/shading.rs), in f32: the ray
+// starts off the surface along the facet's normal on the viewer's side and
+// stops short of the light; a point light gets one ray (V ∈ {0, 1}); a sphere
+// light gets nx × ny stratified directions uniform in the solid angle of its
+// cone, V = Σ V_i cos⁺θ_i / Σ cos⁺θ_i.
+
+struct RayTrace {
+    // Frames already in the history; 0: this frame starts anew.
+    frames_before: u32,
+    // Weight of this frame in the running mean: 1 / (frames_before + 1), or
+    // 0 once the accumulation is complete (the history then holds).
+    weight: f32,
+    // Strata of the sphere light's cone per pixel and frame.
+    strata_x: u32,
+    strata_y: u32,
+    // Shadows on (0: V = 1).
+    shadows: u32,
+    // Nodes of the BVH (0: nothing casts shadows).
+    node_count: u32,
+    // Changes every frame: a new stream of random numbers.
+    frame_seed: u32,
+    _padding: u32,
+}
+
+@group(2) @binding(0) var<uniform> rt: RayTrace;
+// The previous frame's targets (quantity, aux): the running mean so far.
+@group(2) @binding(3) var history_quantity: texture_2d<f32>;
+@group(2) @binding(4) var history_aux: texture_2d<f32>;
+
+// Shadow-ray origin offset along the facet normal, relative to the point's
+// magnitude (largest |world coordinate| and its distance to the eye): f32
+// keeps ~6·10⁻⁸ of it, and the rasterized position carries the depth
+// interpolation's rounding; 10⁻⁵ is ~100 times both (0.1 mm at 10 m).
+const RT_OFFSET_REL: f32 = 1e-5;
+// Shadow rays end this fraction of their length before the light.
+const RT_STOP_SHORT_REL: f32 = 1e-5;
+
+// PCG hash (Jarzynski & Olano 2020): one well-mixed u32 per input.
+fn rt_hash(x: u32) -> u32 {
+    let state = x * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// Uniform in [0, 1): the top 24 bits.
+fn rt_random(state: ptr<function, u32>) -> f32 {
+    *state = rt_hash(*state);
+    return f32(*state >> 8u) * (1.0 / 16777216.0);
+}
+
+// Whether the segment from `origin_rel` along d (both relative to the eye)
+// is blocked before its end.
+fn rt_blocked(origin_rel: vec3<f32>, d: vec3<f32>) -> bool {
+    return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, rt.node_count);
+}
+
+// V at the point p = eye + rel with shading normal n and facet normal n_geo
+// (on the viewer's side).
+fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: vec2<f32>) -> f32 {
+    if rt.shadows == 0u {
+        return 1.0;
+    }
+    let p = rel + globals.eye;
+    let offset = RT_OFFSET_REL * max(max(abs(p.x), abs(p.y)), max(abs(p.z), length(rel)));
+    let origin = rel + n_geo * offset;
+    let to_centre = globals.light_rel - rel;
+    let radius = globals.light_radius_m;
+    if radius <= 0.0 {
+        // Attached shadow: the light below the surface's horizon.
+        if dot(n, to_centre) <= 0.0 {
+            return 0.0;
+        }
+        return select(1.0, 0.0, rt_blocked(origin, globals.light_rel - origin));
+    }
+    let d2 = dot(to_centre, to_centre);
+    if d2 <= radius * radius {
+        // Inside the light: it is seen in every direction.
+        return 1.0;
+    }
+    let dist = sqrt(d2);
+    let w = to_centre / dist;
+    let sin2_alpha = radius * radius / d2;
+    // 1 − cos α without cancellation for far lights.
+    let gap_max = sin2_alpha / (1.0 + sqrt(1.0 - sin2_alpha));
+    // An orthonormal frame around w (Duff et al. 2017).
+    let sign = select(-1.0, 1.0, w.z >= 0.0);
+    let a = -1.0 / (sign + w.z);
+    let b = w.x * w.y * a;
+    let t1 = vec3<f32>(1.0 + sign * w.x * w.x * a, sign * b, -sign * w.x);
+    let t2 = vec3<f32>(b, sign + w.y * w.y * a, -w.y);
+    var state = rt_hash(u32(pixel.x) ^ rt_hash(u32(pixel.y) ^ rt_hash(rt.frame_seed)));
+    var cos_sum = 0.0;
+    var visible_cos_sum = 0.0;
+    for (var iy = 0u; iy < rt.strata_y; iy++) {
+        for (var ix = 0u; ix < rt.strata_x; ix++) {
+            // Equal strata of (u, v) are equal solid angles of the cone.
+            let u = (f32(ix) + rt_random(&state)) / f32(rt.strata_x);
+            let v = (f32(iy) + rt_random(&state)) / f32(rt.strata_y);
+            let gap = u * gap_max;
+            let cos_theta = 1.0 - gap;
+            let sin2_theta = max(gap * (2.0 - gap), 0.0);
+            let phi = 2.0 * PI * v;
+            let l = w * cos_theta + (t1 * cos(phi) + t2 * sin(phi)) * sqrt(sin2_theta);
+            let c = max(dot(n, l), 0.0);
+            cos_sum += c;
+            if c > 0.0 {
+                // The near intersection with the sphere along l.
+                let t = dist * cos_theta - sqrt(max(radius * radius - d2 * sin2_theta, 0.0));
+                if !rt_blocked(origin, rel + l * t - origin) {
+                    visible_cos_sum += c;
+                }
+            }
+        }
+    }
+    return select(0.0, visible_cos_sum / cos_sum, cos_sum > 0.0);
+}
+
+// This frame's targets folded into the running mean of the frames before.
+fn accumulated(quantity: vec4<f32>, aux: vec4<f32>, pixel: vec2<f32>) -> array<vec4<f32>, 2> {
+    if globals.visibility != VISIBILITY_RAY_TRACED || rt.frames_before == 0u {
+        return array<vec4<f32>, 2>(quantity, aux);
+    }
+    let texel = vec2<i32>(pixel);
+    return array<vec4<f32>, 2>(
+        mix(textureLoad(history_quantity, texel, 0), quantity, rt.weight),
+        mix(textureLoad(history_aux, texel, 0), aux, rt.weight),
+    );
+}

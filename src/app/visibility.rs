@@ -1,0 +1,81 @@
+//! The visibility method: shadow map or ray traced, and the ray tracer's
+//! sampling (a part of the shadow panel).
+
+use crate::gpu::raytrace::Accumulation;
+use crate::settings::{ShadowSettings, Visibility};
+use crate::tr;
+
+/// Tooltip of each visibility method.
+pub fn visibility_help(visibility: Visibility) -> String {
+    match visibility {
+        Visibility::ShadowMap => tr!("visibility-shadow-map-tip"),
+        Visibility::RayTraced => tr!("visibility-ray-traced-tip"),
+    }
+}
+
+/// The method's menu, and the ray tracer's samples and frames when chosen.
+pub fn visibility_ui(
+    ui: &mut egui::Ui,
+    visibility: &mut Visibility,
+    samples: &mut u32,
+    max_frames: &mut u32,
+) {
+    ui.horizontal(|ui| {
+        ui.label(tr!("visibility-label"))
+            .on_hover_text(tr!("visibility-label-tip"));
+        egui::ComboBox::from_id_salt("visibility method")
+            .selected_text(visibility.name())
+            .show_ui(ui, |ui| {
+                for &choice in Visibility::ALL {
+                    ui.selectable_value(visibility, choice, choice.name())
+                        .on_hover_text(visibility_help(choice));
+                }
+            })
+            .response
+            .on_hover_text(visibility_help(*visibility));
+    });
+    if *visibility == Visibility::RayTraced {
+        ui.add(
+            egui::Slider::new(samples, 1..=ShadowSettings::MAX_RT_LIGHT_SAMPLES)
+                .logarithmic(true)
+                .text(tr!("visibility-rays")),
+        )
+        .on_hover_text(tr!("visibility-rays-tip"));
+        ui.add(
+            egui::Slider::new(max_frames, 1..=ShadowSettings::MAX_RT_FRAMES)
+                .logarithmic(true)
+                .text(tr!("visibility-frames")),
+        )
+        .on_hover_text(tr!("visibility-frames-tip"));
+    }
+}
+
+/// "37 / 256 frames × 4 rays, σ(V) ≤ 0.041": the ray-traced accumulation
+/// so far, at the bottom left of a half; σ(V) ≤ 0.5 / √(N·S) bounds the
+/// noise left in V.
+pub fn accumulation_text(a: &Accumulation) -> String {
+    let noise = if a.noise_bound > 0.0 {
+        format!("σ(V) ≤ {:.3}", a.noise_bound)
+    } else {
+        tr!("visibility-exact")
+    };
+    tr!(
+        "visibility-accumulation",
+        frames = a.frames,
+        max = a.max_frames,
+        rays = a.rays_per_frame,
+        noise = noise
+    )
+}
+
+pub fn paint_accumulation(painter: &egui::Painter, area: egui::Rect, a: &Accumulation) {
+    let at = area.left_bottom() + egui::vec2(10.0, -10.0);
+    let text = accumulation_text(a);
+    let font = egui::FontId::proportional(14.0);
+    let galley = painter.layout_no_wrap(text, font, egui::Color32::WHITE);
+    let rect = egui::Align2::LEFT_BOTTOM
+        .anchor_size(at, galley.size())
+        .expand(4.0);
+    painter.rect_filled(rect, 3.0, egui::Color32::from_black_alpha(160));
+    painter.galley(rect.min + egui::vec2(4.0, 4.0), galley, egui::Color32::WHITE);
+}

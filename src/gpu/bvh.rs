@@ -1,0 +1,221 @@
+//! The shadow casters as a BVH for the GPU ray tracer (`shaders/bvh.wgsl`):
+//! a binary BVH built on the CPU by `obvhs` (PLOC, then reinsertion), flattened
+//! into two storage buffers. Rebuilt with the scene buffers whenever the
+//! geometry changes (`GpuScene::new`).
+//!
+//! Layout: node 0 is the root; an inner node (`count` = 0) has its children at
+//! `first` and `first + 1`; a leaf holds triangles `first .. first + count`,
+//! stored in leaf order. Each triangle is kept as v0 and its two edges, what
+//! the Möller–Trumbore test reads.
+
+use crate::scene::Scene;
+use bytemuck::{Pod, Zeroable};
+use glam::{Vec3, Vec3A};
+use obvhs::{BvhBuildParams, triangle::Triangle};
+use wgpu::util::DeviceExt;
+
+/// Most triangles per leaf: fewer node visits against more triangle tests.
+const MAX_TRIANGLES_PER_LEAF: u32 = 4;
+/// Boxes are widened by this fraction of (largest |coordinate| + scene
+/// extent): a few hundred f32 ulps, so that the slab test's rounding never
+/// drops a triangle that touches its box's face.
+const BOX_PAD_REL: f32 = 1e-6;
+
+/// `BvhNode` of shaders/bvh.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct BvhNodeRaw {
+    pub min: [f32; 3],
+    /// Triangles in this leaf; 0: an inner node.
+    pub count: u32,
+    pub max: [f32; 3],
+    /// Inner node: index of the first child; leaf: of the first triangle.
+    pub first: u32,
+}
+
+/// `BvhTriangle` of shaders/bvh.wgsl: corner v0 and edges e1 = v1 − v0, e2 = v2 − v0 (m).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct BvhTriangleRaw {
+    pub v0: [f32; 3],
+    pub _padding0: u32,
+    pub e1: [f32; 3],
+    pub _padding1: u32,
+    pub e2: [f32; 3],
+    pub _padding2: u32,
+}
+
+/// A BVH flattened for upload.
+#[derive(Clone, Debug, Default)]
+pub struct FlatBvh {
+    /// Empty when nothing casts shadows.
+    pub nodes: Vec<BvhNodeRaw>,
+    pub triangles: Vec<BvhTriangleRaw>,
+}
+
+impl FlatBvh {
+    /// The triangles of every object that casts shadows; triangles with an
+    /// index out of range, a non-finite corner or zero area are left out
+    /// (they block nothing, as in the reference).
+    pub fn of_scene(scene: &Scene) -> Self {
+        let triangles: Vec<[Vec3; 3]> = scene
+            .objects
+            .iter()
+            .filter(|o| o.casts_shadows)
+            .flat_map(|o| {
+                let p = &o.mesh.positions;
+                o.mesh.indices.chunks_exact(3).filter_map(move |ids| {
+                    Some([
+                        *p.get(ids[0] as usize)?,
+                        *p.get(ids[1] as usize)?,
+                        *p.get(ids[2] as usize)?,
+                    ])
+                })
+            })
+            .collect();
+        Self::new(&triangles)
+    }
+
+    pub fn new(triangles: &[[Vec3; 3]]) -> Self {
+        let usable: Vec<Triangle> = triangles
+            .iter()
+            .filter(|[a, b, c]| {
+                a.is_finite()
+                    && b.is_finite()
+                    && c.is_finite()
+                    && (*b - *a).cross(*c - *a).length_squared() > 0.0
+            })
+            .map(|&[a, b, c]| Triangle {
+                v0: a.into(),
+                v1: b.into(),
+                v2: c.into(),
+            })
+            .collect();
+        if usable.is_empty() {
+            return Self::default();
+        }
+        let params = BvhBuildParams {
+            max_prims_per_leaf: MAX_TRIANGLES_PER_LEAF,
+            ..BvhBuildParams::fast_build()
+        };
+        let bvh = obvhs::bvh2::builder::build_bvh2(&usable, params, &mut std::time::Duration::default());
+        let (mut lo, mut hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
+        for t in &usable {
+            lo = lo.min(t.v0).min(t.v1).min(t.v2);
+            hi = hi.max(t.v0).max(t.v1).max(t.v2);
+        }
+        let pad = BOX_PAD_REL * (lo.abs().max(hi.abs()).max_element() + (hi - lo).max_element());
+        let nodes = bvh
+            .nodes
+            .iter()
+            .map(|n| BvhNodeRaw {
+                min: (Vec3::from(n.aabb.min) - pad).to_array(),
+                count: n.prim_count,
+                max: (Vec3::from(n.aabb.max) + pad).to_array(),
+                first: n.first_index,
+            })
+            .collect();
+        let triangles = bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| {
+                let t = &usable[i as usize];
+                BvhTriangleRaw {
+                    v0: Vec3::from(t.v0).to_array(),
+                    e1: Vec3::from(t.v1 - t.v0).to_array(),
+                    e2: Vec3::from(t.v2 - t.v0).to_array(),
+                    ..Default::default()
+                }
+            })
+            .collect();
+        Self { nodes, triangles }
+    }
+}
+
+/// The flattened BVH on the GPU.
+pub struct GpuBvh {
+    pub nodes: wgpu::Buffer,
+    pub triangles: wgpu::Buffer,
+    /// Nodes in use: 0 when nothing casts shadows (the buffers then hold one
+    /// unused element each: bindings cannot be empty).
+    pub node_count: u32,
+    pub triangle_count: u32,
+}
+
+impl GpuBvh {
+    pub fn new(device: &wgpu::Device, flat: &FlatBvh) -> Self {
+        let upload = |label: &str, contents: &[u8]| {
+            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: wgpu::BufferUsages::STORAGE,
+            })
+        };
+        let nodes = if flat.nodes.is_empty() {
+            upload("bvh nodes", bytemuck::bytes_of(&BvhNodeRaw::default()))
+        } else {
+            upload("bvh nodes", bytemuck::cast_slice(&flat.nodes))
+        };
+        let triangles = if flat.triangles.is_empty() {
+            upload("bvh triangles", bytemuck::bytes_of(&BvhTriangleRaw::default()))
+        } else {
+            upload("bvh triangles", bytemuck::cast_slice(&flat.triangles))
+        };
+        Self {
+            nodes,
+            triangles,
+            node_count: flat.nodes.len() as u32,
+            triangle_count: flat.triangles.len() as u32,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_usable_triangle_is_in_exactly_one_leaf_inside_its_box() {
+        let mut triangles: Vec<[Vec3; 3]> = (0..200)
+            .map(|i| {
+                let o = Vec3::new((i % 10) as f32, (i / 10) as f32 * 0.3, (i % 7) as f32);
+                [o, o + Vec3::X, o + Vec3::Y]
+            })
+            .collect();
+        // Degenerate and non-finite triangles block nothing.
+        triangles.push([Vec3::ZERO, Vec3::X, 2.0 * Vec3::X]);
+        triangles.push([Vec3::NAN, Vec3::X, Vec3::Y]);
+        let flat = FlatBvh::new(&triangles);
+        assert_eq!(flat.triangles.len(), 200);
+        let mut seen = vec![0; 200];
+        let mut stack = vec![(0usize, flat.nodes[0])];
+        while let Some((_, node)) = stack.pop() {
+            if node.count == 0 {
+                for c in [node.first, node.first + 1] {
+                    let child = flat.nodes[c as usize];
+                    for k in 0..3 {
+                        assert!(child.min[k] >= node.min[k] && child.max[k] <= node.max[k]);
+                    }
+                    stack.push((c as usize, child));
+                }
+                continue;
+            }
+            for t in node.first..node.first + node.count {
+                seen[t as usize] += 1;
+                let tri = flat.triangles[t as usize];
+                let v0 = Vec3::from(tri.v0);
+                for p in [v0, v0 + Vec3::from(tri.e1), v0 + Vec3::from(tri.e2)] {
+                    for k in 0..3 {
+                        assert!(p[k] >= node.min[k] && p[k] <= node.max[k]);
+                    }
+                }
+            }
+        }
+        assert!(seen.iter().all(|&n| n == 1));
+    }
+
+    #[test]
+    fn nothing_to_hit_gives_no_nodes() {
+        assert!(FlatBvh::new(&[]).nodes.is_empty());
+    }
+}

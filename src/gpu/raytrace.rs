@@ -1,0 +1,276 @@
+//! The ray-traced visibility source (`shaders/raytrace.wgsl`, `shaders/bvh.wgsl`):
+//! its bind group (group 2 of the camera pass) and the progressive
+//! accumulation. The camera pass traces the shadow rays; while the settings,
+//! the image size and the scene stay the same, each frame is folded into the
+//! running mean of the frames before (the previous targets, copied into a
+//! history after the pass), up to `ShadowSettings::rt_max_frames`. Any change
+//! starts the mean anew.
+
+use super::binding;
+use super::bvh::GpuBvh;
+use super::scene_buffers::GpuScene;
+use crate::settings::{Settings, Visibility};
+use bytemuck::{Pod, Zeroable};
+use wgpu::ShaderStages;
+
+/// `RayTrace` of shaders/raytrace.wgsl.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct RayTraceRaw {
+    pub frames_before: u32,
+    pub weight: f32,
+    pub strata_x: u32,
+    pub strata_y: u32,
+    pub shadows: u32,
+    pub node_count: u32,
+    pub frame_seed: u32,
+    pub _padding: u32,
+}
+
+/// Where the accumulation stands after a frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Accumulation {
+    /// Frames in the running mean.
+    pub frames: u32,
+    /// Frames after which the image holds.
+    pub max_frames: u32,
+    /// Shadow rays per pixel and frame (1 for a point light).
+    pub rays_per_frame: u32,
+    /// A bound on the standard error of V that remains, σ ≤ 0.5 / √(N·S)
+    /// (N frames of S independent samples of a quantity in [0, 1]; the
+    /// strata make the real error smaller); 0 for a point light (exact).
+    pub noise_bound: f32,
+}
+
+impl Accumulation {
+    pub fn is_complete(&self) -> bool {
+        self.frames >= self.max_frames
+    }
+}
+
+/// The layout of group 2 of the camera pass.
+pub fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let fragment = ShaderStages::FRAGMENT;
+    binding::layout(
+        device,
+        "ray-traced visibility",
+        &[
+            binding::uniform(0, fragment),
+            binding::storage(1, fragment, true),
+            binding::storage(2, fragment, true),
+            binding::float_texture(3, fragment),
+            binding::float_texture(4, fragment),
+        ],
+    )
+}
+
+/// What the running mean was made with: when it changes, the mean restarts.
+#[derive(Clone, Debug, PartialEq)]
+struct Key {
+    settings: Settings,
+    size: (u32, u32),
+    scene_generation: u64,
+}
+
+/// The previous frame's quantity and aux targets.
+struct History {
+    size: (u32, u32),
+    quantity: wgpu::Texture,
+    aux: wgpu::Texture,
+    group: wgpu::BindGroup,
+    scene_generation: u64,
+}
+
+pub struct RayTracePass {
+    layout: wgpu::BindGroupLayout,
+    /// The camera pass's target format: the history is a copy of its targets.
+    format: wgpu::TextureFormat,
+    uniform: wgpu::Buffer,
+    history: Option<History>,
+    key: Option<Key>,
+    frames: u32,
+    frame_seed: u32,
+    status: Option<Accumulation>,
+}
+
+impl RayTracePass {
+    pub fn new(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, format: wgpu::TextureFormat) -> Self {
+        Self {
+            layout: layout.clone(),
+            format,
+            uniform: super::uniforms::uniform_buffer::<RayTraceRaw>(device, "ray-traced visibility"),
+            history: None,
+            key: None,
+            frames: 0,
+            frame_seed: 0,
+            status: None,
+        }
+    }
+
+    /// The accumulation after the last frame; None when V is not ray traced.
+    pub fn accumulation(&self) -> Option<Accumulation> {
+        self.status
+    }
+
+    /// Sets this frame's uniforms and returns the bind group the camera pass uses.
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        settings: &Settings,
+        size: (u32, u32),
+        scene: &GpuScene,
+        scene_generation: u64,
+    ) -> &wgpu::BindGroup {
+        if self
+            .history
+            .as_ref()
+            .is_none_or(|h| h.size != size || h.scene_generation != scene_generation)
+        {
+            let target = Target {
+                size,
+                format: self.format,
+                scene_generation,
+            };
+            self.history = Some(History::new(
+                device,
+                &self.layout,
+                &self.uniform,
+                &scene.bvh,
+                target,
+            ));
+            self.key = None;
+        }
+        let s = &settings.shadow;
+        let traced = s.visibility == Visibility::RayTraced;
+        let key = Key {
+            settings: settings.clone(),
+            size,
+            scene_generation,
+        };
+        if !traced || self.key.as_ref() != Some(&key) {
+            self.frames = 0;
+        }
+        self.key = traced.then_some(key);
+        let max_frames = s.rt_max_frames.max(1);
+        let frames_before = self.frames;
+        let weight = if frames_before >= max_frames {
+            0.0
+        } else {
+            self.frames += 1;
+            1.0 / self.frames as f32
+        };
+        self.frame_seed = self.frame_seed.wrapping_add(1);
+        let sphere = settings.light.radius_m > 0.0;
+        let (strata_x, strata_y) = strata(s.rt_light_samples);
+        let rays_per_frame = if sphere { strata_x * strata_y } else { 1 };
+        self.status = traced.then(|| Accumulation {
+            frames: self.frames,
+            max_frames,
+            rays_per_frame,
+            noise_bound: if sphere {
+                0.5 / ((self.frames * rays_per_frame) as f32).sqrt()
+            } else {
+                0.0
+            },
+        });
+        let raw = RayTraceRaw {
+            frames_before,
+            weight,
+            strata_x,
+            strata_y,
+            shadows: s.enabled as u32,
+            node_count: scene.bvh.node_count,
+            frame_seed: self.frame_seed,
+            _padding: 0,
+        };
+        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&raw));
+        &self.history.as_ref().expect("made above").group
+    }
+
+    /// Keeps this frame's targets as the history of the next (ray traced only).
+    pub fn encode_history(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        quantity: &wgpu::Texture,
+        aux: &wgpu::Texture,
+    ) {
+        let (Some(history), Some(_)) = (&self.history, &self.status) else {
+            return;
+        };
+        for (from, to) in [(quantity, &history.quantity), (aux, &history.aux)] {
+            encoder.copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), from.size());
+        }
+    }
+}
+
+/// What a history is made for.
+struct Target {
+    size: (u32, u32),
+    format: wgpu::TextureFormat,
+    scene_generation: u64,
+}
+
+/// The strata nx × ny of n light samples: the divisor pair of n nearest a
+/// square, as the reference stratifies its own (n = 1 … 4 … 16 → 1×1, 2×2, 4×4).
+pub fn strata(n: u32) -> (u32, u32) {
+    let n = n.max(1);
+    let nx = (1..=n)
+        .take_while(|d| d * d <= n)
+        .filter(|d| n.is_multiple_of(*d))
+        .last()
+        .unwrap_or(1);
+    (nx, n / nx)
+}
+
+impl History {
+    fn new(
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        uniform: &wgpu::Buffer,
+        bvh: &GpuBvh,
+        target: Target,
+    ) -> Self {
+        let Target {
+            size,
+            format,
+            scene_generation,
+        } = target;
+        let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
+        let texture = |label: &str| super::targets::image_texture(device, label, size, format, usage);
+        let quantity = texture("history quantity");
+        let aux = texture("history aux");
+        let group = binding::group(
+            device,
+            "ray-traced visibility",
+            layout,
+            &[
+                uniform.as_entire_binding(),
+                bvh.nodes.as_entire_binding(),
+                bvh.triangles.as_entire_binding(),
+                wgpu::BindingResource::TextureView(&quantity.create_view(&Default::default())),
+                wgpu::BindingResource::TextureView(&aux.create_view(&Default::default())),
+            ],
+        );
+        Self {
+            size,
+            quantity,
+            aux,
+            group,
+            scene_generation,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn strata_are_the_squarest_divisor_pair() {
+        assert_eq!(super::strata(1), (1, 1));
+        assert_eq!(super::strata(4), (2, 2));
+        assert_eq!(super::strata(8), (2, 4));
+        assert_eq!(super::strata(64), (8, 8));
+        assert_eq!(super::strata(7), (1, 7));
+        assert_eq!(super::strata(0), (1, 1));
+    }
+}

@@ -1,0 +1,106 @@
+//! The lab's ray-traced visibility accumulates frames while nothing changes
+//! and starts anew on every change of a setting.
+
+use lumlab::app::{Command, LabApp};
+use lumlab::settings::{DebugView, Filter, Settings, Visibility};
+
+mod app_support;
+use app_support::{harness, step_until};
+
+/// A setting's name and how to change it.
+type Change = (&'static str, fn(&mut Settings));
+
+fn frames(app: &LabApp) -> u32 {
+    app.renderer()
+        .and_then(|r| r.accumulation())
+        .map_or(0, |a| a.frames)
+}
+
+#[test]
+fn accumulation_restarts_on_every_setting_change() {
+    let mut harness = harness();
+    let mut s = harness.state().settings().clone();
+    s.shadow.visibility = Visibility::RayTraced;
+    s.light.radius_m = 0.3;
+    harness
+        .state_mut()
+        .emit(Command::SetSettings(Box::new(s.clone())));
+    step_until(&mut harness, "frames to accumulate", |app| frames(app) >= 2);
+    let changes: [Change; 9] = [
+        ("light position", |s| s.light.position.x += 0.1),
+        ("light radius", |s| s.light.radius_m = 0.2),
+        ("power", |s| s.light.power_w *= 2.0),
+        ("k", |s| s.material.k = 0.3),
+        ("m", |s| s.material.m = 8.0),
+        ("rays per frame", |s| s.shadow.rt_light_samples = 16),
+        ("camera", |s| s.camera.eye.y += 0.1),
+        ("view", |s| s.view.mode = DebugView::Visibility),
+        ("filter", |s| s.shadow.filter = Filter::Poisson),
+    ];
+    for (what, change) in changes {
+        change(&mut s);
+        harness
+            .state_mut()
+            .emit(Command::SetSettings(Box::new(s.clone())));
+        harness.step();
+        assert_eq!(
+            frames(harness.state()),
+            1,
+            "{what} did not restart the accumulation"
+        );
+        step_until(&mut harness, what, |app| frames(app) >= 2);
+    }
+    // Done accumulating: the image holds.
+    s.shadow.rt_max_frames = 3;
+    harness
+        .state_mut()
+        .emit(Command::SetSettings(Box::new(s.clone())));
+    step_until(&mut harness, "the last frame", |app| frames(app) == 3);
+    for _ in 0..3 {
+        harness.step();
+    }
+    assert_eq!(frames(harness.state()), 3);
+}
+
+#[test]
+fn split_shows_shadow_map_against_ray_traced_under_a_sphere_light() {
+    use egui_kittest::kittest::Queryable;
+    use lumlab::presets::{Comparison, ComparisonAxis};
+    let mut harness = harness();
+    let app = harness.state_mut();
+    let split = &mut app.state_mut().split;
+    split.enabled = true;
+    split.layout = lumlab::app::SplitLayout::SideBySide;
+    split.comparison = Comparison {
+        axis: ComparisonAxis::Visibility,
+        ..Comparison::default()
+    };
+    let s = app.settings_mut();
+    s.light.radius_m = 0.3;
+    s.shadow.filter = Filter::Pcss;
+    s.shadow.rt_light_samples = 16;
+    s.shadow.rt_max_frames = 16;
+    // Accumulating frames ask for the next: step, never run to rest.
+    harness.run_steps(2);
+    harness.get_by_label("A: shadow map");
+    harness.get_by_label("B: ray traced");
+    step_until(&mut harness, "the accumulation", |app| {
+        app.renderer_of(lumlab::presets::Half::B)
+            .and_then(|r| r.accumulation())
+            .is_some_and(|a| a.is_complete())
+    });
+    // Half A keeps its shadow map: no accumulation there.
+    assert!(
+        harness
+            .state()
+            .renderer()
+            .and_then(|r| r.accumulation())
+            .is_none()
+    );
+    let image = harness.render().expect("the harness renders");
+    if let Some(dir) = std::env::var_os("LUMLAB_SCREENSHOTS") {
+        image
+            .save(std::path::Path::new(&dir).join("app-raytraced.png"))
+            .expect("the screenshot is written");
+    }
+}
