@@ -8,6 +8,7 @@
 //! built-in scene (a 12 m ground, a 1 m box at the origin, a sphere of
 //! radius 0.5 m); another scene gets them through its [`SceneScale`].
 
+use crate::colour::{ColourModel, Illuminant};
 use crate::physics::Normalization;
 use crate::scene::SceneScale;
 use crate::settings::{BiasMode, DebugView, Filter, Settings};
@@ -199,6 +200,8 @@ named_enum! {
         Resolution = "resolution",
         /// The bias mode.
         Bias = "bias",
+        /// The colour model under the illuminant: the RGB product or the spectral result.
+        Colour = "colour",
     }
 }
 
@@ -212,6 +215,7 @@ pub struct Comparison {
     pub filter: [Filter; 2],
     pub resolution: [u32; 2],
     pub bias: [BiasMode; 2],
+    pub colour: [ColourModel; 2],
 }
 
 impl Default for Comparison {
@@ -223,9 +227,14 @@ impl Default for Comparison {
             filter: [Filter::None, Filter::Pcf],
             resolution: [256, 2048],
             bias: [BiasMode::Constant, BiasMode::Auto],
+            colour: [ColourModel::RgbApprox, ColourModel::Spectral],
         }
     }
 }
+
+/// The illuminant the colour comparison uses when none is chosen: under
+/// D65 the two models agree, under A (a tungsten lamp) they visibly do not.
+pub const COMPARISON_ILLUMINANT: Illuminant = Illuminant::A;
 
 /// Which half of the split view.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -236,7 +245,7 @@ pub enum Half {
 
 impl Comparison {
     /// The named comparisons offered as one-click choices.
-    pub fn presets() -> [(&'static str, Comparison); 4] {
+    pub fn presets() -> [(&'static str, Comparison); 5] {
         let base = Comparison::default();
         [
             ("norm none | approx", base),
@@ -262,6 +271,13 @@ impl Comparison {
                     ..base
                 },
             ),
+            (
+                "RGB | spectral",
+                Comparison {
+                    axis: ComparisonAxis::Colour,
+                    ..base
+                },
+            ),
         ]
     }
 
@@ -274,6 +290,10 @@ impl Comparison {
             ComparisonAxis::Filter => s.shadow.filter = self.filter[i],
             ComparisonAxis::Resolution => s.shadow.resolution = self.resolution[i],
             ComparisonAxis::Bias => s.shadow.bias.mode = self.bias[i],
+            ComparisonAxis::Colour => {
+                s.colour.illuminant.get_or_insert(COMPARISON_ILLUMINANT);
+                s.colour.model = self.colour[i];
+            }
         }
         s
     }
@@ -286,6 +306,10 @@ impl Comparison {
             ComparisonAxis::Filter => format!("filter {}", self.filter[i]),
             ComparisonAxis::Resolution => format!("shadow map {}²", self.resolution[i]),
             ComparisonAxis::Bias => format!("bias {}", self.bias[i]),
+            ComparisonAxis::Colour => match self.colour[i] {
+                ColourModel::RgbApprox => "RGB approximation".into(),
+                ColourModel::Spectral => "spectral".into(),
+            },
         }
     }
 }
@@ -378,5 +402,26 @@ mod tests {
                 c.settings_for(half, &base).validate().unwrap();
             }
         }
+    }
+
+    #[test]
+    fn colour_comparison_is_rgb_against_spectral_under_the_chosen_light() {
+        let c = Comparison {
+            axis: ComparisonAxis::Colour,
+            ..Comparison::default()
+        };
+        let mut base = Settings::default();
+        let (a, b) = (c.settings_for(Half::A, &base), c.settings_for(Half::B, &base));
+        assert_eq!(
+            (a.colour.model, b.colour.model),
+            (ColourModel::RgbApprox, ColourModel::Spectral)
+        );
+        assert_eq!(a.colour.illuminant, Some(COMPARISON_ILLUMINANT));
+        base.colour.illuminant = Some(Illuminant::Fl11);
+        assert_eq!(
+            c.settings_for(Half::B, &base).colour.illuminant,
+            Some(Illuminant::Fl11)
+        );
+        assert_eq!(c.label(Half::A), "RGB approximation");
     }
 }
