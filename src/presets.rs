@@ -8,6 +8,7 @@
 //! built-in scene (a 12 m ground, a 1 m box at the origin, a sphere of
 //! radius 0.5 m); another scene gets them through its [`SceneScale`].
 
+use crate::colour::{ColourModel, Illuminant};
 use crate::physics::Normalization;
 use crate::scene::SceneScale;
 use crate::settings::{BiasMode, DebugView, Filter, Settings, Visibility};
@@ -201,6 +202,8 @@ named_enum! {
         Bias = "bias",
         /// Where V comes from: shadow map or ray traced.
         Visibility = "visibility",
+        /// The colour model under the illuminant: the RGB product or the spectral result.
+        Colour = "colour",
     }
 }
 
@@ -215,6 +218,7 @@ pub struct Comparison {
     pub resolution: [u32; 2],
     pub bias: [BiasMode; 2],
     pub visibility: [Visibility; 2],
+    pub colour: [ColourModel; 2],
 }
 
 impl Default for Comparison {
@@ -227,9 +231,14 @@ impl Default for Comparison {
             resolution: [256, 2048],
             bias: [BiasMode::Constant, BiasMode::Auto],
             visibility: [Visibility::ShadowMap, Visibility::RayTraced],
+            colour: [ColourModel::RgbApprox, ColourModel::Spectral],
         }
     }
 }
+
+/// The illuminant the colour comparison uses when none is chosen: under
+/// D65 the two models agree, under A (a tungsten lamp) they visibly do not.
+pub const COMPARISON_ILLUMINANT: Illuminant = Illuminant::A;
 
 /// Which half of the split view.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -240,7 +249,7 @@ pub enum Half {
 
 impl Comparison {
     /// The named comparisons offered as one-click choices.
-    pub fn presets() -> [(&'static str, Comparison); 5] {
+    pub fn presets() -> [(&'static str, Comparison); 6] {
         let base = Comparison::default();
         [
             ("norm none | approx", base),
@@ -273,6 +282,13 @@ impl Comparison {
                     ..base
                 },
             ),
+            (
+                "RGB | spectral",
+                Comparison {
+                    axis: ComparisonAxis::Colour,
+                    ..base
+                },
+            ),
         ]
     }
 
@@ -286,6 +302,10 @@ impl Comparison {
             ComparisonAxis::Resolution => s.shadow.resolution = self.resolution[i],
             ComparisonAxis::Bias => s.shadow.bias.mode = self.bias[i],
             ComparisonAxis::Visibility => s.shadow.visibility = self.visibility[i],
+            ComparisonAxis::Colour => {
+                s.colour.illuminant.get_or_insert(COMPARISON_ILLUMINANT);
+                s.colour.model = self.colour[i];
+            }
         }
         s
     }
@@ -299,6 +319,10 @@ impl Comparison {
             ComparisonAxis::Resolution => format!("shadow map {}²", self.resolution[i]),
             ComparisonAxis::Bias => format!("bias {}", self.bias[i]),
             ComparisonAxis::Visibility => self.visibility[i].name().replace('-', " "),
+            ComparisonAxis::Colour => match self.colour[i] {
+                ColourModel::RgbApprox => "RGB approximation".into(),
+                ColourModel::Spectral => "spectral".into(),
+            },
         }
     }
 }
@@ -401,5 +425,26 @@ mod tests {
                 c.settings_for(half, &base).validate().unwrap();
             }
         }
+    }
+
+    #[test]
+    fn colour_comparison_is_rgb_against_spectral_under_the_chosen_light() {
+        let c = Comparison {
+            axis: ComparisonAxis::Colour,
+            ..Comparison::default()
+        };
+        let mut base = Settings::default();
+        let (a, b) = (c.settings_for(Half::A, &base), c.settings_for(Half::B, &base));
+        assert_eq!(
+            (a.colour.model, b.colour.model),
+            (ColourModel::RgbApprox, ColourModel::Spectral)
+        );
+        assert_eq!(a.colour.illuminant, Some(COMPARISON_ILLUMINANT));
+        base.colour.illuminant = Some(Illuminant::Fl11);
+        assert_eq!(
+            c.settings_for(Half::B, &base).colour.illuminant,
+            Some(Illuminant::Fl11)
+        );
+        assert_eq!(c.label(Half::A), "RGB approximation");
     }
 }

@@ -67,7 +67,8 @@ fn info_without_a_scene_describes_the_built_in_one() {
     let out = lumlab(&["info", "--format", "json"]);
     assert!(out.status.success());
     let facts: Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert_eq!(facts["meshes"], 8);
+    // 8 props, the ColorChecker chart's board and its 24 patches.
+    assert_eq!(facts["meshes"], 8 + 1 + 24);
     assert_eq!(facts["warnings"], serde_json::json!([]));
     let out = lumlab(&["info"]);
     let text = String::from_utf8(out.stdout).unwrap();

@@ -33,6 +33,7 @@ status-impossible-tip =
 section-experiments = Experiments
 section-scene = Scene
 section-light = Light
+section-colour = Colour
 section-material = Material
 section-shadow = Shadow
 section-view = View

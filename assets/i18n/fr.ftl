@@ -38,6 +38,7 @@ status-impossible-tip =
 section-experiments = Expériences
 section-scene = Scène
 section-light = Lumière
+section-colour = Couleur
 section-material = Matériau
 section-shadow = Ombres
 section-view = Vue

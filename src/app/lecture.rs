@@ -28,6 +28,7 @@ pub fn panel_title(panel: Panel) -> String {
         Panel::Experiments => tr!("section-experiments"),
         Panel::Scene => tr!("section-scene"),
         Panel::Light => tr!("section-light"),
+        Panel::Colour => tr!("section-colour"),
         Panel::Material => tr!("section-material"),
         Panel::Shadow => tr!("section-shadow"),
         Panel::View => tr!("section-view"),
@@ -41,7 +42,7 @@ pub fn panel_title(panel: Panel) -> String {
 
 /// Whether a section is open before the user or a step opens or closes it.
 fn open_by_default(panel: Panel) -> bool {
-    !matches!(panel, Panel::Files | Panel::Timings)
+    !matches!(panel, Panel::Files | Panel::Timings | Panel::Colour)
 }
 
 /// The section is in the settings panel (left); else in the analysis panel.

@@ -17,6 +17,7 @@
 //! a title naming the scene.
 
 mod camera_control;
+mod colour;
 mod command;
 mod energy;
 mod files;

@@ -5,8 +5,11 @@
 //! (read back without blocking).
 
 use super::widgets::{length, number, position, quantity, rgb, value_row, vector};
+use crate::colour::ColourModel;
+use crate::colour::shading::pixel_delta_e;
+use crate::colour::tristimulus::linear_srgb_to_xyz;
 use crate::gpu::ComparisonImage;
-use crate::physics::{Normalization, brdf, colour, radiometry};
+use crate::physics::{Normalization, brdf, radiometry};
 use crate::presets::Half;
 use crate::reference::{Reference, ReferenceOptions, ShadingSample};
 use crate::scene::Scene;
@@ -73,19 +76,22 @@ pub struct ProbeTerms {
     pub brdf: brdf::BrdfTerms<f64>,
     /// The BRDF colour c (linear RGB): base colour × texture, or the override.
     pub color: DVec3,
-    /// The light's colour (linear RGB factors of Φ).
-    pub light_color: DVec3,
+    /// c · light colour (linear RGB); under a spectral light, the colour of
+    /// the reflected spectrum integrated over wavelengths (see `colour::shading`).
+    pub tint: DVec3,
     /// V ray traced from p (exact for a point light; the visible fraction of
     /// the sphere light's cosine-weighted solid angle otherwise).
     pub visibility: f64,
     /// L ray traced at the pixel's centre (W/m²/sr).
     pub radiance: DVec3,
+    /// Under an illuminant: ΔE2000 between the spectral and the RGB result here.
+    pub delta_e: Option<f64>,
 }
 
 impl ProbeTerms {
     /// L / V = c · colour · E · (f_d + f_s) (W/m²/sr): the radiance if fully lit.
     pub fn unshadowed_radiance(&self) -> DVec3 {
-        colour::tint(self.color, self.light_color) * (self.irradiance_w_m2 * self.brdf.total())
+        self.tint * (self.irradiance_w_m2 * self.brdf.total())
     }
 }
 
@@ -138,10 +144,37 @@ pub fn evaluate(
         norm: settings.material.norm,
         brdf: sample.brdf,
         color: sample.color,
-        light_color: settings.light.color.as_dvec3(),
+        tint: sample.tint,
         visibility: sample.visibility,
         radiance: sample.radiance,
+        delta_e: delta_e_at(tracer, settings, pixel, size, &sample),
     })
+}
+
+/// Under an illuminant: ΔE2000 between this pixel's spectral result and
+/// its RGB approximation (whichever the settings show, the other traced
+/// too), both exposed as displayed, in CIE Lab with the illuminant's white
+/// at Y = 1 as reference (`colour::shading::pixel_delta_e`).
+fn delta_e_at(
+    tracer: &Reference,
+    settings: &Settings,
+    pixel: (u32, u32),
+    size: (u32, u32),
+    sample: &ShadingSample,
+) -> Option<f64> {
+    let illuminant = settings.colour.illuminant?;
+    let mut other = settings.clone();
+    other.colour.model = match settings.colour.model {
+        ColourModel::Spectral => ColourModel::RgbApprox,
+        ColourModel::RgbApprox => ColourModel::Spectral,
+    };
+    let other = trace(tracer, &other, pixel, size)?;
+    let exposure = 2f64.powf(settings.view.exposure_ev as f64);
+    Some(pixel_delta_e(
+        illuminant,
+        sample.radiance * exposure,
+        other.radiance * exposure,
+    ))
 }
 
 /// What the GPU says at the probed pixel (from its aux and quantity targets).
@@ -344,7 +377,23 @@ impl Probe {
                 rgb(t.radiance, "W/m²/sr"),
                 tr!("probe-l-traced-tip"),
             ),
+            (
+                "X, Y, Z".to_string(),
+                vector(linear_srgb_to_xyz(t.radiance), ""),
+                "CIE 1931 XYZ of L (linear sRGB → XYZ, IEC 61966-2-1); under a spectral light the \
+                 reference integrated S(λ) R(λ) against x̄, ȳ, z̄"
+                    .to_string(),
+            ),
         ]);
+        if let Some(delta_e) = t.delta_e {
+            rows.push((
+                "ΔE2000".to_string(),
+                number(delta_e),
+                "ΔE2000 between the spectral result and the RGB product at this pixel (L · 2^EV in CIE \
+                 Lab, the illuminant's white at Y = 1): below 1 invisible, above 3 another colour"
+                    .to_string(),
+            ));
+        }
         if let Some(r) = &self.reference {
             let stale = if r.stale {
                 tr!("probe-stale")

@@ -3,6 +3,7 @@
 
 use super::View;
 use super::state::{SplitLayout, SplitState};
+use crate::colour::ColourModel;
 use crate::physics::Normalization;
 use crate::presets::{Comparison, ComparisonAxis, Half};
 use crate::settings::{BiasMode, DebugView, Filter, ViewSettings, Visibility};
@@ -131,6 +132,13 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
                     &mut comparison.visibility[i],
                     Visibility::ALL,
                     |v| v.name().into(),
+                ),
+                ComparisonAxis::Colour => choose(
+                    ui,
+                    (&id, label),
+                    &mut comparison.colour[i],
+                    ColourModel::ALL,
+                    |c| c.name().into(),
                 ),
                 ComparisonAxis::Resolution => {
                     let choices = super::shadow::resolution_choices(max_texture_side);

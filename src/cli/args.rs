@@ -1,7 +1,10 @@
 //! Value parsers and the shared options of the commands that render.
 
+use crate::colour::Illuminant;
 use crate::physics::Normalization;
-use crate::settings::{BiasSettings, DebugView, Filter, GroundMode, Settings, ShadowSettings, Visibility};
+use crate::settings::{
+    BiasSettings, ColourSettings, DebugView, Filter, GroundMode, Settings, ShadowSettings, Visibility,
+};
 use glam::Vec3;
 use std::path::PathBuf;
 
@@ -133,6 +136,14 @@ fn visibility(text: &str) -> Result<Visibility, String> {
     text.parse()
 }
 
+/// `--illuminant`: `rgb` (none) or a spectrum.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IlluminantArg(pub Option<Illuminant>);
+
+fn illuminant(text: &str) -> Result<IlluminantArg, String> {
+    ColourSettings::parse_illuminant(text).map(IlluminantArg)
+}
+
 fn ground(text: &str) -> Result<GroundMode, String> {
     text.parse()
 }
@@ -224,6 +235,11 @@ pub struct SceneOptions {
     /// none) | on | off.
     #[arg(long, value_name = "auto|on|off", value_parser = ground)]
     pub ground: Option<GroundMode>,
+    /// The light's spectrum: rgb (the light's RGB colour × base colour, the
+    /// lecture's product) | D65 | A | FL2 | FL11 | LED-B3 | blackbody:K
+    /// (K in 1000 … 25000). A spectrum keeps the luminance of --color.
+    #[arg(long, value_name = "NAME", value_parser = illuminant)]
+    pub illuminant: Option<IlluminantArg>,
     /// Go ahead with CPU work estimated above the confirmation threshold (minutes or gigabytes).
     #[arg(long)]
     pub yes: bool,
@@ -304,6 +320,9 @@ impl SceneOptions {
         s.view.mode = self.view.unwrap_or(s.view.mode);
         s.view.exposure_ev = self.exposure.unwrap_or(s.view.exposure_ev);
         s.ground.mode = self.ground.unwrap_or(s.ground.mode);
+        if let Some(IlluminantArg(illuminant)) = self.illuminant {
+            s.colour.illuminant = illuminant;
+        }
         s.validate()
             .map_err(|e| super::usage(format!("invalid settings: {e}")))?;
         Ok(gltf_camera)

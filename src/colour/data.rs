@@ -87,8 +87,10 @@ pub fn patch_reflectance(index: usize) -> Spectrum {
     COLORCHECKER.columns[index]
 }
 
-/// A light source whose spectral power the lab knows.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// A light source whose spectral power the lab knows. Settings files hold
+/// it by name (`"A"`, `"blackbody:3000"`).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(try_from = "String", into = "String")]
 pub enum Illuminant {
     /// CIE D65: average daylight, about 6504 K.
     D65,
@@ -151,6 +153,19 @@ impl Illuminant {
 impl std::fmt::Display for Illuminant {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(&self.name())
+    }
+}
+
+impl From<Illuminant> for String {
+    fn from(i: Illuminant) -> String {
+        i.name()
+    }
+}
+
+impl TryFrom<String> for Illuminant {
+    type Error = String;
+    fn try_from(text: String) -> Result<Self, String> {
+        text.parse()
     }
 }
 

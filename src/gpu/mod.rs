@@ -27,6 +27,7 @@ pub mod shaders;
 pub mod shadow;
 pub mod shared;
 pub mod specialise;
+pub mod spectral;
 pub mod targets;
 pub mod timing;
 pub mod uniforms;

@@ -91,6 +91,8 @@ pub struct Renderer {
     has_comparison: bool,
     comparison: Option<ComparisonImage>,
     timer: Option<GpuTimer>,
+    /// Light and material colours under the colour settings.
+    colours: super::spectral::ColourCache,
 }
 
 impl Renderer {
@@ -131,6 +133,7 @@ impl Renderer {
             targets: None,
             has_comparison: false,
             comparison: None,
+            colours: Default::default(),
         }
     }
 
@@ -242,6 +245,10 @@ impl Renderer {
 
         let eye = camera.eye.as_dvec3();
         let m = &settings.material;
+        let generation = shared.generation;
+        let colours = self
+            .colours
+            .apply(settings, &mut shared.scene, generation, &self.queue);
         let globals = GlobalsRaw {
             view_proj: mat(view_proj),
             light_rel: (light - eye).as_vec3().to_array(),
@@ -249,9 +256,9 @@ impl Renderer {
             light_radius_m: settings.light.radius_m,
             eye: camera.eye.to_array(),
             light_power_w: settings.light.power_w,
-            light_color: settings.light.color.to_array(),
+            light_color: colours.light.as_vec3().to_array(),
             k: m.k,
-            color_override: m.color_override.unwrap_or_default().to_array(),
+            color_override: colours.color_override.unwrap_or_default().as_vec3().to_array(),
             m: m.m,
             view: code(DebugView::ALL, &settings.view.mode),
             normalization: code(Normalization::ALL, &m.norm),

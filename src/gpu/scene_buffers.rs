@@ -49,6 +49,10 @@ pub struct Draw {
     pub base_vertex: i32,
 }
 
+/// What decides the materials' colours: the illuminant (None: RGB) and,
+/// under one, the colour model.
+pub type ColourKey = (Option<crate::colour::Illuminant>, crate::colour::ColourModel);
+
 /// Side of the texture array's layers (texels).
 const MAX_TEXTURE_SIDE: u32 = 2048;
 
@@ -61,6 +65,12 @@ pub struct GpuScene {
     /// Per object: its bounds.
     pub bounds: Vec<Aabb>,
     pub materials: wgpu::Buffer,
+    /// What `materials` holds, and each material's name and RGB base colour:
+    /// under a spectral light the colours are replaced (see [`Self::write_colours`]).
+    materials_raw: Vec<MaterialRaw>,
+    pub material_colours: Vec<(String, glam::DVec3)>,
+    /// The colours last written, for the colour settings of this key.
+    colours_written: Option<ColourKey>,
     pub textures: wgpu::Texture,
     pub texture_view: wgpu::TextureView,
     pub triangle_count: usize,
@@ -144,6 +154,12 @@ impl GpuScene {
                 ..Default::default()
             })
             .collect();
+        let material_colours = scene
+            .materials
+            .iter()
+            .chain([&default_material])
+            .map(|m| (m.name.clone(), m.base_color.truncate().as_dvec3()))
+            .collect();
         Self {
             vertices: buffer(
                 "scene vertices",
@@ -166,8 +182,12 @@ impl GpuScene {
             materials: buffer(
                 "materials",
                 bytemuck::cast_slice(&materials),
-                wgpu::BufferUsages::STORAGE,
+                // COPY_DST: the colours change with the light's spectrum.
+                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             ),
+            materials_raw: materials,
+            material_colours,
+            colours_written: None,
             texture_view: textures.create_view(&wgpu::TextureViewDescriptor {
                 label: Some("base colour textures"),
                 dimension: Some(wgpu::TextureViewDimension::D2Array),
@@ -177,6 +197,23 @@ impl GpuScene {
             triangle_count: scene.triangle_count(),
             bvh: GpuBvh::new(device, &FlatBvh::of_scene(scene)),
         }
+    }
+
+    /// Makes the materials buffer hold `colours` (one per material, see
+    /// [`crate::colour::shading_colours`]) unless it already holds those of `key`.
+    /// Views sharing the scene may differ (a split "RGB | spectral"): each
+    /// writes its own before it submits, and a write lands before the next
+    /// submission, so each frame reads its own.
+    pub fn write_colours(&mut self, queue: &wgpu::Queue, key: ColourKey, colours: &[glam::DVec3]) {
+        if self.colours_written == Some(key) {
+            return;
+        }
+        for (raw, c) in self.materials_raw.iter_mut().zip(colours) {
+            let alpha = raw.base_color[3];
+            raw.base_color = c.as_vec3().extend(alpha).to_array();
+        }
+        queue.write_buffer(&self.materials, 0, bytemuck::cast_slice(&self.materials_raw));
+        self.colours_written = Some(key);
     }
 
     /// Bounds of every object.

@@ -29,6 +29,7 @@ pub mod intersect;
 mod render;
 pub mod sampling;
 mod shading;
+mod spectral;
 mod texture;
 
 pub use image::{NoiseSummary, ReferenceImage, RenderStats, luminance};
@@ -223,7 +224,7 @@ impl Reference {
         x: f64,
         y: f64,
     ) -> Option<ShadingSample> {
-        let setup = Setup::new(settings, options.light_samples, options.seed);
+        let setup = Setup::new(settings, options.light_samples, options.seed, &self.materials);
         let pixel = pixel_index(&setup, x.floor(), y.floor());
         let mut rng = Rng::new(options.seed, pixel, 0);
         self.probe(&setup, x, y, &mut rng)

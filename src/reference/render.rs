@@ -25,7 +25,7 @@ impl Reference {
     ) -> Result<ReferenceImage, ReferenceError> {
         settings.validate()?;
         let start = Instant::now();
-        let mut setup = Setup::new(settings, options.light_samples, options.seed);
+        let mut setup = Setup::new(settings, options.light_samples, options.seed, &self.materials);
         // Every primary ray leaves the eye and every point-light shadow ray
         // ends at the light: both are cast through direction grids there.
         let light_grid = setup.shadows && !setup.is_sphere_light();

@@ -24,12 +24,16 @@ use super::Reference;
 use super::grid::{Answer, Cell, DirectionGrid};
 use super::image::luminance;
 use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
+use super::spectral::SpectralLight;
+use crate::colour::ColourModel;
+use crate::colour::chart::illuminant_linear_srgb;
 use crate::physics::brdf::blinn_phong;
 use crate::physics::colour::tint;
 use crate::physics::radiometry::{
     incidence, intensity, point_irradiance, sphere_irradiance, sphere_radiance,
 };
 use crate::physics::{BrdfParams, BrdfTerms, Normalization};
+use crate::scene::Material;
 use crate::scene::camera::PixelRays;
 use crate::settings::Settings;
 use glam::{DVec2, DVec3};
@@ -48,7 +52,12 @@ pub(super) struct Setup {
     pub light_position: DVec3,
     pub power_w: f64,
     pub radius_m: f64,
+    /// The light's RGB colour (under an illuminant in `rgb-approx`: the
+    /// illuminant's linear sRGB at the light colour's luminance).
     pub light_color: DVec3,
+    /// Under an illuminant in `spectral`: the light and reflectances the
+    /// samples integrate over wavelengths (and `light_color` is unused).
+    pub spectral: Option<SpectralLight>,
     pub k: f64,
     pub m: f64,
     pub norm: Normalization,
@@ -64,8 +73,26 @@ pub(super) struct Setup {
 }
 
 impl Setup {
-    pub fn new(settings: &Settings, light_samples: u32, seed: u64) -> Self {
+    /// `materials`: the reference's (for their reflectances).
+    pub fn new(settings: &Settings, light_samples: u32, seed: u64, materials: &[Material]) -> Self {
         let (l, m) = (&settings.light, &settings.material);
+        let colour = settings.colour;
+        let (light_color, spectral) = match (colour.illuminant, colour.model) {
+            (None, _) => (l.color.as_dvec3(), None),
+            (Some(i), ColourModel::RgbApprox) => (
+                illuminant_linear_srgb(&i.spectrum()) * luminance(l.color.as_dvec3().to_array()),
+                None,
+            ),
+            (Some(i), ColourModel::Spectral) => (
+                l.color.as_dvec3(),
+                Some(SpectralLight::new(
+                    i,
+                    l.color.as_dvec3(),
+                    materials,
+                    m.color_override.map(|c| c.as_dvec3()),
+                )),
+            ),
+        };
         Self {
             rays: settings
                 .camera
@@ -75,7 +102,8 @@ impl Setup {
             light_position: l.position.as_dvec3(),
             power_w: l.power_w as f64,
             radius_m: l.radius_m as f64,
-            light_color: l.color.as_dvec3(),
+            light_color,
+            spectral,
             k: m.k as f64,
             m: m.m as f64,
             norm: m.norm,
@@ -129,6 +157,9 @@ pub struct ShadingSample {
     pub visibility: f64,
     /// Reflected radiance L (W/m²/sr).
     pub radiance: DVec3,
+    /// L / ((f_r / c) E V): c · light colour in RGB; under a spectral light
+    /// the reflected spectrum's colour, integrated over wavelengths.
+    pub tint: DVec3,
     /// Standard error of L's luminance (W/m²/sr): 0 for a point light; None
     /// with a single light sample.
     pub std_error: Option<f64>,
@@ -222,17 +253,20 @@ impl Reference {
             n = -n;
         }
         let uv = tri.uvs[0] * b0 + tri.uvs[1] * b1 + tri.uvs[2] * b2;
+        let texture = material
+            .base_color_texture
+            .and_then(|t| self.textures.get(t)?.as_ref())
+            .map(|texture| texture.sample(uv));
         let color = match setup.color_override {
             Some(c) => c,
-            None => {
-                let base = material.base_color.truncate().as_dvec3();
-                match material
-                    .base_color_texture
-                    .and_then(|t| self.textures.get(t)?.as_ref())
-                {
-                    Some(texture) => base * texture.sample(uv),
-                    None => base,
-                }
+            None => material.base_color.truncate().as_dvec3() * texture.unwrap_or(DVec3::ONE),
+        };
+        let surface_tint = match &setup.spectral {
+            None => tint(color, setup.light_color),
+            // The texture modulates the spectral colour as it does the RGB one.
+            Some(light) => {
+                let texture = texture.filter(|_| setup.color_override.is_none());
+                light.reflected_rgb(object.material) * texture.unwrap_or(DVec3::ONE)
             }
         };
         let own = |value: Option<f32>, default: f64| match value {
@@ -248,7 +282,7 @@ impl Reference {
             o,
             uv,
             color,
-            tint: tint(color, setup.light_color),
+            tint: surface_tint,
             brdf: BrdfParams {
                 k: own(material.k, setup.k),
                 m: own(material.m, setup.m),
@@ -284,6 +318,7 @@ impl Reference {
             brdf: blinn_phong(s.n, inc.l, s.o, &s.brdf),
             visibility: estimate.visibility,
             radiance: s.tint * estimate.scaled_radiance,
+            tint: s.tint,
             std_error: estimate.std_error.map(|se| luminance(s.tint.to_array()) * se),
             shadow_rays: estimate.shadow_rays,
         })

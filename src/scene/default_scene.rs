@@ -13,14 +13,21 @@
 //! - a small cube resting on the ground in front: peter-panning with too
 //!   much bias;
 //! - three spheres (Lambert red, glossy blue, shiny gold) and a cylinder,
-//!   each with its own k and m in the material extras.
+//!   each with its own k and m in the material extras;
+//! - a ColorChecker chart standing at the back, facing the camera and the
+//!   light: 24 patches whose materials carry the chart's measured spectra
+//!   (named `ColorChecker NN …`, see `colour::shading`), their base colour
+//!   being their linear sRGB under D65.
 //!
 //! Every mesh is closed, so no back face is ever seen. Every number is a
 //! named constant below.
 
 use super::shapes::{cuboid, cylinder, ground_slab, sphere};
 use super::{Aabb, Camera, Material, Object, Scene, SceneCamera};
-use glam::Vec3;
+use crate::colour::PATCH_COUNT;
+use crate::colour::chart::patch_linear_srgb;
+use crate::colour::shading::chart_material_name;
+use glam::{DVec3, Vec3};
 use std::path::Path;
 
 /// The committed asset, relative to the crate root.
@@ -62,6 +69,29 @@ pub const SPHERE_RINGS: u32 = 24;
 /// Cylinder standing on the ground: base x, z, radius, height (m).
 pub const CYLINDER: (f32, f32, f32, f32) = (-2.3, -1.8, 0.3, 1.2);
 pub const CYLINDER_SEGMENTS: u32 = 48;
+
+/// ColorChecker chart: a board standing on the ground at the back, its
+/// front face at z = CHART_FRONT_Z_M, and 6 × 4 patches of CHART_PATCH_M
+/// with CHART_GAP_M between them, their lower-left corner at
+/// CHART_ORIGIN_XY; placed right of the occluder's and left of the panel's
+/// silhouettes and above the spheres' from the default eye, inside the
+/// props' bounds so that the scene's scale (`SceneScale`) is unchanged (m).
+/// The origin was searched so that, at the 192 × 108 size the GPU is held
+/// to the reference with, no patch or board edge passes within 0.002 px of
+/// a pixel centre: closer, the rasterizer's sub-pixel snapping and the ray
+/// tracer may take different sides of the edge.
+pub const CHART_FRONT_Z_M: f32 = -2.04;
+pub const CHART_BOARD_THICKNESS_M: f32 = 0.05;
+pub const CHART_ORIGIN_XY: (f32, f32) = (-0.792, 0.5485);
+pub const CHART_PATCH_M: f32 = 0.42;
+pub const CHART_GAP_M: f32 = 0.04;
+/// Patches stand this far in front of the board, as thick plates (m).
+pub const CHART_PATCH_GAP_M: f32 = 0.002;
+pub const CHART_PATCH_THICKNESS_M: f32 = 0.01;
+pub const CHART_COLUMNS: usize = 6;
+pub const CHART_BOARD: Finish = Finish::new("chart board", [0.03, 0.03, 0.03], 0.9, 8.0);
+/// The patches' own k and m: a matte paint.
+const CHART_PATCH_K_M: (f32, f32) = (0.95, 8.0);
 
 /// A material of the scene: linear RGB colour c and the lab's k and m.
 pub struct Finish {
@@ -161,14 +191,72 @@ pub fn scene() -> Scene {
             material(&CYLINDER_GREEN),
         ),
     ];
+    let mut objects = objects;
+    let mut materials: Vec<Material> = finishes.iter().map(|f| f.material()).collect();
+    chart(&mut objects, &mut materials);
     Scene {
         objects,
-        materials: finishes.iter().map(|f| f.material()).collect(),
+        materials,
         cameras: vec![SceneCamera {
             name: "default".into(),
             camera: Camera::default(),
         }],
         ..Scene::default()
+    }
+}
+
+/// The chart's board (resting on the ground) and its 24 patches, in chart
+/// order left to right, top to bottom.
+fn chart(objects: &mut Vec<Object>, materials: &mut Vec<Material>) {
+    let pitch = CHART_PATCH_M + CHART_GAP_M;
+    let rows = PATCH_COUNT.div_ceil(CHART_COLUMNS);
+    let (x0, y0) = CHART_ORIGIN_XY;
+    let margin = CHART_GAP_M;
+    let mut board = Object::new(
+        "chart board",
+        cuboid(Aabb {
+            min: Vec3::new(x0 - margin, 0.0, CHART_FRONT_Z_M - CHART_BOARD_THICKNESS_M),
+            max: Vec3::new(
+                x0 + CHART_COLUMNS as f32 * pitch,
+                y0 + rows as f32 * pitch,
+                CHART_FRONT_Z_M,
+            ),
+        }),
+        materials.len(),
+    );
+    // The chart is an instrument for colour: it casts no shadow, so the
+    // shadow experiments (their edges, the moment maps' light bleeding)
+    // stay those the scene was designed for.
+    board.casts_shadows = false;
+    objects.push(board);
+    materials.push(CHART_BOARD.material());
+    let (k, m) = CHART_PATCH_K_M;
+    for patch in 0..PATCH_COUNT {
+        let (column, row) = (patch % CHART_COLUMNS, patch / CHART_COLUMNS);
+        let min = Vec3::new(
+            x0 + column as f32 * pitch,
+            y0 + (rows - 1 - row) as f32 * pitch,
+            CHART_FRONT_Z_M + CHART_PATCH_GAP_M,
+        );
+        let size = Vec3::new(CHART_PATCH_M, CHART_PATCH_M, CHART_PATCH_THICKNESS_M);
+        let mut plate = Object::new(
+            format!("chart patch {:02}", patch + 1),
+            cuboid(Aabb { min, max: min + size }),
+            materials.len(),
+        );
+        // Printed on the board, a real chart's patches cast no shadow.
+        plate.casts_shadows = false;
+        objects.push(plate);
+        // glTF base colours lie in 0..1: the cyan patch's red, slightly
+        // outside sRGB, is clipped (its spectrum is not).
+        let rgb = patch_linear_srgb(patch).clamp(DVec3::ZERO, DVec3::ONE).as_vec3();
+        materials.push(Material {
+            name: chart_material_name(patch),
+            base_color: rgb.extend(1.0),
+            k: Some(k),
+            m: Some(m),
+            ..Material::default()
+        });
     }
 }
 
@@ -205,7 +293,6 @@ pub fn load_embedded() -> Scene {
 mod tests {
     use super::*;
     use crate::settings::{ImageSettings, LightSettings};
-    use glam::DVec3;
 
     fn default_camera() -> Camera {
         Camera::default()
@@ -239,7 +326,8 @@ mod tests {
     fn the_embedded_asset_loads_cleanly() {
         let scene = crate::scene::default_scene();
         assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
-        assert_eq!(scene.objects.len(), 8);
+        // 8 props, the chart's board and its 24 patches.
+        assert_eq!(scene.objects.len(), 8 + 1 + PATCH_COUNT);
         assert_eq!(scene.cameras.len(), 1);
         let built = super::scene();
         // The asset's own camera is the default one, to rounding.

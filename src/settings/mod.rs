@@ -10,7 +10,10 @@ use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
+mod colour;
 mod validate;
+
+pub use colour::ColourSettings;
 
 /// The settings file could not be read, parsed, validated or written.
 #[derive(Debug, Error)]
@@ -43,6 +46,8 @@ pub struct Settings {
     pub shadow: ShadowSettings,
     pub view: ViewSettings,
     pub ground: GroundSettings,
+    /// RGB or spectral light (files without it load in RGB mode).
+    pub colour: ColourSettings,
 }
 
 /// Size of the rendered image (pixels) for the command line and the report.

@@ -75,6 +75,7 @@ named_enum! {
         Experiments = "experiments",
         Scene = "scene",
         Light = "light",
+        Colour = "colour",
         Material = "material",
         Shadow = "shadow",
         View = "view",

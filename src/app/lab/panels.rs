@@ -3,6 +3,7 @@
 //! and emit commands; nothing here changes the app's state itself.
 
 use super::super::View;
+use super::super::colour::ColourPanel;
 use super::super::command::Command;
 use super::super::energy::{Curve, EnergyKey};
 use super::super::lecture::section;
@@ -182,6 +183,18 @@ impl LabApp {
             LightPanel {
                 light: &mut settings.light,
                 scale: self.scene.scale,
+            }
+            .ui(ui)
+        });
+        section(ui, Panel::Colour, |ui| {
+            ColourPanel {
+                colour: &mut settings.colour,
+                materials: self
+                    .scene
+                    .materials
+                    .iter()
+                    .map(|m| (m.name.clone(), m.base_color.truncate().as_dvec3()))
+                    .collect(),
             }
             .ui(ui)
         });
