@@ -11,7 +11,7 @@ use lumlab::physics::energy::directional_albedo;
 use lumlab::physics::radiometry::{incidence, intensity, sphere_irradiance, sphere_radiance};
 use lumlab::physics::{BrdfParams, Normalization};
 use lumlab::presets::ComparisonAxis;
-use lumlab::settings::{BiasMode, DebugView, Filter, Settings};
+use lumlab::settings::{BiasMode, DebugView, Filter, Settings, Visibility};
 use lumlab::tour::{Observe, Tour, TourScene};
 use std::f64::consts::PI;
 use std::path::Path;
@@ -152,6 +152,21 @@ fn steps_set_what_the_lecture_shows() {
     assert_eq!(penumbra.settings.shadow.filter, Filter::Pcss);
     assert_eq!(penumbra.settings.light.radius_m, 0.4);
     assert_eq!(step("two-passes").settings.view.mode, DebugView::Depth);
+    // Colour: the RGB product beside the spectral result, under tungsten.
+    let colour = step("colour");
+    assert_eq!(colour.comparison.axis, ComparisonAxis::Colour);
+    assert_eq!(
+        colour.settings.colour.illuminant,
+        Some(lumlab::colour::Illuminant::A)
+    );
+    // Ray tracing: the shadow map beside GPU ray-traced V, under the sphere.
+    let traced = step("ray-traced");
+    assert_eq!(traced.comparison.axis, ComparisonAxis::Visibility);
+    assert_eq!(
+        traced.comparison.visibility,
+        [Visibility::ShadowMap, Visibility::RayTraced]
+    );
+    assert!(traced.settings.light.radius_m > 0.0);
     // The lecture's figure: without | with normalization, side by side.
     let figure = step("with-without");
     assert_eq!(figure.comparison.axis, ComparisonAxis::Normalization);

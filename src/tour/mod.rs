@@ -15,7 +15,7 @@ mod observe;
 pub use observe::{Observe, format_number};
 
 use crate::i18n::Language;
-use crate::presets::{Comparison, Preset};
+use crate::presets::{Comparison, ComparisonAxis, Preset};
 use crate::scene::{Camera, SceneScale};
 use crate::settings::Settings;
 use serde::Deserialize;
@@ -153,7 +153,8 @@ pub struct Step {
     pub settings: Settings,
     pub split: SplitChoice,
     /// The split view's comparison: the preset's, else the lecture's
-    /// figure (without | with normalization).
+    /// figure (without | with normalization); its axis the step's
+    /// `compare` when written.
     pub comparison: Comparison,
     /// The panel opened and highlighted.
     pub panel: Panel,
@@ -205,6 +206,10 @@ struct StepFile {
     _settings: Settings,
     #[serde(default)]
     split: SplitChoice,
+    /// The split's axis, over the preset's comparison (or the lecture's
+    /// figure's): e.g. "visibility" for shadow map | ray traced.
+    #[serde(default)]
+    compare: Option<ComparisonAxis>,
     panel: Panel,
     observe: Observe,
     fr: StepText,
@@ -275,7 +280,7 @@ impl Tour {
                 }
             }
             steps.push(Step {
-                comparison: step.preset.and_then(Preset::comparison).unwrap_or_default(),
+                comparison: comparison(step.preset, step.compare),
                 id: step.id,
                 scene: step.scene,
                 preset: step.preset,
@@ -288,6 +293,16 @@ impl Tour {
             });
         }
         Ok(Self { steps })
+    }
+}
+
+/// A step's comparison: the preset's, else the lecture's figure (without |
+/// with normalization), on the axis the step names if it names one.
+fn comparison(preset: Option<Preset>, axis: Option<ComparisonAxis>) -> Comparison {
+    let base = preset.and_then(Preset::comparison).unwrap_or_default();
+    Comparison {
+        axis: axis.unwrap_or(base.axis),
+        ..base
     }
 }
 
