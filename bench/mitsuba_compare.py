@@ -1,31 +1,56 @@
 #!/usr/bin/env python3
-"""lumlab's CPU reference against Mitsuba 3 (scalar_rgb): same scene, same
-camera, same light, same resolution and samples per pixel, timed in one run.
+"""lumlab's CPU reference against Mitsuba 3, both `scalar_rgb` and `llvm_ad_rgb`
+(JIT-compiled SIMD wavefront over Embree): the same triangles, camera, light,
+resolution and samples, on the same threads, several alternating runs.
 
-The scene is a Lambert plane and a box under a point light. It is written
-twice from the same numbers: as glTF for lumlab (its scene format) and as
-Wavefront OBJ for Mitsuba. Conventions matched on both sides:
+Races (each prints its times and the speed-up Mitsuba / lumlab, median and
+[min–max] over --runs):
+  small    plane + box, 14 triangles, 256×192, 64 spp, point light, Lambert;
+  model    a real model of ≥ 100 k triangles (--model, a GLB file), 512×384,
+           32 spp, point light, Lambert; see MODEL below;
+  million  1 M generated triangles (a ground and 25 bumpy spheres), 512×384,
+           16 spp, point light, Lambert;
+  sphere   plane + box under a sphere light (R = 0.5 m), 256×192: the time each
+           needs to bring the RMSE against its own converged image below 1 % of
+           that image's mean luminance (lumlab: the pixel centre, N light
+           samples; Mitsuba: N samples per pixel, one emitter sample each).
+
+Times: "render" is the render call alone (lumlab: the `N spp: S s` of its
+summary line, which excludes loading, the BVH build and file output; Mitsuba:
+`mi.render` on a loaded scene, llvm's kernels compiled by a warm-up render).
+"process" is the whole `lumlab reference` command (start, scene file, BVH,
+render, EXR file), timed from outside.
+
+Conventions matched on both sides:
   - +Y up, right-handed, metres; the camera looks from eye at target with the
     vertical field of view (Mitsuba: `perspective`, fov_axis = 'y');
-  - a point light of power P has intensity I = P / 4π W/sr (Mitsuba's
-    `point` emitter takes I);
+  - a point light of power P has intensity I = P / 4π W/sr (Mitsuba `point`);
+    a sphere light of power P and radius R has radiance P / (4π² R²)
+    (Mitsuba: a `sphere` with an `area` emitter);
   - f_r = c / π (lumlab --k 1; Mitsuba `diffuse` with reflectance c);
-  - one emitter sample and no BSDF sample per pixel sample (Mitsuba `direct`
-    with bsdf_samples = 0: a BSDF sample cannot find a point light anyway);
-  - the same number of pixel samples (lumlab stratifies them; Mitsuba's
-    `independent` sampler is its fastest, `stratified` can be asked for),
-    box filter, linear radiance in W/m²/sr (lumlab EXR, Mitsuba hdrfilm).
+  - face normals on both sides (no vertex normals are written);
+  - one emitter sample, no BSDF sample per pixel sample (Mitsuba `direct`);
+  - box filter, linear radiance in W/m²/sr (lumlab EXR, Mitsuba hdrfilm).
+Both renderers read identical f32 triangles: the script writes them as GLB
+for lumlab and as binary PLY for Mitsuba.
 
-Prints both times, their ratio and the relative difference on lit pixels;
-exits 1 when the mean relative difference reaches 1 %.
+Mitsuba 3.5.2: later versions (3.6 to 3.9) emit `llvm.maximum`, which the
+LLVM 15 of Debian's Mesa cannot compile for x86 ("Cannot select: fmaximum")
+under the sphere emitter; llvm_ad_rgb needs libLLVM (DRJIT_LIBLLVM_PATH=
+/usr/lib/x86_64-linux-gnu/libLLVM-15.so.1 if it is not found).
 
-    pip install mitsuba
+MODEL: a public Khronos sample, not committed. 2CylinderEngine (121 k
+triangles) is in KhronosGroup/glTF-Sample-Models,
+2.0/2CylinderEngine/glTF-Binary/2CylinderEngine.glb (also in assimp's
+test/models/glTF2/2CylinderEngine-glTF-Binary/). Its node transforms are
+applied, then it is centred and scaled to 4 m across.
+
+    pip install mitsuba==3.5.2 drjit==0.4.6
     cargo build --release
-    python3 bench/mitsuba_compare.py [--size 960x540] [--spp 16] [--threads 2]
+    python3 bench/mitsuba_compare.py --model /work/models/2CylinderEngine.glb [--runs 5]
 """
 
 import argparse
-import base64
 import json
 import math
 import os
@@ -39,161 +64,239 @@ from pathlib import Path
 
 import numpy as np
 
-EYE = (3.5, 3.0, 5.0)
-TARGET = (0.0, 0.4, 0.0)
 FOVY_DEG = 40.0
-LIGHT = (2.0, 4.0, 1.5)
 POWER_W = 800.0
+SPHERE_RADIUS_M = 0.5
 PLANE_COLOR = (0.7, 0.7, 0.7)
 BOX_COLOR = (0.8, 0.2, 0.1)
-
+MODEL_COLOR = (0.6, 0.6, 0.65)
+VARIANTS = ("scalar_rgb", "llvm_ad_rgb")
 # Rec. 709 luminance, as lumlab's noise estimate uses.
 LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
 
 
-def quad(corners, normal):
-    """Two triangles, counter-clockwise seen from the side the normal points to."""
-    return corners, [normal] * 4, [0, 1, 2, 0, 2, 3]
+# ---------------------------------------------------------------- geometry
+
+
+def quads(corners, faces):
+    """Triangles of quads given as corner index lists (counter-clockwise)."""
+    tris = [(f[0], f[1], f[2]) for f in faces] + [(f[0], f[2], f[3]) for f in faces]
+    return np.asarray(corners, dtype=np.float64), np.asarray(tris, dtype=np.uint32)
 
 
 def plane(half):
-    return quad(
-        [(-half, 0.0, half), (half, 0.0, half), (half, 0.0, -half), (-half, 0.0, -half)],
-        (0.0, 1.0, 0.0),
-    )
+    c = [(-half, 0.0, half), (half, 0.0, half), (half, 0.0, -half), (-half, 0.0, -half)]
+    return quads(c, [(0, 1, 2, 3)])
 
 
 def box(lo, hi, yaw_deg):
-    """An axis-aligned box turned by yaw_deg about +Y, flat normals."""
+    """An axis-aligned box turned by yaw_deg about +Y."""
     c = [(hi[0] if i & 1 else lo[0], hi[1] if i & 2 else lo[1], hi[2] if i & 4 else lo[2]) for i in range(8)]
-    faces = [
-        ([1, 3, 7, 5], (1, 0, 0)),
-        ([4, 6, 2, 0], (-1, 0, 0)),
-        ([2, 6, 7, 3], (0, 1, 0)),
-        ([0, 1, 5, 4], (0, -1, 0)),
-        ([4, 5, 7, 6], (0, 0, 1)),
-        ([1, 0, 2, 3], (0, 0, -1)),
-    ]
+    faces = [(1, 3, 7, 5), (4, 6, 2, 0), (2, 6, 7, 3), (0, 1, 5, 4), (4, 5, 7, 6), (1, 0, 2, 3)]
+    positions, indices = quads(c, faces)
     a = math.radians(yaw_deg)
-    ca, sa = math.cos(a), math.sin(a)
-
-    def turn(v):
-        # Rotation about +Y (right-handed): x' = x cos a + z sin a, z' = −x sin a + z cos a.
-        return (v[0] * ca + v[2] * sa, v[1], -v[0] * sa + v[2] * ca)
-
-    positions, normals, indices = [], [], []
-    for ids, n in faces:
-        base = len(positions)
-        positions += [turn(c[i]) for i in ids]
-        normals += [turn(n)] * 4
-        indices += [base + k for k in (0, 1, 2, 0, 2, 3)]
-    return positions, normals, indices
+    # Rotation about +Y (right-handed): x' = x cos a + z sin a, z' = −x sin a + z cos a.
+    turn = np.array([[math.cos(a), 0, math.sin(a)], [0, 1, 0], [-math.sin(a), 0, math.cos(a)]])
+    return positions @ turn.T, indices
 
 
-def meshes():
-    return [
-        ("plane", plane(5.0), PLANE_COLOR),
-        ("box", box((-0.6, 0.0, -0.6), (0.6, 1.2, 0.6), 25.0), BOX_COLOR),
+def bumpy_sphere(centre, radius, n):
+    """A UV sphere of 2 n² triangles, its radius rippled by 4 %."""
+    theta = np.linspace(0.0, math.pi, n + 1)
+    phi = np.linspace(0.0, 2.0 * math.pi, n + 1)
+    t, p = np.meshgrid(theta, phi, indexing="ij")
+    r = radius * (1.0 + 0.04 * np.sin(7.0 * t) * np.sin(9.0 * p))
+    pos = np.stack([r * np.sin(t) * np.cos(p), r * np.cos(t), -r * np.sin(t) * np.sin(p)], axis=-1)
+    pos = pos.reshape(-1, 3) + np.asarray(centre)
+    i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+    a = (i * (n + 1) + j).ravel()
+    b, c, d = a + 1, a + n + 2, a + n + 1
+    # (t, φ) → (a, b = φ + 1, c, d = θ + 1): counter-clockwise seen from outside.
+    tris = np.concatenate([np.stack([a, d, c], 1), np.stack([a, c, b], 1)])
+    return pos, tris.astype(np.uint32)
+
+
+def read_glb(path):
+    """Every triangle of a GLB file in world space (node matrices and TRS
+    applied), as one (positions, indices) pair."""
+    data = Path(path).read_bytes()
+    magic, _, _ = struct.unpack_from("<III", data, 0)
+    if magic != 0x46546C67:
+        sys.exit(f"{path}: not a GLB file")
+    offset, doc, blob = 12, None, b""
+    while offset < len(data):
+        length, kind = struct.unpack_from("<II", data, offset)
+        chunk = data[offset + 8 : offset + 8 + length]
+        doc, blob = (json.loads(chunk), blob) if kind == 0x4E4F534A else (doc, chunk)
+        offset += 8 + length
+
+    def accessor(index):
+        acc = doc["accessors"][index]
+        view = doc["bufferViews"][acc["bufferView"]]
+        dtype = {5121: np.uint8, 5123: np.uint16, 5125: np.uint32, 5126: np.float32}[acc["componentType"]]
+        width = {"SCALAR": 1, "VEC3": 3}[acc["type"]]
+        itemsize = np.dtype(dtype).itemsize * width
+        stride = view.get("byteStride", itemsize)
+        start = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
+        raw = np.frombuffer(blob, np.uint8, count=stride * (acc["count"] - 1) + itemsize, offset=start)
+        rows = np.lib.stride_tricks.as_strided(raw, (acc["count"], itemsize), (stride, 1))
+        return np.ascontiguousarray(rows).view(dtype).reshape(acc["count"], width)
+
+    def local(node):
+        if "matrix" in node:
+            return np.array(node["matrix"], dtype=np.float64).reshape(4, 4).T
+        x, y, z, w = node.get("rotation", (0.0, 0.0, 0.0, 1.0))
+        rot = np.array(
+            [
+                [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+            ]
+        )
+        m = np.eye(4)
+        m[:3, :3] = rot * np.asarray(node.get("scale", (1.0, 1.0, 1.0)))
+        m[:3, 3] = node.get("translation", (0.0, 0.0, 0.0))
+        return m
+
+    positions, indices, count = [], [], 0
+    stack = [(n, np.eye(4)) for n in doc["scenes"][doc.get("scene", 0)]["nodes"]]
+    while stack:
+        index, parent = stack.pop()
+        node = doc["nodes"][index]
+        world = parent @ local(node)
+        stack += [(c, world) for c in node.get("children", [])]
+        for prim in doc["meshes"][node["mesh"]]["primitives"] if "mesh" in node else []:
+            if prim.get("mode", 4) != 4:
+                continue
+            p = accessor(prim["attributes"]["POSITION"]).astype(np.float64)
+            ids = accessor(prim["indices"]).ravel() if "indices" in prim else np.arange(len(p))
+            positions.append(p @ world[:3, :3].T + world[:3, 3])
+            indices.append(ids.astype(np.uint32) + count)
+            count += len(p)
+    return np.concatenate(positions), np.concatenate(indices).reshape(-1, 3)
+
+
+# ---------------------------------------------------------------- scenes
+
+
+class Scene:
+    """Meshes (name, positions, triangles, colour), a camera and a light."""
+
+    def __init__(self, meshes, eye, target, light, size, spp):
+        self.meshes, self.eye, self.target, self.light = meshes, eye, target, light
+        self.size, self.spp = size, spp
+
+    def triangles(self):
+        return sum(len(t) for _, _, t, _ in self.meshes)
+
+
+def small_scene():
+    meshes = [
+        ("plane", *plane(5.0), PLANE_COLOR),
+        ("box", *box((-0.6, 0.0, -0.6), (0.6, 1.2, 0.6), 25.0), BOX_COLOR),
     ]
+    return Scene(meshes, (3.5, 3.0, 5.0), (0.0, 0.4, 0.0), (2.0, 4.0, 1.5), (256, 192), 64)
 
 
-def write_gltf(path):
-    """A glTF 2.0 file with the buffer embedded: one node per mesh, positions
-    already in world space, normals, u32 indices, a base colour per material."""
-    blob = bytearray()
-    doc = {
-        "asset": {"version": "2.0", "generator": "lumlab bench/mitsuba_compare.py"},
-        "scene": 0,
-        "scenes": [{"nodes": []}],
-        "nodes": [],
-        "meshes": [],
-        "materials": [],
-        "accessors": [],
-        "bufferViews": [],
-        "buffers": [],
-    }
+def framed(meshes, size, spp):
+    """A camera and light placed from the meshes' bounds."""
+    allp = np.concatenate([p for _, p, _, _ in meshes])
+    lo, hi = allp.min(0), allp.max(0)
+    c, r = 0.5 * (lo + hi), 0.5 * float(np.linalg.norm(hi - lo))
+    eye = tuple(c + r * np.array([1.3, 1.0, 2.2]))
+    light = tuple(c + r * np.array([0.8, 1.6, 0.9]))
+    return Scene(meshes, eye, tuple(c), light, size, spp)
 
-    def view(data, target):
+
+def model_scene(path):
+    p, t = read_glb(path)
+    lo, hi = p.min(0), p.max(0)
+    p = (p - 0.5 * (lo + hi)) * (4.0 / float((hi - lo).max()))
+    return framed([("model", p, t, MODEL_COLOR)], (512, 384), 32)
+
+
+def million_scene():
+    meshes = [("ground", *plane(6.5), PLANE_COLOR)]
+    for i in range(5):
+        for j in range(5):
+            centre = (2.2 * (i - 2), 1.0, 2.2 * (j - 2))
+            meshes.append((f"s{i}{j}", *bumpy_sphere(centre, 1.0, 141), MODEL_COLOR))
+    return framed(meshes, (512, 384), 16)
+
+
+# ---------------------------------------------------------------- files
+
+
+def write_glb(path, scene):
+    """GLB 2.0: one node per mesh, f32 positions already in world space, u32
+    indices, a base colour per material (no normals: face normals)."""
+    blob, doc = bytearray(), {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": []}]}
+    for key in ("nodes", "meshes", "materials", "accessors", "bufferViews"):
+        doc[key] = []
+
+    def add(data, target, **acc):
         while len(blob) % 4:
             blob.append(0)
-        doc["bufferViews"].append(
-            {"buffer": 0, "byteOffset": len(blob), "byteLength": len(data), "target": target}
-        )
+        doc["bufferViews"].append({"buffer": 0, "byteOffset": len(blob), "byteLength": len(data), "target": target})
         blob.extend(data)
-        return len(doc["bufferViews"]) - 1
-
-    def vec3_accessor(values):
-        data = b"".join(struct.pack("<3f", *v) for v in values)
-        acc = {
-            "bufferView": view(data, 34962),
-            "componentType": 5126,
-            "count": len(values),
-            "type": "VEC3",
-            "min": [min(v[i] for v in values) for i in range(3)],
-            "max": [max(v[i] for v in values) for i in range(3)],
-        }
-        doc["accessors"].append(acc)
+        doc["accessors"].append({"bufferView": len(doc["bufferViews"]) - 1, **acc})
         return len(doc["accessors"]) - 1
 
-    for name, (positions, normals, indices), color in meshes():
-        position = vec3_accessor(positions)
-        normal = vec3_accessor(normals)
-        index_data = struct.pack(f"<{len(indices)}I", *indices)
-        doc["accessors"].append(
-            {"bufferView": view(index_data, 34963), "componentType": 5125, "count": len(indices), "type": "SCALAR"}
-        )
+    for name, positions, tris, color in scene.meshes:
+        p = positions.astype("<f4")
+        pos = add(p.tobytes(), 34962, componentType=5126, count=len(p), type="VEC3",
+                  min=p.min(0).tolist(), max=p.max(0).tolist())  # fmt: skip
+        ids = add(tris.astype("<u4").tobytes(), 34963, componentType=5125, count=tris.size, type="SCALAR")
         doc["materials"].append(
             {"name": name, "pbrMetallicRoughness": {"baseColorFactor": [*color, 1.0], "metallicFactor": 0.0}}
         )
-        doc["meshes"].append(
-            {
-                "name": name,
-                "primitives": [
-                    {
-                        "attributes": {"POSITION": position, "NORMAL": normal},
-                        "indices": len(doc["accessors"]) - 1,
-                        "material": len(doc["materials"]) - 1,
-                    }
-                ],
-            }
-        )
+        prim = {"attributes": {"POSITION": pos}, "indices": ids, "material": len(doc["materials"]) - 1}
+        doc["meshes"].append({"name": name, "primitives": [prim]})
         doc["nodes"].append({"name": name, "mesh": len(doc["meshes"]) - 1})
         doc["scenes"][0]["nodes"].append(len(doc["nodes"]) - 1)
-    uri = "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()
-    doc["buffers"].append({"byteLength": len(blob), "uri": uri})
-    path.write_text(json.dumps(doc, indent=1))
+    doc["buffers"] = [{"byteLength": len(blob)}]
+    text = json.dumps(doc).encode()
+    text += b" " * (-len(text) % 4)
+    blob += b"\0" * (-len(blob) % 4)
+    total = 12 + 8 + len(text) + 8 + len(blob)
+    Path(path).write_bytes(
+        struct.pack("<III", 0x46546C67, 2, total)
+        + struct.pack("<II", len(text), 0x4E4F534A) + text
+        + struct.pack("<II", len(blob), 0x004E4942) + bytes(blob)
+    )  # fmt: skip
 
 
-def write_objs(folder):
-    """One OBJ per mesh, the same vertices, normals and (1-based) faces."""
-    files = []
-    for name, (positions, normals, indices), color in meshes():
-        lines = [f"v {x!r} {y!r} {z!r}" for x, y, z in positions]
-        lines += [f"vn {x!r} {y!r} {z!r}" for x, y, z in normals]
-        for t in range(0, len(indices), 3):
-            a, b, c = (i + 1 for i in indices[t : t + 3])
-            lines.append(f"f {a}//{a} {b}//{b} {c}//{c}")
-        path = folder / f"{name}.obj"
-        path.write_text("\n".join(lines) + "\n")
-        files.append((path, color))
-    return files
+def write_ply(path, positions, tris):
+    """Binary little-endian PLY with the same f32 vertices and faces."""
+    header = (
+        "ply\nformat binary_little_endian 1.0\n"
+        f"element vertex {len(positions)}\nproperty float x\nproperty float y\nproperty float z\n"
+        f"element face {len(tris)}\nproperty list uchar int vertex_indices\nend_header\n"
+    )
+    faces = np.zeros(len(tris), dtype=[("n", "u1"), ("i", "<i4", 3)])
+    faces["n"], faces["i"] = 3, tris
+    Path(path).write_bytes(header.encode() + positions.astype("<f4").tobytes() + faces.tobytes())
 
 
-def start_mitsuba(threads):
-    """Mitsuba's variant and thread pool, set once per process (setting the
-    pool again between renders can leave it waiting forever)."""
+# ---------------------------------------------------------------- renderers
+
+
+def start_mitsuba(variant, threads):
+    """Mitsuba's variant; the thread pool is set once per process (setting it
+    again between renders can leave it waiting forever)."""
     import drjit as dr
     import mitsuba as mi
 
-    mi.set_variant("scalar_rgb")
-    dr.set_thread_count(threads)
+    mi.set_variant(variant)
+    if not getattr(start_mitsuba, "threads_set", False):
+        dr.set_thread_count(threads)
+        start_mitsuba.threads_set = True
+    return mi
 
 
-def render_mitsuba(folder, width, height, spp, sampler="independent"):
-    import mitsuba as mi
-
-    intensity = POWER_W / (4.0 * math.pi)
-    scene = {
+def load_mitsuba(mi, folder, scene, radius, sampler):
+    width, height = scene.size
+    d = {
         "type": "scene",
         "integrator": {"type": "direct", "emitter_samples": 1, "bsdf_samples": 0},
         "sensor": {
@@ -202,49 +305,59 @@ def render_mitsuba(folder, width, height, spp, sampler="independent"):
             "fov_axis": "y",
             "near_clip": 0.01,
             "far_clip": 1000.0,
-            "to_world": mi.ScalarTransform4f().look_at(origin=EYE, target=TARGET, up=(0.0, 1.0, 0.0)),
-            "film": {
-                "type": "hdrfilm",
-                "width": width,
-                "height": height,
-                "rfilter": {"type": "box"},
-                "pixel_format": "rgb",
-            },
-            "sampler": {"type": sampler, "sample_count": spp},
-        },
-        "light": {
-            "type": "point",
-            "position": LIGHT,
-            "intensity": {"type": "rgb", "value": [intensity] * 3},
+            "to_world": mi.ScalarTransform4f().look_at(origin=scene.eye, target=scene.target, up=(0.0, 1.0, 0.0)),
+            "film": {"type": "hdrfilm", "width": width, "height": height, "rfilter": {"type": "box"},
+                     "pixel_format": "rgb"},  # fmt: skip
+            "sampler": {"type": sampler, "sample_count": scene.spp},
         },
     }
-    for path, color in write_objs(folder):
-        scene[path.stem] = {
-            "type": "obj",
+    if radius > 0.0:
+        radiance = POWER_W / (4.0 * math.pi**2 * radius**2)
+        d["light"] = {
+            "type": "sphere",
+            "center": scene.light,
+            "radius": radius,
+            "emitter": {"type": "area", "radiance": {"type": "rgb", "value": [radiance] * 3}},
+        }
+    else:
+        intensity = POWER_W / (4.0 * math.pi)
+        d["light"] = {"type": "point", "position": scene.light, "intensity": {"type": "rgb", "value": [intensity] * 3}}
+    for name, positions, tris, color in scene.meshes:
+        path = folder / f"{name}.ply"
+        if not path.exists():
+            write_ply(path, positions, tris)
+        d[name] = {
+            "type": "ply",
             "filename": str(path),
+            "face_normals": True,
             "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": list(color)}},
         }
-    start = time.perf_counter()
-    loaded = mi.load_dict(scene)
-    load_s = time.perf_counter() - start
-    start = time.perf_counter()
-    image = mi.render(loaded, spp=spp)
-    render_s = time.perf_counter() - start
-    return np.array(image)[:, :, :3], load_s, render_s
+    return mi.load_dict(d)
 
 
-def render_lumlab(lumlab, folder, width, height, spp, threads):
-    gltf = folder / "scene.gltf"
-    write_gltf(gltf)
+def render_mitsuba(mi, loaded, spp, seed=0):
+    start = time.perf_counter()
+    image = mi.render(loaded, spp=spp, seed=seed)
+    image = np.array(image)[:, :, :3]  # waits for llvm's kernels to finish
+    return image, time.perf_counter() - start
+
+
+def run_lumlab(lumlab, folder, scene, threads, spp, radius=0.0, light_samples=1):
+    glb = folder / "scene.glb"
+    if not glb.exists():
+        write_glb(glb, scene)
     exr = folder / "lumlab.exr"
     vec = lambda v: ",".join(repr(float(x)) for x in v)
+    width, height = scene.size
     command = [
-        str(lumlab), "reference",
-        "--scene", str(gltf),
-        "--camera", f"{vec(EYE)}:{vec(TARGET)}:{FOVY_DEG}",
+        str(lumlab), "reference", "--yes", "--ground", "off",
+        "--scene", str(glb),
+        "--camera", f"{vec(scene.eye)}:{vec(scene.target)}:{FOVY_DEG}",
         "--size", f"{width}x{height}",
-        "--light", vec(LIGHT),
+        "--light", vec(scene.light),
         "--power", repr(POWER_W),
+        "--light-radius", repr(radius),
+        "--light-samples", str(light_samples),
         "--color", "1,1,1",
         "--k", "1",
         "--spp", str(spp),
@@ -257,7 +370,7 @@ def render_lumlab(lumlab, folder, width, height, spp, threads):
     if run.returncode != 0:
         sys.exit(f"lumlab failed ({run.returncode}): {run.stderr.strip()}")
     summary = run.stderr.strip().splitlines()[-1]
-    # "... 1 spp: 0.842 s (BVH ...": the render alone, as lumlab timed it.
+    # "... 32 spp: 0.842 s (build 0.1 s) ...": the render alone, as lumlab timed it.
     found = re.search(r"spp: ([0-9.]+) s", summary)
     render_s = float(found.group(1)) if found else float("nan")
     import mitsuba as mi
@@ -266,75 +379,161 @@ def render_lumlab(lumlab, folder, width, height, spp, threads):
     return image, wall_s, render_s, summary
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--lumlab", default="target/release/lumlab", help="the lumlab binary")
-    parser.add_argument("--size", default="960x540", help="WxH")
-    parser.add_argument("--spp", type=int, default=16, help="samples per pixel (a square)")
-    parser.add_argument("--threads", type=int, default=2, help="threads for both renderers")
-    parser.add_argument(
-        "--mitsuba-sampler",
-        default="independent",
-        choices=["independent", "stratified"],
-        help="Mitsuba's pixel sampler: independent is its fastest (lumlab stratifies)",
-    )
-    parser.add_argument(
-        "--repeat",
-        type=int,
-        default=3,
-        help="runs of each renderer, alternating; the fastest of each counts (the machine may be shared)",
-    )
-    parser.add_argument("--keep", type=Path, help="keep the scene files and images in this folder")
-    args = parser.parse_args()
-    width, height = (int(v) for v in args.size.lower().split("x"))
-    if not Path(args.lumlab).exists():
-        sys.exit(f"no lumlab binary at {args.lumlab} (cargo build --release)")
+# ---------------------------------------------------------------- races
 
-    with tempfile.TemporaryDirectory() as tmp:
-        folder = args.keep or Path(tmp)
-        folder.mkdir(parents=True, exist_ok=True)
-        start_mitsuba(args.threads)
-        times = {"mts_load": [], "mts_render": [], "lum_wall": [], "lum_render": []}
-        for _ in range(max(1, args.repeat)):
-            mts, mts_load_s, mts_render_s = render_mitsuba(folder, width, height, args.spp, args.mitsuba_sampler)
-            lum, lum_wall_s, lum_render_s, summary = render_lumlab(
-                args.lumlab, folder, width, height, args.spp, args.threads
-            )
-            for key, value in zip(times, (mts_load_s, mts_render_s, lum_wall_s, lum_render_s)):
-                times[key].append(value)
-        mts_load_s, mts_render_s, lum_wall_s, lum_render_s = (min(v) for v in times.values())
-        if args.keep:
-            import mitsuba as mi
 
-            mi.Bitmap(mts.astype(np.float32)).write(str(folder / "mitsuba.exr"))
+def spread(values):
+    v = sorted(values)
+    return f"{float(np.median(v)):.2f}× [{v[0]:.2f}–{v[-1]:.2f}]"
 
+
+def difference(lum, mts):
     y_lum, y_mts = lum @ LUMINANCE, mts @ LUMINANCE
     lit = (y_lum > 0.0) & (y_mts > 0.0)
     rel = np.abs(y_lum[lit] - y_mts[lit]) / y_mts[lit]
-    mean_rel = float(rel.mean())
-    fmt = lambda values: ", ".join(f"{v:.3f}" for v in values)
-    print(
-        f"scene: plane + box, point light {POWER_W} W, {width}×{height}, {args.spp} spp, "
-        f"{args.threads} threads, fastest of {max(1, args.repeat)} alternating runs"
-    )
+    # The median: edge pixels differ by their own sampling of the pixel square.
+    return float(np.median(rel)), float(y_lum.sum() / y_mts.sum())
+
+
+def point_race(name, scene, args, folder):
+    """Alternating runs of lumlab and both Mitsuba variants on one scene."""
+    print(f"\n== {name}: {scene.triangles()} triangles, {scene.size[0]}×{scene.size[1]}, {scene.spp} spp, point light")
+    times = {k: [] for k in ("process", "render", *VARIANTS)}
+    summary, loaded, images = "", {}, {}
+    for variant in VARIANTS:
+        mi = start_mitsuba(variant, args.threads)
+        loaded[variant] = load_mitsuba(mi, folder, scene, 0.0, args.mitsuba_sampler)
+        images[variant], _ = render_mitsuba(mi, loaded[variant], scene.spp)  # warm-up, kernels compiled
+    for _ in range(args.runs):
+        lum, wall_s, render_s, summary = run_lumlab(args.lumlab, folder, scene, args.threads, scene.spp)
+        times["process"].append(wall_s)
+        times["render"].append(render_s)
+        for variant in VARIANTS:
+            mi = start_mitsuba(variant, args.threads)
+            _, seconds = render_mitsuba(mi, loaded[variant], scene.spp)
+            times[variant].append(seconds)
+    med = {k: float(np.median(v)) for k, v in times.items()}
     print(f"lumlab:  {summary}")
-    print(f"lumlab   process {lum_wall_s:.3f} s, render {lum_render_s:.3f} s (renders: {fmt(times['lum_render'])})")
-    print(
-        f"mitsuba  load {mts_load_s:.3f} s + render {mts_render_s:.3f} s = {mts_load_s + mts_render_s:.3f} s "
-        f"(renders: {fmt(times['mts_render'])})"
+    print(f"lumlab   render {med['render']:.3f} s, process {med['process']:.3f} s (medians of {args.runs})")
+    for variant in VARIANTS:
+        ratio_render = [m / l for m, l in zip(times[variant], times["render"])]
+        ratio_process = [m / l for m, l in zip(times[variant], times["process"])]
+        print(
+            f"{variant:12s} render {med[variant]:.3f} s; lumlab faster by: render {spread(ratio_render)}, "
+            f"whole lumlab process {spread(ratio_process)}"
+        )
+    median_rel, flux = difference(lum, images["llvm_ad_rgb"])
+    print(f"images: median relative difference on lit pixels {100 * median_rel:.3f} %, flux ratio {flux:.4f}")
+    return {
+        "scene": name,
+        "lumlab": med["render"],
+        "process": med["process"],
+        **{v: med[v] for v in VARIANTS},
+        **{f"{v}/render": [m / l for m, l in zip(times[v], times["render"])] for v in VARIANTS},
+        **{f"{v}/process": [m / l for m, l in zip(times[v], times["process"])] for v in VARIANTS},
+    }
+
+
+def rmse_ratio(image, converged):
+    y, yc = image @ LUMINANCE, converged @ LUMINANCE
+    return float(np.sqrt(np.mean((y - yc) ** 2)) / yc.mean())
+
+
+def first_below(render, counts, converged, target):
+    """The first count whose image's RMSE falls below target: (count, rmse)."""
+    for n in counts:
+        error = rmse_ratio(render(n)[0], converged)
+        if error < target:
+            return n, error
+    sys.exit(f"RMSE still {100 * error:.2f} % at {counts[-1]} samples")
+
+
+def sphere_race(args, folder):
+    """Time to RMSE < 1 % of the mean, each against its own converged image:
+    the sample count that reaches it is found once, then timed --runs times."""
+    scene = small_scene()
+    scene.spp = 1
+    target = 0.01
+    print(f"\n== sphere light R = {SPHERE_RADIUS_M} m, plane + box, {scene.size[0]}×{scene.size[1]}: "
+          f"time to RMSE < {100 * target:.0f} % of the mean")  # fmt: skip
+
+    def lumlab(n):
+        image, _, seconds, _ = run_lumlab(args.lumlab, folder, scene, args.threads, 1, SPHERE_RADIUS_M, n)
+        return image, seconds
+
+    lum_conv, _ = lumlab(4096)
+    mi = start_mitsuba("llvm_ad_rgb", args.threads)
+    loaded = {"llvm_ad_rgb": load_mitsuba(mi, folder, scene, SPHERE_RADIUS_M, args.race_sampler)}
+    mts_conv = np.mean([render_mitsuba(mi, loaded["llvm_ad_rgb"], 4096, seed)[0] for seed in range(2)], axis=0)
+    median_rel, flux = difference(lum_conv, mts_conv)
+    print(f"converged images: median relative difference on lit pixels {100 * median_rel:.3f} %, flux ratio {flux:.4f}")
+    lum_n, _ = first_below(lumlab, [4, 9, 16, 25, 36, 49, 64, 81, 100, 144, 196, 256], lum_conv, target)
+    mts_n, _ = first_below(
+        lambda n: render_mitsuba(mi, loaded["llvm_ad_rgb"], n, 100),
+        [4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048],
+        mts_conv,
+        target,
     )
-    print(
-        f"speed-up: render {mts_render_s / lum_render_s:.2f}×, "
-        f"whole run {(mts_load_s + mts_render_s) / lum_wall_s:.2f}× (lumlab process vs Mitsuba load + render)"
-    )
-    print(
-        f"lit pixels: {int(lit.sum())} of {width * height}; relative difference of luminance: "
-        f"mean {100 * mean_rel:.3f} %, median {100 * float(np.median(rel)):.3f} %, "
-        f"95th percentile {100 * float(np.percentile(rel, 95)):.3f} %; "
-        f"total flux ratio lumlab / Mitsuba {float(y_lum.sum() / y_mts.sum()):.5f}"
-    )
-    if mean_rel >= 0.01:
-        sys.exit("the two images differ by 1 % or more on lit pixels")
+    mi = start_mitsuba("scalar_rgb", args.threads)
+    loaded["scalar_rgb"] = load_mitsuba(mi, folder, scene, SPHERE_RADIUS_M, args.race_sampler)
+    times, errors = {k: [] for k in ("lumlab", *VARIANTS)}, {k: [] for k in ("lumlab", *VARIANTS)}
+    for run in range(args.runs):
+        image, seconds = lumlab(lum_n)
+        times["lumlab"].append(seconds)
+        errors["lumlab"].append(rmse_ratio(image, lum_conv))
+        for variant in VARIANTS:
+            mi = start_mitsuba(variant, args.threads)
+            image, seconds = render_mitsuba(mi, loaded[variant], mts_n, run)
+            times[variant].append(seconds)
+            errors[variant].append(rmse_ratio(image, mts_conv))
+    worst = lambda k: f"RMSE {100 * max(errors[k]):.2f} % at worst"
+    print(f"lumlab       {lum_n} light samples, {worst('lumlab')}: {np.median(times['lumlab']):.3f} s")
+    for variant in VARIANTS:
+        ratios = [m / l for m, l in zip(times[variant], times["lumlab"])]
+        print(f"{variant:12s} {mts_n} spp ({args.race_sampler}), {worst(variant)}: "
+              f"{np.median(times[variant]):.3f} s; lumlab faster by {spread(ratios)}")  # fmt: skip
+    return {
+        "scene": "sphere light, equal error",
+        "lumlab": float(np.median(times["lumlab"])),
+        **{v: float(np.median(times[v])) for v in VARIANTS},
+        **{f"{v}/render": [m / l for m, l in zip(times[v], times["lumlab"])] for v in VARIANTS},
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--lumlab", default="target/release/lumlab", help="the lumlab binary")
+    parser.add_argument("--model", type=Path, help="a GLB of ≥ 100 k triangles (see MODEL above)")
+    parser.add_argument("--only", nargs="*", choices=["small", "model", "million", "sphere"], help="races to run")
+    parser.add_argument("--runs", type=int, default=5, help="alternating runs of each renderer")
+    parser.add_argument("--threads", type=int, default=2, help="threads for every renderer")
+    parser.add_argument("--mitsuba-sampler", default="independent", help="Mitsuba's sampler for the point-light races")
+    parser.add_argument("--race-sampler", default="stratified", help="Mitsuba's sampler for the sphere-light race")
+    parser.add_argument("--keep", type=Path, help="keep the scene files and images in this folder")
+    args = parser.parse_args()
+    if not Path(args.lumlab).exists():
+        sys.exit(f"no lumlab binary at {args.lumlab} (cargo build --release)")
+    races = args.only or ["small", "model", "million", "sphere"]
+    if "model" in races and not (args.model and args.model.exists()):
+        sys.exit("the model race needs --model FILE.glb (see MODEL in --help), or leave it out with --only")
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for race in races:
+            folder = (args.keep or Path(tmp)) / race
+            folder.mkdir(parents=True, exist_ok=True)
+            if race == "sphere":
+                rows.append(sphere_race(args, folder))
+                continue
+            scene = {"small": small_scene, "million": million_scene, "model": lambda: model_scene(args.model)}[race]()
+            rows.append(point_race(race, scene, args, folder))
+    print(f"\n| scene | lumlab s | scalar_rgb s | llvm_ad_rgb s | vs scalar | vs llvm | process vs scalar |")
+    print("|---|---|---|---|---|---|---|")
+    for r in rows:
+        process = spread(r["scalar_rgb/process"]) if "scalar_rgb/process" in r else "–"
+        print(
+            f"| {r['scene']} | {r['lumlab']:.3f} | {r['scalar_rgb']:.3f} | {r['llvm_ad_rgb']:.3f} | "
+            f"{spread(r['scalar_rgb/render'])} | {spread(r['llvm_ad_rgb/render'])} | {process} |"
+        )
 
 
 if __name__ == "__main__":

@@ -16,7 +16,10 @@
 //! The f64 test decides every hit, so the BVH answers exactly what testing
 //! every triangle would (see `closest_hit_brute_force` and the tests).
 
+mod packet;
+
 use super::intersect::{ShearedRay, TriangleHit};
+pub use packet::{Cone, PrimaryPacket, ShadowPacket};
 // `UVec2` is named inside obvhs's `traverse!` macro.
 use glam::{DVec3, UVec2, Vec3A};
 use obvhs::cwbvh::Traversal;

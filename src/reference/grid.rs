@@ -195,6 +195,11 @@ impl DirectionGrid {
             .then_some(cell)
     }
 
+    /// Whether the cell lists too many triangles and defers to the BVH.
+    pub fn is_crowded(&self, cell: Cell) -> bool {
+        self.cells[cell.0].1 == CROWDED
+    }
+
     /// The items of a cell, or None when it defers to the BVH.
     #[inline]
     fn items(&self, cell: Cell) -> Option<&[Item]> {

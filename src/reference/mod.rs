@@ -26,6 +26,7 @@ pub mod bvh;
 pub mod grid;
 mod image;
 pub mod intersect;
+mod light_packet;
 mod render;
 pub mod sampling;
 mod shading;

@@ -1,18 +1,25 @@
 //! The reference image: pixels rendered in parallel over tiles, each with
 //! its stratified samples, progress counted and cancellation honoured.
 
+use super::bvh::{Cone, PrimaryPacket};
 use super::grid::DirectionGrid;
 use super::image::{ReferenceImage, RenderStats, luminance};
 use super::sampling::{Rng, Strata, collapsed_strata_variance};
 use super::shading::{Scratch, Setup, Surface};
 use super::{Reference, ReferenceError, ReferenceOptions, RenderControl, pixel_index};
 use crate::settings::Settings;
+use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
 /// Edge length of the square tiles the image is split into for the threads.
 const TILE: u32 = 16;
+/// Scenes with more triangles build no direction grids: most of their cells
+/// would list more than `grid::MAX_LIST` and defer to the BVH anyway, and
+/// the packets of a pixel's rays go through the BVH faster than building
+/// the grids takes.
+const GRID_MAX_TRIANGLES: usize = 16_384;
 
 impl Reference {
     /// Renders the image, in parallel over tiles, reporting progress and
@@ -27,16 +34,18 @@ impl Reference {
         let start = Instant::now();
         let mut setup = Setup::new(settings, options.light_samples, options.seed, &self.materials);
         // Every primary ray leaves the eye and every point-light shadow ray
-        // ends at the light: both are cast through direction grids there.
-        let light_grid = setup.shadows && !setup.is_sphere_light();
+        // ends at the light: both are cast through direction grids there,
+        // unless the scene is so large that their cells would be crowded.
+        let grids = self.bvh_triangles.len() <= GRID_MAX_TRIANGLES;
+        let light_grid = grids && setup.shadows && !setup.is_sphere_light();
         let (eye_grid, light_grid) = rayon::join(
-            || DirectionGrid::new(setup.rays.eye, &self.bvh_triangles, |_| true),
+            || grids.then(|| DirectionGrid::new(setup.rays.eye, &self.bvh_triangles, |_| true)),
             || {
                 light_grid
                     .then(|| DirectionGrid::new(setup.light_position, &self.bvh_triangles, |t| t.occludes))
             },
         );
-        (setup.eye_grid, setup.light_grid) = (Some(eye_grid), light_grid);
+        (setup.eye_grid, setup.light_grid) = (eye_grid, light_grid);
         let setup = setup;
         let (width, height) = (setup.width, setup.height);
         let tiles: Vec<(u32, u32)> = (0..height.div_ceil(TILE))
@@ -139,13 +148,23 @@ impl Reference {
             .as_ref()
             .filter(|_| n > 1)
             .and_then(|grid| grid.pixel_cell(&setup.rays, x, y));
+        // Crowded cells (or none): the pixel's rays go through the BVH
+        // together, as one packet in the cone of its corner rays.
+        let packet = n > 1
+            && setup.eye_grid.as_ref().is_none_or(|grid| {
+                let centre = cell.or_else(|| grid.cell_of(setup.rays.towards(x + 0.5, y + 0.5)));
+                centre.is_none_or(|c| grid.is_crowded(c))
+            });
         let PixelBuffers {
             samples,
             luminance: sample_luminance,
             scratch,
+            directions,
+            packet: primary,
         } = buffers;
         samples.clear();
-        for (s, stratum) in spp.cells().enumerate() {
+        directions.clear();
+        let mut rngs = spp.cells().enumerate().map(|(s, stratum)| {
             let mut rng = Rng::new(setup.seed, pixel, s as u64);
             // DESIGN.md: one sample per pixel is the pixel centre.
             let (dx, dy) = if n == 1 {
@@ -153,11 +172,35 @@ impl Reference {
             } else {
                 spp.jittered(stratum, &mut rng)
             };
-            samples.push((self.surface(setup, x + dx, y + dy, cell), rng));
+            (x + dx, y + dy, rng)
+        });
+        if packet {
+            for (sx, sy, rng) in rngs {
+                directions.push(setup.rays.towards(sx, sy));
+                samples.push((None, rng));
+            }
+            let corners = [(x, y), (x + 1.0, y), (x + 1.0, y + 1.0), (x, y + 1.0)];
+            let cone = Cone::spanned(setup.rays.eye, corners.map(|(cx, cy)| setup.rays.towards(cx, cy)));
+            self.bvh.closest_hits_in_cone(&cone, directions, primary);
+            for ((surface, _), (&towards, hit)) in
+                samples.iter_mut().zip(directions.iter().zip(primary.hits.iter()))
+            {
+                *surface = hit.map(|hit| self.surface_at(setup, towards, hit));
+            }
+        } else {
+            for (sx, sy, rng) in &mut rngs {
+                samples.push((self.surface(setup, sx, sy, cell), rng));
+            }
         }
         let mut sum = [0.0; 3];
         let (mut hits, mut visibility, mut variance) = (0u32, 0.0, 0.0);
         let (mut shadow_rays, mut noise_known) = (0, true);
+        if setup.shadows && !setup.is_sphere_light() {
+            let origins = samples
+                .iter()
+                .filter_map(|(s, _)| s.as_ref()?.shadow_ray_origin(setup.light_position));
+            scratch.light_packet.reset(origins);
+        }
         sample_luminance.clear();
         for (surface, rng) in samples.iter_mut() {
             let Some(surface) = surface else {
@@ -209,6 +252,9 @@ struct PixelBuffers {
     /// Each sample's luminance, for the noise estimate.
     luminance: Vec<f64>,
     scratch: Scratch,
+    /// A packet's directions and closest hits.
+    directions: Vec<DVec3>,
+    packet: PrimaryPacket,
 }
 
 struct Pixel {

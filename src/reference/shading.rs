@@ -21,8 +21,10 @@
 //! from the origin it is 1 nm: no occluder closer than that exists in a scene.
 
 use super::Reference;
+use super::bvh::Hit;
 use super::grid::{Answer, Cell, DirectionGrid};
 use super::image::luminance;
+use super::light_packet::LightPacket;
 use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
 use super::spectral::SpectralLight;
 use crate::colour::ColourModel;
@@ -173,6 +175,8 @@ pub(super) struct Scratch {
     y: Vec<f64>,
     /// Occluders near the shadow rays of one shading point.
     candidates: Vec<u32>,
+    /// A pixel's shadow rays towards a point light.
+    pub light_packet: LightPacket,
 }
 
 /// Gathered occluders beyond this many: each shadow ray goes through the BVH.
@@ -211,6 +215,14 @@ pub(super) struct Surface {
     shadowed: bool,
 }
 
+impl Surface {
+    /// Where its shadow ray to a point light at `light` starts, None when
+    /// it casts none (nearly certainly: a light on its horizon may go either way).
+    pub(super) fn shadow_ray_origin(&self, light: DVec3) -> Option<DVec3> {
+        (self.shadowed && self.n.dot(light - self.p) > 0.0).then_some(self.shadow_origin)
+    }
+}
+
 impl Reference {
     /// The surface seen through image point (x, y) (pixels, centres at
     /// i + 0.5); None on background. `cell`: the eye grid's cell of the
@@ -231,6 +243,13 @@ impl Reference {
                 .bvh
                 .closest_hit(setup.rays.eye, towards, 0.0, f64::INFINITY)?,
         };
+        Some(self.surface_at(setup, towards, hit))
+    }
+
+    /// The surface where the primary ray along `towards` (not normalized)
+    /// lands, its closest hit being `hit`.
+    #[inline(always)]
+    pub(super) fn surface_at(&self, setup: &Setup, towards: DVec3, hit: Hit) -> Surface {
         let length = towards.length();
         let tri = &self.triangles[hit.triangle];
         let object = &self.objects[tri.object];
@@ -273,7 +292,7 @@ impl Reference {
             Some(v) if setup.use_scene_materials => v as f64,
             _ => default,
         };
-        Some(Surface {
+        Surface {
             triangle: hit.triangle,
             distance_m: hit.at.t * length,
             p,
@@ -290,7 +309,7 @@ impl Reference {
             },
             shadow_origin: p + geometric_normal * tri.shadow_offset_m,
             shadowed: setup.shadows && object.receives_shadows,
-        })
+        }
     }
 
     /// Everything about the primary sample through (x, y): the pixel probe.
@@ -326,7 +345,7 @@ impl Reference {
 
     /// Whether the segment from the shadow origin to the point light is
     /// blocked, through the light's grid when there is one.
-    fn blocked_from_light(&self, setup: &Setup, s: &Surface) -> bool {
+    fn blocked_from_light(&self, setup: &Setup, s: &Surface, packet: &mut LightPacket) -> bool {
         let t_max = 1.0 - STOP_SHORT_REL;
         // With the light on the lifted side of the hit triangle's plane, by
         // more than the offset and the rounding of the dot product, the
@@ -340,7 +359,9 @@ impl Reference {
             .map(|g| g.blocked_towards_centre(&self.bvh_triangles, s.shadow_origin, t_max, own))
         {
             Some(Answer::Known(blocked)) => blocked,
-            _ => self.blocked(s, setup.light_position),
+            _ => packet
+                .blocked(&self.bvh, setup.light_position, s.shadow_origin)
+                .unwrap_or_else(|| self.blocked(s, setup.light_position)),
         }
     }
 
@@ -355,7 +376,7 @@ impl Reference {
     /// L / (c · colour) = (f_d + f_s)(l) · E · V, with V from one shadow ray;
     /// the BRDF is evaluated only where light arrives.
     #[inline(always)]
-    fn point_light(&self, setup: &Setup, s: &Surface) -> LightEstimate {
+    fn point_light(&self, setup: &Setup, s: &Surface, packet: &mut LightPacket) -> LightEstimate {
         let q = setup.light_position;
         let inc = incidence(s.p, s.n, q);
         let (visibility, shadow_rays) = if !s.shadowed {
@@ -363,7 +384,7 @@ impl Reference {
         } else if inc.cos_theta <= 0.0 {
             // Attached shadow: the light is below the surface's horizon.
             (0.0, 0)
-        } else if self.blocked_from_light(setup, s) {
+        } else if self.blocked_from_light(setup, s, packet) {
             (0.0, 1)
         } else {
             (1.0, 1)
@@ -393,13 +414,13 @@ impl Reference {
         scratch: &mut Scratch,
     ) -> LightEstimate {
         if !setup.is_sphere_light() {
-            return self.point_light(setup, s);
+            return self.point_light(setup, s, &mut scratch.light_packet);
         }
         let (q, radius) = (setup.light_position, setup.radius_m);
         // Every shadow ray of this point runs from its shadow origin to the
         // sphere: gather the occluders near that path once, then test each
         // ray against those few (or, when there are many, through the BVH).
-        let Scratch { y, candidates } = scratch;
+        let Scratch { y, candidates, .. } = scratch;
         let gathered = s.shadowed
             && self
                 .bvh

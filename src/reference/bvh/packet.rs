@@ -1,0 +1,304 @@
+//! Packets: rays that all lie in one convex cone from its apex (a pixel's
+//! primary samples lie in the cone of its four corner rays from the eye; a
+//! pixel's shadow rays to a point light, in the cone from the light around
+//! their origins) walk the BVH together. A node is entered when its box
+//! meets the cone no deeper than the deepest ray still needs; a triangle
+//! outside the cone is passed over, and each one met is tested, in f64 by
+//! the same watertight test, by every ray of the packet that can still
+//! reach it.
+//!
+//! Every filter is conservative, so each ray gets exactly what it gets on
+//! its own ([`TriangleBvh::closest_hit`], [`TriangleBvh::occluded`]) and
+//! what testing every triangle gives it:
+//! - a ray inside the cone only meets boxes and triangles that meet the
+//!   cone; boxes are padded by [`super::PAD`] of the scene's extent, and
+//!   both tests allow for the rounding of the planes and distances (10⁻¹²
+//!   of the distances, far above it);
+//! - depths are measured from the apex along the cone's axis a: a point at
+//!   t along a primary ray d has depth t (d · a), and a shadow ray's points
+//!   lie between the light (depth 0) and its origin; a box or triangle whose
+//!   least depth is beyond what a ray can reach holds nothing for it, and
+//!   ties are still tested, so the lowest index wins among equal distances.
+
+use super::{Hit, TRAVERSAL, TriangleBvh, closer};
+use crate::reference::intersect::{ShearedRay, with_axes};
+// `UVec2` is named inside obvhs's `traverse!` macro.
+use glam::{DVec3, UVec2};
+use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
+
+/// Relative allowance for the rounding of depths and plane distances.
+const ROUNDING: f64 = 1e-12;
+
+/// A cone of directions from its apex: what every ray of a packet lies in.
+#[derive(Clone, Copy, Debug)]
+pub struct Cone {
+    apex: DVec3,
+    /// The inward normals of its four side planes through the apex.
+    planes: [DVec3; 4],
+    /// The axis depths are measured along (unit).
+    axis: DVec3,
+}
+
+impl Cone {
+    /// The cone spanned by four directions in order around it (the corner
+    /// rays of a pixel): every convex combination of them lies inside.
+    pub fn spanned(apex: DVec3, corners: [DVec3; 4]) -> Self {
+        let axis = (corners[0] + corners[1] + corners[2] + corners[3]).normalize();
+        let planes = std::array::from_fn(|k| {
+            let n = corners[k].cross(corners[(k + 1) % 4]);
+            if n.dot(axis) < 0.0 { -n } else { n }
+        });
+        Self { apex, planes, axis }
+    }
+
+    /// A cone from `apex` holding every point of `points` (at least one),
+    /// None when they do not all lie on one side of a plane through it.
+    pub fn around(apex: DVec3, points: impl Iterator<Item = DVec3> + Clone) -> Option<Self> {
+        let axis = points
+            .clone()
+            .fold(DVec3::ZERO, |s, p| s + (p - apex).normalize_or_zero())
+            .try_normalize()?;
+        let (u, v) = axis.any_orthonormal_pair();
+        let (mut s0, mut s1, mut r0, mut r1) =
+            (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+        for p in points {
+            let w = p - apex;
+            let along = w.dot(axis);
+            if along <= 0.0 || !along.is_finite() {
+                return None;
+            }
+            let (s, r) = (w.dot(u) / along, w.dot(v) / along);
+            (s0, s1, r0, r1) = (s0.min(s), s1.max(s), r0.min(r), r1.max(r));
+        }
+        // Widened by the rounding of the slopes.
+        let widen = |x: f64| ROUNDING * (1.0 + x.abs());
+        let (s0, s1, r0, r1) = (s0 - widen(s0), s1 + widen(s1), r0 - widen(r0), r1 + widen(r1));
+        Some(Self {
+            apex,
+            planes: [u - axis * s0, axis * s1 - u, v - axis * r0, axis * r1 - v],
+            axis,
+        })
+    }
+
+    pub fn axis(&self) -> DVec3 {
+        self.axis
+    }
+
+    /// Whether the triangle (corners relative to the apex) lies wholly
+    /// outside one side plane, `slack` allowed.
+    #[inline(always)]
+    fn misses(&self, relative: &[DVec3; 3], slack: f64) -> bool {
+        self.planes.iter().any(|&n| {
+            let s = slack * n.abs().element_sum();
+            relative.iter().all(|p| n.dot(*p) < -s)
+        })
+    }
+}
+
+/// The rays of a packet: what each can still reach, and how to test it.
+pub trait Rays {
+    /// Each ray's deepest depth that still matters (negative: done).
+    fn limits(&self) -> &[f64];
+    /// Tests the triangle in leaf slot `slot` (corners `relative` to the
+    /// apex, least depth `nearest`) against every ray that can reach it.
+    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64);
+}
+
+impl TriangleBvh {
+    /// Walks the BVH with a packet of rays inside `cone`.
+    pub fn walk_cone(&self, cone: &Cone, rays: &mut impl Rays) {
+        let Some(bvh) = self.bvh.as_ref() else {
+            return;
+        };
+        let frame = FrameCone {
+            cone: *cone,
+            apex_size: (cone.apex - self.centre).abs().max_element(),
+        };
+        let deepest = |limits: &[f64]| limits.iter().fold(f64::NEG_INFINITY, |m, &l| m.max(l));
+        let mut farthest = deepest(rays.limits());
+        TRAVERSAL.with_borrow_mut(|state| {
+            state.reinit(cone.axis.as_vec3a());
+            let mut node;
+            obvhs::traverse!(
+                bvh,
+                node,
+                state,
+                frame.child_mask(self, node, farthest, state.oct_inv4),
+                {
+                    let slot = state.primitive_id as usize;
+                    let relative = self.corners[slot].map(|p| p - cone.apex);
+                    let slack = ROUNDING * relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+                    if !cone.misses(&relative, slack) {
+                        let nearest = relative
+                            .iter()
+                            .fold(f64::INFINITY, |m, p| m.min(p.dot(cone.axis)))
+                            - slack;
+                        if nearest <= farthest {
+                            rays.test(self, slot, &relative, nearest);
+                            farthest = deepest(rays.limits());
+                            if farthest < 0.0 {
+                                break;
+                            }
+                        }
+                    }
+                }
+            );
+        });
+    }
+
+    /// The closest hit, t > 0, of each ray from the cone's apex along
+    /// `directions` (each inside the cone), into `hits`: what
+    /// [`Self::closest_hit`] gives each with t ∈ (0, ∞).
+    pub fn closest_hits_in_cone(&self, cone: &Cone, directions: &[DVec3], packet: &mut PrimaryPacket) {
+        packet.rays.clear();
+        packet.along.clear();
+        packet.limits.clear();
+        packet.hits.clear();
+        for &d in directions {
+            packet.rays.push(ShearedRay::new(cone.apex, d));
+            packet.along.push(d.dot(cone.axis) * (1.0 + ROUNDING));
+            packet.limits.push(f64::INFINITY);
+            packet.hits.push(None);
+        }
+        self.walk_cone(cone, packet);
+    }
+
+    /// Whether each segment from `origins[i]` to `target`, t ∈ (0, t_max)
+    /// along target − origin, is blocked, into `blocked`: what
+    /// [`Self::occluded`] gives each. `cone`: from `target` around the origins.
+    pub fn occluded_in_cone(&self, cone: &Cone, origins: &[DVec3], t_max: f64, packet: &mut ShadowPacket) {
+        packet.rays.clear();
+        packet.limits.clear();
+        packet.t_max = t_max;
+        for &o in origins {
+            packet.rays.push(ShearedRay::new(o, cone.apex - o));
+            let depth = (o - cone.apex).dot(cone.axis);
+            packet
+                .limits
+                .push(depth + ROUNDING * (o - cone.apex).abs().element_sum());
+        }
+        self.walk_cone(cone, packet);
+    }
+}
+
+/// Primary rays from one point: each one's closest hit so far.
+#[derive(Debug, Default)]
+pub struct PrimaryPacket {
+    rays: Vec<ShearedRay>,
+    /// d · axis (rounded up) per ray: depth = t · along.
+    along: Vec<f64>,
+    limits: Vec<f64>,
+    pub hits: Vec<Option<Hit>>,
+}
+
+impl Rays for PrimaryPacket {
+    fn limits(&self) -> &[f64] {
+        &self.limits
+    }
+
+    #[inline(always)]
+    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64) {
+        let triangle = bvh.original[slot];
+        for (k, ray) in self.rays.iter().enumerate() {
+            if nearest > self.limits[k] {
+                continue;
+            }
+            let best = &mut self.hits[k];
+            let limit = best.map_or(f64::INFINITY, |b| b.at.t.next_up());
+            let found =
+                with_axes!(ray.axes(), KZ, SWAP => ray.intersect_in::<KZ, SWAP>(relative, 0.0, limit));
+            if let Some(at) = found
+                && best.is_none_or(|b| closer(at, triangle, b))
+            {
+                *best = Some(Hit { triangle, at });
+                self.limits[k] = at.t * self.along[k] * (1.0 + ROUNDING);
+            }
+        }
+    }
+}
+
+/// Shadow rays to one point: blocked ones are done (limit −∞).
+#[derive(Debug, Default)]
+pub struct ShadowPacket {
+    rays: Vec<ShearedRay>,
+    limits: Vec<f64>,
+    t_max: f64,
+}
+
+impl ShadowPacket {
+    /// Whether ray i was found blocked.
+    pub fn blocked(&self, i: usize) -> bool {
+        self.limits[i] == f64::NEG_INFINITY
+    }
+}
+
+impl Rays for ShadowPacket {
+    fn limits(&self) -> &[f64] {
+        &self.limits
+    }
+
+    #[inline(always)]
+    fn test(&mut self, bvh: &TriangleBvh, slot: usize, _: &[DVec3; 3], nearest: f64) {
+        if !bvh.occludes[slot] {
+            return;
+        }
+        let corners = &bvh.corners[slot];
+        for (ray, limit) in self.rays.iter().zip(self.limits.iter_mut()) {
+            if nearest <= *limit && ray.hits(corners, 0.0, self.t_max) {
+                *limit = f64::NEG_INFINITY;
+            }
+        }
+    }
+}
+
+/// The cone, for boxes of the BVH's normalized frame.
+struct FrameCone {
+    cone: Cone,
+    /// The apex's distance from the frame's centre, for the rounding allowance.
+    apex_size: f64,
+}
+
+impl FrameCone {
+    /// obvhs's hit mask of the children of `node` whose boxes meet the cone
+    /// with a least depth no deeper than `farthest`.
+    #[inline(always)]
+    fn child_mask(&self, bvh: &TriangleBvh, node: &CwBvhNode, farthest: f64, oct_inv4: u32) -> u32 {
+        let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
+        let scale = 1.0 / bvh.per_scale;
+        // Boxes decoded exactly in f64, relative to the apex, in world units.
+        let extent = node.compute_extent().as_dvec3() * scale;
+        let p = node.p.as_dvec3() * scale + bvh.centre - self.cone.apex;
+        let mut hit_mask = 0;
+        for child in 0..8 {
+            if node.is_child_empty(child) {
+                continue;
+            }
+            let q = |v: &[u8; 8]| v[child] as f64;
+            let lo =
+                p + extent * DVec3::new(q(&node.child_min_x), q(&node.child_min_y), q(&node.child_min_z));
+            let hi =
+                p + extent * DVec3::new(q(&node.child_max_x), q(&node.child_max_y), q(&node.child_max_z));
+            if self.meets(lo, hi, farthest) {
+                hit_mask |= extract_byte64(child_bits8, child) << extract_byte64(bit_index8, child);
+            }
+        }
+        hit_mask
+    }
+
+    /// Whether the box (relative to the apex) meets the cone no deeper than `farthest`.
+    #[inline(always)]
+    fn meets(&self, lo: DVec3, hi: DVec3, farthest: f64) -> bool {
+        let slack = ROUNDING * (lo.abs().max(hi.abs()).max_element() + self.apex_size);
+        let outside = |n: DVec3| {
+            // The box's corner farthest along n.
+            let far = DVec3::select(n.cmpgt(DVec3::ZERO), hi, lo);
+            n.dot(far) < -slack * n.abs().element_sum()
+        };
+        if self.cone.planes.iter().any(|&n| outside(n)) {
+            return false;
+        }
+        let a = self.cone.axis;
+        let near = DVec3::select(a.cmpgt(DVec3::ZERO), lo, hi);
+        a.dot(near) - slack <= farthest
+    }
+}

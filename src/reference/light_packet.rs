@@ -1,0 +1,47 @@
+//! A pixel's shadow rays towards a point light, cast together: they all
+//! end at the light and start at the pixel's surface points, so they lie in
+//! one narrow cone from the light, and walk the BVH as one packet (see
+//! [`TriangleBvh::occluded_in_cone`]), lazily, at the first ray the light's
+//! grid cannot answer. Each ray is still decided by the same f64 test, so
+//! every answer is the one the BVH gives that ray on its own.
+
+use super::bvh::{Cone, ShadowPacket, TriangleBvh};
+use super::shading::STOP_SHORT_REL;
+use glam::DVec3;
+
+/// Fewer shadow rays than this in a pixel: each on its own.
+const MIN_RAYS: usize = 4;
+
+#[derive(Debug, Default)]
+pub(super) struct LightPacket {
+    origins: Vec<DVec3>,
+    /// Whether the packet was cast (None: not yet) and could be.
+    cast: Option<bool>,
+    packet: ShadowPacket,
+}
+
+impl LightPacket {
+    /// A new packet for the shadow rays from these origins.
+    pub fn reset(&mut self, origins: impl Iterator<Item = DVec3>) {
+        self.origins.clear();
+        self.origins.extend(origins);
+        self.cast = None;
+    }
+
+    /// Whether the shadow ray from `origin` (one of the packet's) to the
+    /// light at `light` is blocked; None when the packet cannot tell.
+    pub fn blocked(&mut self, bvh: &TriangleBvh, light: DVec3, origin: DVec3) -> Option<bool> {
+        if self.origins.len() < MIN_RAYS {
+            return None;
+        }
+        let cast = *self.cast.get_or_insert_with(|| {
+            let cone = Cone::around(light, self.origins.iter().copied());
+            if let Some(cone) = &cone {
+                bvh.occluded_in_cone(cone, &self.origins, 1.0 - STOP_SHORT_REL, &mut self.packet);
+            }
+            cone.is_some()
+        });
+        let i = self.origins.iter().position(|&o| o == origin)?;
+        cast.then(|| self.packet.blocked(i))
+    }
+}

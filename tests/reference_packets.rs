@@ -1,0 +1,246 @@
+//! Packets of rays walk the BVH together and still give every ray exactly
+//! what it gets on its own and what testing every triangle gives: the same
+//! closest hit (distance and barycentrics bit for bit, the lowest index among
+//! equal distances) and the same shadow-ray answer. The scene is a bumpy
+//! height field (every edge and vertex shared), a few floating triangles and
+//! a box; the rays include rays aimed exactly at vertices and edges, rays
+//! that miss, narrow packets (a pixel's samples) and packets whose rays
+//! diverge across the whole scene.
+
+use glam::DVec3;
+use lumlab::reference::bvh::{
+    BvhTriangle, Cone, PrimaryPacket, ShadowPacket, TriangleBvh, closest_hit_brute_force,
+    occluded_brute_force,
+};
+use lumlab::reference::sampling::Rng;
+
+/// Vertices per side of the height field.
+const SIDE: usize = 24;
+
+/// The height field's vertex (i, j): 8 m across, heights up to 0.6 m.
+fn vertex(i: usize, j: usize, heights: &[f64]) -> DVec3 {
+    let step = 8.0 / (SIDE - 1) as f64;
+    DVec3::new(
+        -4.0 + i as f64 * step,
+        heights[j * SIDE + i],
+        -4.0 + j as f64 * step,
+    )
+}
+
+fn scene(rng: &mut Rng) -> Vec<BvhTriangle> {
+    let heights: Vec<f64> = (0..SIDE * SIDE).map(|_| 0.6 * rng.next_f64()).collect();
+    let mut corners = Vec::new();
+    for j in 0..SIDE - 1 {
+        for i in 0..SIDE - 1 {
+            let [a, b, c, d] =
+                [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)].map(|(x, z)| vertex(x, z, &heights));
+            corners.push([a, d, c]);
+            corners.push([a, c, b]);
+        }
+    }
+    let mut random = |lo: f64, hi: f64| lo + (hi - lo) * rng.next_f64();
+    for _ in 0..40 {
+        let a = DVec3::new(random(-4.0, 4.0), random(0.8, 2.5), random(-4.0, 4.0));
+        let spread = random(0.05, 1.0);
+        let mut near = || a + DVec3::new(random(-1.0, 1.0), random(-0.3, 0.3), random(-1.0, 1.0)) * spread;
+        corners.push([a, near(), near()]);
+    }
+    // A unit box standing on the field (its faces share edges and corners).
+    let b = |x: f64, y: f64, z: f64| DVec3::new(0.5 + x, 0.6 + y, -1.0 + z);
+    let c = [
+        b(0., 0., 0.),
+        b(1., 0., 0.),
+        b(1., 1., 0.),
+        b(0., 1., 0.),
+        b(0., 0., 1.),
+        b(1., 0., 1.),
+        b(1., 1., 1.),
+        b(0., 1., 1.),
+    ];
+    for [p, q, r, s] in [
+        [0, 1, 2, 3],
+        [5, 4, 7, 6],
+        [4, 0, 3, 7],
+        [1, 5, 6, 2],
+        [3, 2, 6, 7],
+        [4, 5, 1, 0],
+    ] {
+        corners.push([c[p], c[q], c[r]]);
+        corners.push([c[p], c[r], c[s]]);
+    }
+    corners
+        .into_iter()
+        .enumerate()
+        .map(|(i, corners)| BvhTriangle {
+            corners,
+            occludes: i % 3 != 0,
+        })
+        .collect()
+}
+
+/// A point of a random triangle: a corner, a point of an edge, or inside.
+fn point_on(triangles: &[BvhTriangle], rng: &mut Rng) -> DVec3 {
+    let [a, b, c] = triangles[(rng.next_f64() * triangles.len() as f64) as usize % triangles.len()].corners;
+    match (rng.next_f64() * 3.0) as u32 {
+        0 => a,
+        1 => a.lerp(b, rng.next_f64()),
+        _ => a.lerp(b, rng.next_f64()).lerp(c, rng.next_f64()),
+    }
+}
+
+/// Points on triangles near a random one (within `reach` m), some far off
+/// it when `reach` is large: what a narrow or a diverging packet aims at.
+fn targets(triangles: &[BvhTriangle], rng: &mut Rng, reach: f64, count: usize) -> Vec<DVec3> {
+    let first = point_on(triangles, rng);
+    let mut out = vec![first];
+    while out.len() < count {
+        let p = point_on(triangles, rng);
+        if (p - first).length() <= reach {
+            out.push(p);
+        } else {
+            // Somewhere near the first one, on no triangle in particular.
+            let jitter = DVec3::new(rng.next_f64() - 0.5, rng.next_f64() - 0.5, rng.next_f64() - 0.5);
+            out.push(first + jitter * reach);
+        }
+    }
+    out
+}
+
+fn random_apex(rng: &mut Rng) -> DVec3 {
+    DVec3::new(
+        12.0 * rng.next_f64() - 6.0,
+        1.0 + 5.0 * rng.next_f64(),
+        12.0 * rng.next_f64() - 6.0,
+    )
+}
+
+#[test]
+fn primary_packets_find_what_each_ray_and_brute_force_find() {
+    let mut rng = Rng::new(21, 0, 0);
+    let triangles = scene(&mut rng);
+    let bvh = TriangleBvh::new(&triangles);
+    let mut packet = PrimaryPacket::default();
+    let mut hits = 0;
+    for case in 0..300 {
+        let apex = random_apex(&mut rng);
+        let reach = [0.01, 0.2, 3.0, 20.0][case % 4];
+        let points = targets(&triangles, &mut rng, reach, 24);
+        let Some(cone) = Cone::around(apex, points.iter().copied()) else {
+            continue;
+        };
+        // Rays at the targets (vertices, edges), not normalized, and a few
+        // between them.
+        let mut directions: Vec<DVec3> = points
+            .iter()
+            .map(|&p| (p - apex) * (0.5 + rng.next_f64()))
+            .collect();
+        for k in 0..8 {
+            let (a, b) = (directions[k], directions[k + 8]);
+            directions.push(a.normalize().lerp(b.normalize(), rng.next_f64()));
+        }
+        bvh.closest_hits_in_cone(&cone, &directions, &mut packet);
+        for (d, found) in directions.iter().zip(&packet.hits) {
+            let alone = bvh.closest_hit(apex, *d, 0.0, f64::INFINITY);
+            let brute = closest_hit_brute_force(&triangles, apex, *d, 0.0, f64::INFINITY);
+            assert_eq!(
+                *found, alone,
+                "case {case}: packet against the ray alone, {apex} along {d}"
+            );
+            assert_eq!(alone, brute, "case {case}: the ray alone against brute force");
+            hits += usize::from(found.is_some());
+        }
+    }
+    assert!(hits > 3000, "too few hits to tell: {hits}");
+}
+
+#[test]
+fn pixel_cones_hold_their_samples_and_find_what_brute_force_finds() {
+    // As the reference casts a pixel: four corner rays span the cone, the
+    // samples are bilinear mixes of them, at the packet's edges too.
+    let mut rng = Rng::new(22, 0, 0);
+    let triangles = scene(&mut rng);
+    let bvh = TriangleBvh::new(&triangles);
+    let mut packet = PrimaryPacket::default();
+    for case in 0..300 {
+        let apex = random_apex(&mut rng);
+        let centre = point_on(&triangles, &mut rng) - apex;
+        let (u, v) = centre.normalize().any_orthonormal_pair();
+        let size = [1e-4, 1e-3, 0.05, 0.5][case % 4] * centre.length();
+        let corner = |x: f64, y: f64| centre + u * (x * size) + v * (y * size);
+        let corners = [
+            corner(-1.0, -1.0),
+            corner(1.0, -1.0),
+            corner(1.0, 1.0),
+            corner(-1.0, 1.0),
+        ];
+        let cone = Cone::spanned(apex, corners);
+        let mut directions: Vec<DVec3> = corners.to_vec();
+        directions.push(centre);
+        for _ in 0..27 {
+            let (x, y) = (2.0 * rng.next_f64() - 1.0, 2.0 * rng.next_f64() - 1.0);
+            directions.push(corner(x, y));
+        }
+        bvh.closest_hits_in_cone(&cone, &directions, &mut packet);
+        for (d, found) in directions.iter().zip(&packet.hits) {
+            let brute = closest_hit_brute_force(&triangles, apex, *d, 0.0, f64::INFINITY);
+            assert_eq!(*found, brute, "case {case}: {apex} along {d}");
+        }
+    }
+}
+
+#[test]
+fn shadow_packets_block_what_each_ray_and_brute_force_block() {
+    let mut rng = Rng::new(23, 0, 0);
+    let triangles = scene(&mut rng);
+    let bvh = TriangleBvh::new(&triangles);
+    let mut packet = ShadowPacket::default();
+    let (mut blocked, mut total) = (0, 0);
+    for case in 0..300 {
+        let light = random_apex(&mut rng);
+        let reach = [0.01, 0.2, 3.0, 20.0][case % 4];
+        // Origins on triangles (segments from vertices and edges), and
+        // the light's side of them; segments that end exactly on a triangle
+        // (t_max = 1) and that stop short of the light.
+        let origins = targets(&triangles, &mut rng, reach, 24);
+        let Some(cone) = Cone::around(light, origins.iter().copied()) else {
+            continue;
+        };
+        for t_max in [1.0, 1.0 - 1e-9] {
+            bvh.occluded_in_cone(&cone, &origins, t_max, &mut packet);
+            for (i, &o) in origins.iter().enumerate() {
+                let alone = bvh.occluded(o, light - o, 0.0, t_max);
+                let brute = occluded_brute_force(&triangles, o, light - o, 0.0, t_max);
+                assert_eq!(packet.blocked(i), alone, "case {case}: from {o} to {light}");
+                assert_eq!(alone, brute, "case {case}: the ray alone against brute force");
+                blocked += usize::from(alone);
+                total += 1;
+            }
+        }
+    }
+    assert!(
+        blocked > total / 10 && blocked < total * 9 / 10,
+        "{blocked} of {total} blocked"
+    );
+}
+
+#[test]
+fn a_packet_looking_away_or_at_nothing_finds_nothing() {
+    let mut rng = Rng::new(24, 0, 0);
+    let triangles = scene(&mut rng);
+    let bvh = TriangleBvh::new(&triangles);
+    let apex = DVec3::new(0.0, 3.0, 0.0);
+    let up = [
+        DVec3::new(-0.1, 1.0, -0.1),
+        DVec3::new(0.1, 1.0, -0.1),
+        DVec3::new(0.1, 1.0, 0.1),
+        DVec3::new(-0.1, 1.0, 0.1),
+    ];
+    let mut packet = PrimaryPacket::default();
+    bvh.closest_hits_in_cone(&Cone::spanned(apex, up), &up, &mut packet);
+    assert!(packet.hits.iter().all(Option::is_none));
+    let empty = TriangleBvh::new(&[]);
+    let down = up.map(|d| -d);
+    empty.closest_hits_in_cone(&Cone::spanned(apex, down), &down, &mut packet);
+    assert!(packet.hits.iter().all(Option::is_none));
+    assert!(Cone::around(apex, [apex + DVec3::X, apex - DVec3::X].into_iter()).is_none());
+}
