@@ -498,3 +498,93 @@ visibility-exact = exact
 visibility-accumulation = { $frames } / { $max } frames × { $rays } rays, { $noise }
 probe-v-gpu-traced = V (GPU ray traced)
 probe-v-gpu-traced-tip = Visibility traced on the GPU in f32 through the BVH: exact for a point light, the mean of the accumulated frames' samples for a sphere light
+probe-xyz-tip = CIE 1931 XYZ of L (linear sRGB → XYZ, IEC 61966-2-1); under a spectral light the reference integrated S(λ) R(λ) against x̄, ȳ, z̄
+probe-delta-e-tip = ΔE2000 between the spectral result and the RGB product at this pixel (L · 2^EV in CIE Lab, the illuminant's white at Y = 1): below 1 invisible, above 3 another colour
+
+## Timings panel (timings.rs)
+
+timings-render-scale = render scale
+timings-dragging = (dragging)
+timings-full = (full)
+timings-render-scale-tip = Image side rendered / viewport side. While dragging, s = s_measured · √((budget − t_shadow) / t_pixels), budget { $budget } ms for { $fps } frames/s, at least { $min } %; full resolution as soon as the drag ends
+timings-drag-fps = frames/s (drag)
+timings-drag-fps-tip = Frames rendered per second during the last drag: 1 / (time between frames), smoothed
+timings-ui-pass = UI pass
+timings-ui-pass-tip = CPU time of the last UI frame, rendering calls included
+timings-since-previous = since previous
+timings-since-previous-tip = Time between the last two frames; the lab redraws only when something changes
+timings-half-a = Half A
+timings-half-b = Half B
+timings-render-tip = CPU time to encode and submit the frame
+timings-shadow = shadow
+timings-shadow-reused = reused (last draw { $time })
+timings-shadow-tip = GPU: drawing the depth map from the light (all layers); a reused map costs nothing
+timings-blur = blur
+timings-blur-tip = GPU: blurring the VSM/EVSM moments
+timings-shading = shading
+timings-shading-tip = GPU: the camera pass (BRDF, irradiance, shadow lookups)
+timings-display = display
+timings-display-tip = GPU: exposure, false colour, sRGB
+timings-gpu-total = GPU total
+timings-gpu-total-tip = Sum of the timed passes
+timings-shadow-map = shadow map
+timings-redrawn = redrawn this frame
+timings-reused = reused
+timings-shadow-map-tip = Redrawn only when the light, the geometry or the shadow settings change
+timings-layout = layout
+timings-layout-tip = One frustum fitted to the scene, or the cube faces that see geometry
+timings-casters = casters
+timings-casters-value = { $drawn } of { $total } ({ $layers })
+timings-casters-tip = Objects drawn into each layer: only those that can shadow a visible receiver
+timings-resolution = resolution
+timings-resolution-tip = Shadow-map texels per side in use
+timings-near-far = near / far
+timings-near-far-tip = The camera's depth range, fitted to the scene
+timings-visible-objects = visible objects
+timings-visible-objects-tip = Objects inside the camera's frustum
+timings-adapter = adapter: { $adapter }
+timings-adapter-tip = The GPU adapter, its backend and driver
+timings-backend = backend
+timings-backend-tip = The graphics API wgpu runs on (WGPU_BACKEND chooses)
+timings-max-texture = max texture
+timings-max-texture-tip = Largest 2D texture side of this device
+timings-timestamps = timestamps
+timings-timestamps-yes = yes
+timings-timestamps-no = no (GPU times unavailable)
+timings-timestamps-tip = Timestamp queries give the per-pass GPU times
+
+## Colour panel (colour.rs)
+
+colour-model = Model
+colour-spectral = spectral
+colour-spectral-tip = XYZ = Σ S(λ) R(λ) (x̄, ȳ, z̄)(λ) Δλ, scaled so a perfect white has the light colour's luminance, then linear sRGB
+colour-rgb-approx = RGB approximation
+colour-rgb-approx-tip = The lecture's product: (light's linear sRGB at Y = 1) × luminance of the light colour × base colour, channel by channel
+colour-material = Material
+colour-material-tip = Its reflectance R(λ): measured for a ColorChecker patch, else uplifted from the base colour (Jakob & Hanika 2019)
+colour-illuminant = Illuminant
+colour-illuminant-tip = The light's spectrum S(λ) (CIE 015:2018 tables, or Planck). It keeps the luminance of the light colour: only the chromaticity changes
+colour-no-spectrum = RGB (no spectrum)
+colour-no-spectrum-tip = The light's RGB colour times each base colour: the lecture's model
+colour-d65-tip = CIE D65, average daylight
+colour-a-tip = CIE A, tungsten lamp (2856 K)
+colour-fl2-tip = CIE FL2, cool-white fluorescent
+colour-fl11-tip = CIE FL11, three-band fluorescent
+colour-led-b3-tip = CIE LED-B3, phosphor white LED
+colour-blackbody-at = Planckian radiator at { $temperature }
+colour-blackbody = blackbody
+colour-blackbody-tip = Planck's law: M(λ, T) ∝ λ⁻⁵ / (exp(c₂ / λT) − 1)
+colour-temperature = temperature T
+colour-temperature-tip = Colour temperature of the Planckian radiator (K)
+colour-relative = relative
+colour-rgb-product = RGB product
+colour-xyz-tip = Spectral XYZ = k Σ S R (x̄, ȳ, z̄), k = 100 / Σ S ȳ; ΔE2000 (CIE 2001) between the spectral result and the RGB product in CIE Lab, the illuminant's white as reference
+colour-delta-e-invisible = below 1: not visible
+colour-delta-e-visible = 1 to 3: visible side by side
+colour-delta-e-different = above 3: a different colour
+
+## Tour and dropped files (lab/tour.rs, lab/jobs.rs)
+
+scene-lecture-spheres = lecture spheres
+tour-status = tour { $step }/{ $count }: { $title } (Ctrl+Z to undo)
+status-drop-unknown = '{ $path }': drop a .gltf, .glb or .toml file

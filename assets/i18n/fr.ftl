@@ -504,3 +504,93 @@ visibility-exact = exact
 visibility-accumulation = { $frames } / { $max } images × { $rays } rayons, { $noise }
 probe-v-gpu-traced = V (lancer de rayons GPU)
 probe-v-gpu-traced-tip = Visibilité tracée sur le GPU en f32 à travers le BVH : exacte pour une lumière ponctuelle, moyenne des échantillons des images accumulées pour une lumière sphérique
+probe-xyz-tip = XYZ CIE 1931 de L (sRGB linéaire → XYZ, IEC 61966-2-1) ; sous une lumière spectrale, la référence a intégré S(λ) R(λ) contre x̄, ȳ, z̄
+probe-delta-e-tip = ΔE2000 entre le résultat spectral et le produit RVB en ce pixel (L · 2^EV dans CIE Lab, le blanc de l'illuminant à Y = 1) : sous 1 invisible, au-dessus de 3 une autre couleur
+
+## Timings panel (timings.rs)
+
+timings-render-scale = échelle de rendu
+timings-dragging = (glissement en cours)
+timings-full = (pleine)
+timings-render-scale-tip = Côté de l'image rendue / côté de la vue. Pendant un glissement, s = s_measured · √((budget − t_shadow) / t_pixels), budget de { $budget } ms pour { $fps } images/s, au moins { $min } % ; pleine résolution dès la fin du glissement
+timings-drag-fps = images/s (glissement)
+timings-drag-fps-tip = Images rendues par seconde pendant le dernier glissement : 1 / (temps entre deux images), lissé
+timings-ui-pass = passe d'interface
+timings-ui-pass-tip = Temps CPU de la dernière image de l'interface, appels de rendu compris
+timings-since-previous = depuis la précédente
+timings-since-previous-tip = Temps entre les deux dernières images ; le labo ne redessine que lorsque quelque chose change
+timings-half-a = Moitié A
+timings-half-b = Moitié B
+timings-render-tip = Temps CPU pour encoder et soumettre l'image
+timings-shadow = ombres
+timings-shadow-reused = réutilisée (dernier tracé { $time })
+timings-shadow-tip = GPU : tracé de la carte de profondeur vue de la lumière (toutes les couches) ; une carte réutilisée ne coûte rien
+timings-blur = flou
+timings-blur-tip = GPU : flou des moments VSM/EVSM
+timings-shading = ombrage
+timings-shading-tip = GPU : la passe caméra (BRDF, éclairement, lectures de la carte d'ombres)
+timings-display = affichage
+timings-display-tip = GPU : exposition, fausses couleurs, sRGB
+timings-gpu-total = total GPU
+timings-gpu-total-tip = Somme des passes chronométrées
+timings-shadow-map = carte d'ombres
+timings-redrawn = retracée à cette image
+timings-reused = réutilisée
+timings-shadow-map-tip = Retracée seulement quand la lumière, la géométrie ou les réglages d'ombre changent
+timings-layout = disposition
+timings-layout-tip = Un frustum ajusté à la scène, ou les faces du cube qui voient de la géométrie
+timings-casters = objets projetant une ombre
+timings-casters-value = { $drawn } sur { $total } ({ $layers })
+timings-casters-tip = Objets tracés dans chaque couche : seulement ceux qui peuvent ombrer un récepteur visible
+timings-resolution = résolution
+timings-resolution-tip = Texels par côté de la carte d'ombres utilisés
+timings-near-far = proche / lointain
+timings-near-far-tip = L'intervalle de profondeur de la caméra, ajusté à la scène
+timings-visible-objects = objets visibles
+timings-visible-objects-tip = Objets dans le frustum de la caméra
+timings-adapter = adaptateur : { $adapter }
+timings-adapter-tip = L'adaptateur GPU, son API graphique et son pilote
+timings-backend = API graphique
+timings-backend-tip = L'API graphique sur laquelle wgpu s'exécute (WGPU_BACKEND la choisit)
+timings-max-texture = texture max.
+timings-max-texture-tip = Le plus grand côté de texture 2D de ce périphérique
+timings-timestamps = horodatages
+timings-timestamps-yes = oui
+timings-timestamps-no = non (temps GPU indisponibles)
+timings-timestamps-tip = Les requêtes d'horodatage donnent les temps GPU de chaque passe
+
+## Colour panel (colour.rs)
+
+colour-model = Modèle
+colour-spectral = spectral
+colour-spectral-tip = XYZ = Σ S(λ) R(λ) (x̄, ȳ, z̄)(λ) Δλ, mis à l'échelle pour qu'un blanc parfait ait la luminance de la couleur de la lumière, puis converti en sRGB linéaire
+colour-rgb-approx = approximation RVB
+colour-rgb-approx-tip = Le produit du cours : (sRGB linéaire de la lumière à Y = 1) × luminance de la couleur de la lumière × couleur de base, canal par canal
+colour-material = Matériau
+colour-material-tip = Sa réflectance R(λ) : mesurée pour une pastille de ColorChecker, sinon reconstruite à partir de la couleur de base (Jakob & Hanika 2019)
+colour-illuminant = Illuminant
+colour-illuminant-tip = Le spectre S(λ) de la lumière (tables CIE 015:2018, ou Planck). Il conserve la luminance de la couleur de la lumière : seule la chromaticité change
+colour-no-spectrum = RVB (sans spectre)
+colour-no-spectrum-tip = La couleur RVB de la lumière multipliée par chaque couleur de base : le modèle du cours
+colour-d65-tip = CIE D65, lumière du jour moyenne
+colour-a-tip = CIE A, lampe à incandescence au tungstène (2856 K)
+colour-fl2-tip = CIE FL2, fluorescent blanc froid
+colour-fl11-tip = CIE FL11, fluorescent à trois bandes
+colour-led-b3-tip = CIE LED-B3, LED blanche à luminophore
+colour-blackbody-at = Radiateur de Planck à { $temperature }
+colour-blackbody = corps noir
+colour-blackbody-tip = Loi de Planck : M(λ, T) ∝ λ⁻⁵ / (exp(c₂ / λT) − 1)
+colour-temperature = température T
+colour-temperature-tip = Température de couleur du radiateur de Planck (K)
+colour-relative = relatif
+colour-rgb-product = produit RVB
+colour-xyz-tip = XYZ spectral = k Σ S R (x̄, ȳ, z̄), k = 100 / Σ S ȳ ; ΔE2000 (CIE 2001) entre le résultat spectral et le produit RVB dans CIE Lab, le blanc de l'illuminant servant de référence
+colour-delta-e-invisible = sous 1 : invisible
+colour-delta-e-visible = de 1 à 3 : visible côte à côte
+colour-delta-e-different = au-dessus de 3 : une autre couleur
+
+## Tour and dropped files (lab/tour.rs, lab/jobs.rs)
+
+scene-lecture-spheres = sphères du cours
+tour-status = visite { $step }/{ $count } : { $title } (Ctrl+Z pour annuler)
+status-drop-unknown = « { $path } » : déposez un fichier .gltf, .glb ou .toml

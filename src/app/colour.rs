@@ -10,6 +10,7 @@ use crate::colour::shading::{material_reflectance, pixel_delta_e, spectral_colou
 use crate::colour::tristimulus::{linear_srgb_to_xyz, srgb_encode};
 use crate::colour::{ColourModel, Illuminant, Spectrum};
 use crate::settings::ColourSettings;
+use crate::tr;
 use egui::{Color32, RichText};
 use egui_plot::{Legend, Line, Plot, PlotPoints};
 use glam::DVec3;
@@ -29,17 +30,11 @@ impl View for ColourPanel<'_> {
         illuminant_ui(ui, illuminant);
         if illuminant.is_some() {
             ui.horizontal(|ui| {
-                ui.label("Model");
-                ui.selectable_value(model, ColourModel::Spectral, "spectral")
-                    .on_hover_text(
-                        "XYZ = Σ S(λ) R(λ) (x̄, ȳ, z̄)(λ) Δλ, scaled so a perfect white has the light colour's \
-                     luminance, then linear sRGB",
-                    );
-                ui.selectable_value(model, ColourModel::RgbApprox, "RGB approximation")
-                    .on_hover_text(
-                        "The lecture's product: (light's linear sRGB at Y = 1) × luminance of the light \
-                         colour × base colour, channel by channel",
-                    );
+                ui.label(tr!("colour-model"));
+                ui.selectable_value(model, ColourModel::Spectral, tr!("colour-spectral"))
+                    .on_hover_text(tr!("colour-spectral-tip"));
+                ui.selectable_value(model, ColourModel::RgbApprox, tr!("colour-rgb-approx"))
+                    .on_hover_text(tr!("colour-rgb-approx-tip"));
             });
         }
         if self.materials.is_empty() {
@@ -50,7 +45,7 @@ impl View for ColourPanel<'_> {
             .data(|d| d.get_temp(id))
             .unwrap_or(0)
             .min(self.materials.len() - 1);
-        egui::ComboBox::from_label("Material")
+        egui::ComboBox::from_label(tr!("colour-material"))
             .selected_text(self.materials[chosen].0.clone())
             .show_ui(ui, |ui| {
                 for (i, (name, _)) in self.materials.iter().enumerate() {
@@ -58,10 +53,7 @@ impl View for ColourPanel<'_> {
                 }
             })
             .response
-            .on_hover_text(
-                "Its reflectance R(λ): measured for a ColorChecker patch, else uplifted from the base \
-                 colour (Jakob & Hanika 2019)",
-            );
+            .on_hover_text(tr!("colour-material-tip"));
         ui.data_mut(|d| d.insert_temp(id, chosen));
         let (name, base) = &self.materials[chosen];
         let reflectance = material_reflectance(name, *base);
@@ -72,15 +64,15 @@ impl View for ColourPanel<'_> {
 }
 
 fn illuminant_ui(ui: &mut egui::Ui, illuminant: &mut Option<Illuminant>) {
-    let name = illuminant.map_or_else(|| "RGB (no spectrum)".into(), Illuminant::name);
-    egui::ComboBox::from_label("Illuminant")
+    let name = illuminant.map_or_else(|| tr!("colour-no-spectrum"), Illuminant::name);
+    egui::ComboBox::from_label(tr!("colour-illuminant"))
         .selected_text(name)
         .show_ui(ui, |ui| {
-            ui.selectable_value(illuminant, None, "RGB (no spectrum)")
-                .on_hover_text("The light's RGB colour times each base colour: the lecture's model");
+            ui.selectable_value(illuminant, None, tr!("colour-no-spectrum"))
+                .on_hover_text(tr!("colour-no-spectrum-tip"));
             for i in Illuminant::NAMED {
                 ui.selectable_value(illuminant, Some(i), i.name())
-                    .on_hover_text(i.description());
+                    .on_hover_text(description(i));
             }
             let blackbody = Illuminant::Blackbody {
                 kelvin: DEFAULT_BLACKBODY_K,
@@ -88,27 +80,41 @@ fn illuminant_ui(ui: &mut egui::Ui, illuminant: &mut Option<Illuminant>) {
             if ui
                 .selectable_label(
                     matches!(illuminant, Some(Illuminant::Blackbody { .. })),
-                    "blackbody",
+                    tr!("colour-blackbody"),
                 )
-                .on_hover_text("Planck's law: M(λ, T) ∝ λ⁻⁵ / (exp(c₂ / λT) − 1)")
+                .on_hover_text(tr!("colour-blackbody-tip"))
                 .clicked()
             {
                 *illuminant = Some(blackbody);
             }
         })
         .response
-        .on_hover_text(
-            "The light's spectrum S(λ) (CIE 015:2018 tables, or Planck). It keeps the luminance of the \
-             light colour: only the chromaticity changes",
-        );
+        .on_hover_text(tr!("colour-illuminant-tip"));
     if let Some(Illuminant::Blackbody { kelvin }) = illuminant {
         ui.add(
             egui::Slider::new(kelvin, 1000.0..=25000.0)
                 .logarithmic(true)
                 .suffix(" K")
-                .text("temperature T"),
+                .text(tr!("colour-temperature")),
         )
-        .on_hover_text("Colour temperature of the Planckian radiator (K)");
+        .on_hover_text(tr!("colour-temperature-tip"));
+    }
+}
+
+/// What a named illuminant is, in the current language.
+fn description(illuminant: Illuminant) -> String {
+    match illuminant {
+        Illuminant::D65 => tr!("colour-d65-tip"),
+        Illuminant::A => tr!("colour-a-tip"),
+        Illuminant::Fl2 => tr!("colour-fl2-tip"),
+        Illuminant::Fl11 => tr!("colour-fl11-tip"),
+        Illuminant::LedB3 => tr!("colour-led-b3-tip"),
+        Illuminant::Blackbody { kelvin } => {
+            tr!(
+                "colour-blackbody-at",
+                temperature = format!("{} K", number(kelvin))
+            )
+        }
     }
 }
 
@@ -135,7 +141,7 @@ fn spectra_plot(ui: &mut egui::Ui, illuminant: Illuminant, reflectance: &Spectru
         .include_y(0.0)
         .include_y(1.8)
         .x_axis_label("λ (nm)")
-        .y_axis_label("relative")
+        .y_axis_label(tr!("colour-relative"))
         .legend(Legend::default())
         .show(ui, |plot| {
             plot.add(
@@ -167,7 +173,10 @@ fn comparison_ui(ui: &mut egui::Ui, illuminant: Illuminant, base: DVec3, reflect
     let approx = base * illuminant_linear_srgb(&s);
     let delta_e = pixel_delta_e(illuminant, spectral, approx);
     ui.horizontal(|ui| {
-        for (label, rgb) in [("spectral", spectral), ("RGB product", approx)] {
+        for (label, rgb) in [
+            (tr!("colour-spectral"), spectral),
+            (tr!("colour-rgb-product"), approx),
+        ] {
             swatch(ui, rgb);
             ui.label(label);
         }
@@ -182,14 +191,13 @@ fn comparison_ui(ui: &mut egui::Ui, illuminant: Illuminant, base: DVec3, reflect
             number(xyz.z),
             number(delta_e)
         ),
-        "Spectral XYZ = k Σ S R (x̄, ȳ, z̄), k = 100 / Σ S ȳ; ΔE2000 (CIE 2001) between the spectral \
-         result and the RGB product in CIE Lab, the illuminant's white as reference",
+        &tr!("colour-xyz-tip"),
     );
     ui.label(
         RichText::new(match delta_e {
-            d if d < 1.0 => "below 1: not visible",
-            d if d < 3.0 => "1 to 3: visible side by side",
-            _ => "above 3: a different colour",
+            d if d < 1.0 => tr!("colour-delta-e-invisible"),
+            d if d < 3.0 => tr!("colour-delta-e-visible"),
+            _ => tr!("colour-delta-e-different"),
         })
         .small(),
     );

@@ -380,19 +380,11 @@ impl Probe {
             (
                 "X, Y, Z".to_string(),
                 vector(linear_srgb_to_xyz(t.radiance), ""),
-                "CIE 1931 XYZ of L (linear sRGB → XYZ, IEC 61966-2-1); under a spectral light the \
-                 reference integrated S(λ) R(λ) against x̄, ȳ, z̄"
-                    .to_string(),
+                tr!("probe-xyz-tip"),
             ),
         ]);
         if let Some(delta_e) = t.delta_e {
-            rows.push((
-                "ΔE2000".to_string(),
-                number(delta_e),
-                "ΔE2000 between the spectral result and the RGB product at this pixel (L · 2^EV in CIE \
-                 Lab, the illuminant's white at Y = 1): below 1 invisible, above 3 another colour"
-                    .to_string(),
-            ));
+            rows.push(("ΔE2000".to_string(), number(delta_e), tr!("probe-delta-e-tip")));
         }
         if let Some(r) = &self.reference {
             let stale = if r.stale {

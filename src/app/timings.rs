@@ -5,6 +5,7 @@ use super::gpu_view::GpuViews;
 use super::render_scale::{MIN_SCALE, RenderScale, TARGET_FPS};
 use super::widgets::{number, value_row};
 use crate::presets::Half;
+use crate::tr;
 use egui::RichText;
 use std::time::Instant;
 
@@ -43,25 +44,28 @@ fn interaction_rows(ui: &mut egui::Ui, scale: &RenderScale) {
         .show(ui, |ui| {
             value_row(
                 ui,
-                "render scale",
+                &tr!("timings-render-scale"),
                 &format!(
                     "{} % {}",
                     number(100.0 * scale.shown),
-                    if scale.shown < 1.0 { "(dragging)" } else { "(full)" }
+                    if scale.shown < 1.0 {
+                        tr!("timings-dragging")
+                    } else {
+                        tr!("timings-full")
+                    }
                 ),
-                &format!(
-                    "Image side rendered / viewport side. While dragging, s = s_measured · √((budget − t_shadow) / t_pixels), \
-                     budget {} ms for {} frames/s, at least {} %; full resolution as soon as the drag ends",
-                    number(RenderScale::budget_ms()),
-                    number(TARGET_FPS),
-                    number(100.0 * MIN_SCALE)
+                &tr!(
+                    "timings-render-scale-tip",
+                    budget = number(RenderScale::budget_ms()),
+                    fps = number(TARGET_FPS),
+                    min = number(100.0 * MIN_SCALE)
                 ),
             );
             value_row(
                 ui,
-                "frames/s (drag)",
+                &tr!("timings-drag-fps"),
                 &scale.drag_fps.map_or_else(|| "—".into(), number),
-                "Frames rendered per second during the last drag: 1 / (time between frames), smoothed",
+                &tr!("timings-drag-fps-tip"),
             );
         });
 }
@@ -77,15 +81,15 @@ pub fn ui(ui: &mut egui::Ui, clock: &FrameClock, gpu: Option<&GpuViews>) {
         .show(ui, |ui| {
             value_row(
                 ui,
-                "UI pass",
+                &tr!("timings-ui-pass"),
                 &format!("{} ms", number(clock.ui_ms)),
-                "CPU time of the last UI frame, rendering calls included",
+                &tr!("timings-ui-pass-tip"),
             );
             value_row(
                 ui,
-                "since previous",
+                &tr!("timings-since-previous"),
                 &format!("{} ms", number(clock.frame_ms)),
-                "Time between the last two frames; the lab redraws only when something changes",
+                &tr!("timings-since-previous-tip"),
             );
         });
     let Some(gpu) = gpu else {
@@ -96,7 +100,12 @@ pub fn ui(ui: &mut egui::Ui, clock: &FrameClock, gpu: Option<&GpuViews>) {
     for half in [Half::A, Half::B] {
         let Some(h) = gpu.half(half) else { continue };
         if gpu.half(Half::B).is_some() {
-            ui.label(RichText::new(if half == Half::A { "Half A" } else { "Half B" }).strong());
+            let name = if half == Half::A {
+                tr!("timings-half-a")
+            } else {
+                tr!("timings-half-b")
+            };
+            ui.label(RichText::new(name).strong());
         }
         let r = &h.report;
         let t = h.times.unwrap_or_default();
@@ -108,117 +117,121 @@ pub fn ui(ui: &mut egui::Ui, clock: &FrameClock, gpu: Option<&GpuViews>) {
                     ui,
                     "render()",
                     &format!("{} ms", number(h.render_cpu_ms)),
-                    "CPU time to encode and submit the frame",
+                    &tr!("timings-render-tip"),
                 );
                 value_row(
                     ui,
-                    "shadow",
+                    &tr!("timings-shadow"),
                     &match (t.shadow_ms, h.last_shadow_ms) {
-                        (None, Some(last)) => format!("reused (last draw {})", ms(Some(last))),
+                        (None, Some(last)) => tr!("timings-shadow-reused", time = ms(Some(last))),
                         (now, _) => ms(now),
                     },
-                    "GPU: drawing the depth map from the light (all layers); a reused map costs nothing",
+                    &tr!("timings-shadow-tip"),
                 );
-                value_row(ui, "blur", &ms(t.blur_ms), "GPU: blurring the VSM/EVSM moments");
+                value_row(ui, &tr!("timings-blur"), &ms(t.blur_ms), &tr!("timings-blur-tip"));
                 value_row(
                     ui,
-                    "shading",
+                    &tr!("timings-shading"),
                     &ms(t.shade_ms),
-                    "GPU: the camera pass (BRDF, irradiance, shadow lookups)",
+                    &tr!("timings-shading-tip"),
                 );
                 value_row(
                     ui,
-                    "display",
+                    &tr!("timings-display"),
                     &ms(t.display_ms),
-                    "GPU: exposure, false colour, sRGB",
+                    &tr!("timings-display-tip"),
                 );
                 value_row(
                     ui,
-                    "GPU total",
+                    &tr!("timings-gpu-total"),
                     &ms(h.times.map(|t| t.total_ms())),
-                    "Sum of the timed passes",
+                    &tr!("timings-gpu-total-tip"),
                 );
                 value_row(
                     ui,
-                    "shadow map",
-                    if r.shadow_redrawn {
-                        "redrawn this frame"
+                    &tr!("timings-shadow-map"),
+                    &if r.shadow_redrawn {
+                        tr!("timings-redrawn")
                     } else {
-                        "reused"
+                        tr!("timings-reused")
                     },
-                    "Redrawn only when the light, the geometry or the shadow settings change",
+                    &tr!("timings-shadow-map-tip"),
                 );
                 value_row(
                     ui,
-                    "layout",
+                    &tr!("timings-layout"),
                     &r.layout_summary(),
-                    "One frustum fitted to the scene, or the cube faces that see geometry",
+                    &tr!("timings-layout-tip"),
                 );
                 value_row(
                     ui,
-                    "casters",
-                    &format!(
-                        "{} of {} ({})",
-                        r.casters_per_layer.iter().sum::<usize>(),
-                        r.casters_total,
-                        r.casters_per_layer
+                    &tr!("timings-casters"),
+                    &tr!(
+                        "timings-casters-value",
+                        drawn = r.casters_per_layer.iter().sum::<usize>(),
+                        total = r.casters_total,
+                        layers = r
+                            .casters_per_layer
                             .iter()
                             .map(usize::to_string)
                             .collect::<Vec<_>>()
                             .join(" + ")
                     ),
-                    "Objects drawn into each layer: only those that can shadow a visible receiver",
+                    &tr!("timings-casters-tip"),
                 );
                 value_row(
                     ui,
-                    "resolution",
+                    &tr!("timings-resolution"),
                     &format!("{}²", r.resolution),
-                    "Shadow-map texels per side in use",
+                    &tr!("timings-resolution-tip"),
                 );
                 value_row(
                     ui,
-                    "near / far",
+                    &tr!("timings-near-far"),
                     &format!(
                         "{} / {} m",
                         number(r.camera_near_far.0),
                         number(r.camera_near_far.1)
                     ),
-                    "The camera's depth range, fitted to the scene",
+                    &tr!("timings-near-far-tip"),
                 );
                 value_row(
                     ui,
-                    "visible objects",
+                    &tr!("timings-visible-objects"),
                     &r.visible_objects.to_string(),
-                    "Objects inside the camera's frustum",
+                    &tr!("timings-visible-objects-tip"),
                 );
             });
     }
     ui.add_space(4.0);
     // The adapter's description is long: a wrapping line, not a grid cell.
-    ui.add(egui::Label::new(RichText::new(format!("adapter: {}", caps.adapter)).monospace()).wrap())
-        .on_hover_text("The GPU adapter, its backend and driver");
+    ui.add(
+        egui::Label::new(RichText::new(tr!("timings-adapter", adapter = caps.adapter.as_str())).monospace())
+            .wrap(),
+    )
+    .on_hover_text(tr!("timings-adapter-tip"));
     egui::Grid::new("adapter").num_columns(2).show(ui, |ui| {
         value_row(
             ui,
-            "backend",
+            &tr!("timings-backend"),
             &gpu.backend(),
-            "The graphics API wgpu runs on (WGPU_BACKEND chooses)",
+            &tr!("timings-backend-tip"),
         );
         value_row(
             ui,
-            "max texture",
+            &tr!("timings-max-texture"),
             &format!("{}²", caps.max_texture_side),
-            "Largest 2D texture side of this device",
+            &tr!("timings-max-texture-tip"),
         );
         value_row(
             ui,
-            "timestamps",
-            if caps.timestamps {
-                "yes"
+            &tr!("timings-timestamps"),
+            &if caps.timestamps {
+                tr!("timings-timestamps-yes")
             } else {
-                "no (GPU times unavailable)"
+                tr!("timings-timestamps-no")
             },
-            "Timestamp queries give the per-pass GPU times",
+            &tr!("timings-timestamps-tip"),
         );
     });
 }

@@ -193,7 +193,7 @@ impl LabApp {
                 Some("gltf" | "glb") => self.emit(Command::OpenScene(Some(path))),
                 Some("toml") => self.emit(Command::LoadSettings(Some(path))),
                 _ => self.say(
-                    format!("'{}': drop a .gltf, .glb or .toml file", path.display()),
+                    tr!("status-drop-unknown", path = path.display().to_string()),
                     true,
                 ),
             }

@@ -6,6 +6,7 @@ use super::super::state::{SplitLayout, SplitState};
 use super::LabApp;
 use crate::settings::Settings;
 use crate::tour::{SplitChoice, TourScene};
+use crate::tr;
 use std::sync::Arc;
 
 impl LabApp {
@@ -45,7 +46,12 @@ impl LabApp {
         let count = self.lecture.tour().steps.len();
         let title = &step.text(crate::i18n::current()).title;
         self.say(
-            format!("tour {}/{count}: {title} (Ctrl+Z to undo)", index + 1),
+            tr!(
+                "tour-status",
+                step = index + 1,
+                count = count,
+                title = title.as_str()
+            ),
             false,
         );
     }
@@ -54,8 +60,8 @@ impl LabApp {
     /// already shown.
     fn show_tour_scene(&mut self, which: TourScene) {
         let name = match which {
-            TourScene::BuiltIn => "built-in",
-            TourScene::Spheres => "lecture spheres",
+            TourScene::BuiltIn => tr!("scene-built-in"),
+            TourScene::Spheres => tr!("scene-lecture-spheres"),
         };
         if self.state.settings.scene.is_none() && self.scene_name == name {
             return;
@@ -65,7 +71,7 @@ impl LabApp {
             TourScene::Spheres => crate::scene::lecture_scene::scene(),
         };
         self.file_scene = Arc::new(scene);
-        self.scene_name = name.into();
+        self.scene_name = name;
         self.redraw_scene();
     }
 
