@@ -78,12 +78,16 @@ fn every_step_sets_its_settings_opens_its_panel_and_shows_the_physics() {
         };
         assert_eq!(shown, step.settings, "step {} ({})", i + 1, step.id);
         assert_eq!(app.tour_position(), (i, Some(step.panel)), "{}", step.id);
-        // The panel is there and open.
+        // The panel is there and open (its header: other widgets may share
+        // its title, e.g. the light's "Colour" beside the Colour section).
         let panel_title = title(step.panel);
-        let header = harness.get_by_label(&panel_title);
+        let expanded: Vec<_> = harness
+            .query_all_by_label(&panel_title)
+            .filter_map(|node| node.accesskit_node().data().is_expanded())
+            .collect();
         assert_eq!(
-            header.accesskit_node().data().is_expanded(),
-            Some(true),
+            expanded,
+            [true],
             "step {}: {} is not open",
             step.id,
             panel_title
