@@ -85,13 +85,7 @@ fn every_step_sets_its_settings_opens_its_panel_and_shows_the_physics() {
             .query_all_by_label(&panel_title)
             .filter_map(|node| node.accesskit_node().data().is_expanded())
             .collect();
-        assert_eq!(
-            expanded,
-            [true],
-            "step {}: {} is not open",
-            step.id,
-            panel_title
-        );
+        assert_eq!(expanded, [true], "step {}: {} is not open", step.id, panel_title);
         // The number is physics' for the settings shown, and it is shown.
         let settings = harness.state().settings().clone();
         let value = harness.state_mut().tour_observed().unwrap();
