@@ -588,3 +588,13 @@ colour-delta-e-different = above 3: a different colour
 scene-lecture-spheres = lecture spheres
 tour-status = tour { $step }/{ $count }: { $title } (Ctrl+Z to undo)
 status-drop-unknown = '{ $path }': drop a .gltf, .glb or .toml file
+
+## Split view labels (names.rs)
+compare-norm = norm { $value }
+compare-filter = filter { $value }
+compare-resolution = shadow map { $texels }²
+compare-bias = bias { $value }
+compare-shadow-map = shadow map
+compare-ray-traced = ray traced
+compare-rgb-approx = RGB approximation
+compare-spectral = spectral

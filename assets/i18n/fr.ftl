@@ -594,3 +594,13 @@ colour-delta-e-different = au-dessus de 3 : une autre couleur
 scene-lecture-spheres = sphères du cours
 tour-status = visite { $step }/{ $count } : { $title } (Ctrl+Z pour annuler)
 status-drop-unknown = « { $path } » : déposez un fichier .gltf, .glb ou .toml
+
+## Split view labels (names.rs)
+compare-norm = normalisation { $value }
+compare-filter = filtre { $value }
+compare-resolution = carte d'ombres { $texels }²
+compare-bias = biais { $value }
+compare-shadow-map = carte d'ombres
+compare-ray-traced = lancer de rayons
+compare-rgb-approx = approximation RVB
+compare-spectral = spectral

@@ -2,7 +2,9 @@
 //! current language. The library keeps its English text (the command line
 //! prints it); the app shows these instead.
 
-use crate::presets::Preset;
+use crate::colour::ColourModel;
+use crate::presets::{Comparison, ComparisonAxis, Half, Preset};
+use crate::settings::Visibility;
 use crate::tr;
 
 /// A preset's title, for its button.
@@ -31,6 +33,32 @@ pub fn preset_description(preset: Preset) -> String {
     }
 }
 
+/// A half's label in the split view ("norm none", "ray traced"): the
+/// library's `Comparison::label` in the app's language; setting names shared
+/// with the command line (none, pcss, auto) stay as they are.
+pub fn comparison_label(comparison: &Comparison, half: Half) -> String {
+    let i = half as usize;
+    match comparison.axis {
+        ComparisonAxis::Normalization => {
+            tr!("compare-norm", value = comparison.norm[i].to_string())
+        }
+        ComparisonAxis::Filter => tr!("compare-filter", value = comparison.filter[i].to_string()),
+        ComparisonAxis::Resolution => tr!(
+            "compare-resolution",
+            texels = comparison.resolution[i].to_string()
+        ),
+        ComparisonAxis::Bias => tr!("compare-bias", value = comparison.bias[i].to_string()),
+        ComparisonAxis::Visibility => match comparison.visibility[i] {
+            Visibility::ShadowMap => tr!("compare-shadow-map"),
+            Visibility::RayTraced => tr!("compare-ray-traced"),
+        },
+        ComparisonAxis::Colour => match comparison.colour[i] {
+            ColourModel::RgbApprox => tr!("compare-rgb-approx"),
+            ColourModel::Spectral => tr!("compare-spectral"),
+        },
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -44,6 +72,11 @@ mod tests {
                 preset_description(preset).replace('\n', " "),
                 preset.description()
             );
+        }
+        for (_, comparison) in Comparison::presets() {
+            for half in [Half::A, Half::B] {
+                assert_eq!(comparison_label(&comparison, half), comparison.label(half));
+            }
         }
     }
 }

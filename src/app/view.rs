@@ -81,8 +81,8 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
                 .selectable_label(*comparison == preset, name)
                 .on_hover_text(format!(
                     "A: {} | B: {}",
-                    preset.label(Half::A),
-                    preset.label(Half::B)
+                    super::names::comparison_label(&preset, Half::A),
+                    super::names::comparison_label(&preset, Half::B)
                 ))
                 .clicked()
             {

@@ -366,7 +366,10 @@ impl Viewport<'_> {
                     ui,
                     Pos2::new(x, rect.min.y + 10.0),
                     align,
-                    &format!("{name}: {}", split.comparison.label(half)),
+                    &format!(
+                        "{name}: {}",
+                        super::names::comparison_label(&split.comparison, half)
+                    ),
                 );
             }
         }
