@@ -598,3 +598,11 @@ compare-shadow-map = shadow map
 compare-ray-traced = ray traced
 compare-rgb-approx = RGB approximation
 compare-spectral = spectral
+
+## Split choices (names.rs)
+split-choice-norm = norm none | approx
+split-choice-filter = filter none | PCF
+split-choice-pcss = filter PCF | PCSS
+split-choice-resolution = resolution 256² | 2048²
+split-choice-visibility = shadow map | ray traced
+split-choice-colour = RGB | spectral

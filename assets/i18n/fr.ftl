@@ -604,3 +604,11 @@ compare-shadow-map = carte d'ombres
 compare-ray-traced = lancer de rayons
 compare-rgb-approx = approximation RVB
 compare-spectral = spectral
+
+## Split choices (names.rs)
+split-choice-norm = normalisation none | approx
+split-choice-filter = filtre none | PCF
+split-choice-pcss = filtre PCF | PCSS
+split-choice-resolution = résolution 256² | 2048²
+split-choice-visibility = carte d'ombres | lancer de rayons
+split-choice-colour = RVB | spectral

@@ -59,6 +59,21 @@ pub fn comparison_label(comparison: &Comparison, half: Half) -> String {
     }
 }
 
+/// A split choice's name, for the View panel's buttons: the library's
+/// `Comparison::presets` name in the app's language (a name without a
+/// translation shows as it is).
+pub fn split_choice_name(english: &str) -> String {
+    match english {
+        "norm none | approx" => tr!("split-choice-norm"),
+        "filter none | PCF" => tr!("split-choice-filter"),
+        "filter PCF | PCSS" => tr!("split-choice-pcss"),
+        "resolution 256² | 2048²" => tr!("split-choice-resolution"),
+        "shadow map | ray traced" => tr!("split-choice-visibility"),
+        "RGB | spectral" => tr!("split-choice-colour"),
+        _ => english.to_owned(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -73,7 +88,8 @@ mod tests {
                 preset.description()
             );
         }
-        for (_, comparison) in Comparison::presets() {
+        for (name, comparison) in Comparison::presets() {
+            assert_eq!(split_choice_name(name), name);
             for half in [Half::A, Half::B] {
                 assert_eq!(comparison_label(&comparison, half), comparison.label(half));
             }

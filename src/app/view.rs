@@ -78,7 +78,7 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
     ui.horizontal_wrapped(|ui| {
         for (name, preset) in Comparison::presets() {
             if ui
-                .selectable_label(*comparison == preset, name)
+                .selectable_label(*comparison == preset, super::names::split_choice_name(name))
                 .on_hover_text(format!(
                     "A: {} | B: {}",
                     super::names::comparison_label(&preset, Half::A),
