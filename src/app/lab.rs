@@ -33,12 +33,35 @@ use crate::reference::Reference;
 use crate::scene::Scene;
 use crate::scene::framing::with_ground;
 use crate::settings::{GroundSettings, Settings};
+use crate::tour::TourScene;
 use crate::tr;
 use jobs::{Jobs, Script};
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
+
+/// Which scene is shown: a built-in one, named in the app's language each
+/// time the name is shown, or a file's.
+#[derive(Clone, Debug, PartialEq)]
+enum ShownScene {
+    BuiltIn(TourScene),
+    File(String),
+}
+
+impl ShownScene {
+    fn from_path(path: Option<&Path>) -> Self {
+        path.map_or(Self::BuiltIn(TourScene::BuiltIn), |p| Self::File(display_name(p)))
+    }
+
+    fn name(&self) -> String {
+        match self {
+            Self::BuiltIn(TourScene::BuiltIn) => tr!("scene-built-in"),
+            Self::BuiltIn(TourScene::Spheres) => tr!("scene-lecture-spheres"),
+            Self::File(name) => name.clone(),
+        }
+    }
+}
 
 /// A one-line message in the status bar.
 struct Status {
@@ -54,7 +77,7 @@ pub struct LabApp {
     /// The scene as loaded, and the ground settings `scene` was made with.
     file_scene: Arc<Scene>,
     ground: GroundSettings,
-    scene_name: String,
+    shown: ShownScene,
     undo: UndoStack,
     probe: Probe,
     /// The scene prepared for ray tracing, built at the first probe.
@@ -191,9 +214,7 @@ impl LabApp {
             scene,
             file_scene,
             ground,
-            scene_name: path
-                .as_deref()
-                .map_or_else(|| tr!("scene-built-in"), display_name),
+            shown: ShownScene::from_path(path.as_deref()),
             probe: Probe::default(),
             tracer: None,
             energy: EnergyPanel::default(),

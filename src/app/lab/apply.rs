@@ -7,7 +7,7 @@ use super::super::names::preset_title;
 use super::super::state::State;
 use super::super::viewport::Viewport;
 use super::desktop::file_error;
-use super::{LabApp, adopt_scene, chosen, display_name};
+use super::{LabApp, ShownScene, adopt_scene, chosen};
 use crate::presets::Half;
 use crate::scene::Scene;
 use crate::scene::framing::with_ground;
@@ -188,9 +188,8 @@ impl LabApp {
 
     /// Shows `scene` (from `path`; None: built-in) from now on.
     pub(super) fn use_scene(&mut self, path: Option<PathBuf>, scene: Scene) {
-        let name = path
-            .as_deref()
-            .map_or_else(|| tr!("scene-built-in"), display_name);
+        let shown = ShownScene::from_path(path.as_deref());
+        let name = shown.name();
         let triangles = scene.triangle_count();
         let mut text = tr!("status-scene", name = name.as_str(), triangles = triangles);
         if !scene.warnings.is_empty() {
@@ -205,7 +204,7 @@ impl LabApp {
             self.state.recent.add_scene(path);
         }
         self.file_scene = Arc::new(scene);
-        self.scene_name = name;
+        self.shown = shown;
         self.redraw_scene();
         self.say(text, false);
     }

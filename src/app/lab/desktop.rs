@@ -14,7 +14,7 @@ impl LabApp {
     pub fn title(&self) -> String {
         let changed = self.saved.as_ref().is_some_and(|s| *s != self.state.settings);
         let mark = if changed { " •" } else { "" };
-        format!("lumlab — {}{mark}", self.scene_name)
+        format!("lumlab — {}{mark}", self.shown.name())
     }
 
     /// The error messages shown as toasts, oldest first.

@@ -92,7 +92,7 @@ impl LabApp {
             .find(|w| w.starts_with("nothing to draw"))
             .cloned()
             .unwrap_or_else(|| tr!("image-nothing-to-draw"));
-        Some(format!("{}: {why}", self.scene_name))
+        Some(format!("{}: {why}", self.shown.name()))
     }
 
     fn reference_banner(&self) -> Option<String> {

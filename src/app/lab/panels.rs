@@ -164,7 +164,7 @@ impl LabApp {
         section(ui, Panel::Scene, |ui| {
             let panel = ScenePanel {
                 scene: &self.file_scene,
-                name: &self.scene_name,
+                name: &self.shown.name(),
                 ground: &mut settings.ground,
             };
             if let Some(command) = panel.ui(ui) {
@@ -229,7 +229,7 @@ impl LabApp {
             self.emit(Command::SetSplit(split));
         }
         section(ui, Panel::Files, |ui| {
-            if let Some(command) = self.files.ui(ui, &self.state.paths, &self.scene_name) {
+            if let Some(command) = self.files.ui(ui, &self.state.paths, &self.shown.name()) {
                 self.queue.push(command);
             }
         });

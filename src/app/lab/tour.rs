@@ -3,7 +3,7 @@
 
 use super::super::lecture::on_the_left;
 use super::super::state::{SplitLayout, SplitState};
-use super::LabApp;
+use super::{LabApp, ShownScene};
 use crate::settings::Settings;
 use crate::tour::{SplitChoice, TourScene};
 use crate::tr;
@@ -59,11 +59,8 @@ impl LabApp {
     /// Replaces the scene by the built-in one the step names, unless it is
     /// already shown.
     fn show_tour_scene(&mut self, which: TourScene) {
-        let name = match which {
-            TourScene::BuiltIn => tr!("scene-built-in"),
-            TourScene::Spheres => tr!("scene-lecture-spheres"),
-        };
-        if self.state.settings.scene.is_none() && self.scene_name == name {
+        let shown = ShownScene::BuiltIn(which);
+        if self.state.settings.scene.is_none() && self.shown == shown {
             return;
         }
         let scene = match which {
@@ -71,7 +68,7 @@ impl LabApp {
             TourScene::Spheres => crate::scene::lecture_scene::scene(),
         };
         self.file_scene = Arc::new(scene);
-        self.scene_name = name;
+        self.shown = shown;
         self.redraw_scene();
     }
 
