@@ -240,6 +240,57 @@ impl Default for Comparison {
 /// D65 the two models agree, under A (a tungsten lamp) they visibly do not.
 pub const COMPARISON_ILLUMINANT: Illuminant = Illuminant::A;
 
+/// The one-click comparisons of the split view, each a [`Comparison`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SplitPreset {
+    Normalization,
+    Filter,
+    Pcss,
+    Resolution,
+    Visibility,
+    Colour,
+}
+
+impl SplitPreset {
+    pub const ALL: [Self; 6] = [
+        Self::Normalization,
+        Self::Filter,
+        Self::Pcss,
+        Self::Resolution,
+        Self::Visibility,
+        Self::Colour,
+    ];
+
+    /// Its name, in English ("filter PCF | PCSS").
+    pub fn title(self) -> &'static str {
+        match self {
+            Self::Normalization => "norm none | approx",
+            Self::Filter => "filter none | PCF",
+            Self::Pcss => "filter PCF | PCSS",
+            Self::Resolution => "resolution 256² | 2048²",
+            Self::Visibility => "shadow map | ray traced",
+            Self::Colour => "RGB | spectral",
+        }
+    }
+
+    /// What the two halves show.
+    pub fn comparison(self) -> Comparison {
+        let base = Comparison::default();
+        let axis = match self {
+            Self::Normalization => ComparisonAxis::Normalization,
+            Self::Filter | Self::Pcss => ComparisonAxis::Filter,
+            Self::Resolution => ComparisonAxis::Resolution,
+            Self::Visibility => ComparisonAxis::Visibility,
+            Self::Colour => ComparisonAxis::Colour,
+        };
+        let filter = match self {
+            Self::Pcss => [Filter::Pcf, Filter::Pcss],
+            _ => base.filter,
+        };
+        Comparison { axis, filter, ..base }
+    }
+}
+
 /// Which half of the split view.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Half {
@@ -248,50 +299,6 @@ pub enum Half {
 }
 
 impl Comparison {
-    /// The named comparisons offered as one-click choices.
-    pub fn presets() -> [(&'static str, Comparison); 6] {
-        let base = Comparison::default();
-        [
-            ("norm none | approx", base),
-            (
-                "filter none | PCF",
-                Comparison {
-                    axis: ComparisonAxis::Filter,
-                    ..base
-                },
-            ),
-            (
-                "filter PCF | PCSS",
-                Comparison {
-                    axis: ComparisonAxis::Filter,
-                    filter: [Filter::Pcf, Filter::Pcss],
-                    ..base
-                },
-            ),
-            (
-                "resolution 256² | 2048²",
-                Comparison {
-                    axis: ComparisonAxis::Resolution,
-                    ..base
-                },
-            ),
-            (
-                "shadow map | ray traced",
-                Comparison {
-                    axis: ComparisonAxis::Visibility,
-                    ..base
-                },
-            ),
-            (
-                "RGB | spectral",
-                Comparison {
-                    axis: ComparisonAxis::Colour,
-                    ..base
-                },
-            ),
-        ]
-    }
-
     /// The settings one half shows: `base` with this half's value.
     pub fn settings_for(&self, half: Half, base: &Settings) -> Settings {
         let mut s = base.clone();
@@ -363,8 +370,8 @@ mod tests {
             ("norm none".into(), "norm approx".into())
         );
         assert!(Preset::Grazing.comparison().is_none());
-        let (name, c) = Comparison::presets()[4];
-        assert_eq!(name, "shadow map | ray traced");
+        let c = SplitPreset::Visibility.comparison();
+        assert_eq!(SplitPreset::Visibility.title(), "shadow map | ray traced");
         assert_eq!(
             (c.label(Half::A), c.label(Half::B)),
             ("shadow map".into(), "ray traced".into())
@@ -420,7 +427,7 @@ mod tests {
             Normalization::Approx
         );
         assert_eq!(c.label(Half::A), "norm none");
-        for (_, c) in Comparison::presets() {
+        for c in SplitPreset::ALL.map(SplitPreset::comparison) {
             for half in [Half::A, Half::B] {
                 c.settings_for(half, &base).validate().unwrap();
             }

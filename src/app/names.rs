@@ -3,7 +3,7 @@
 //! prints it); the app shows these instead.
 
 use crate::colour::ColourModel;
-use crate::presets::{Comparison, ComparisonAxis, Half, Preset};
+use crate::presets::{Comparison, ComparisonAxis, Half, Preset, SplitPreset};
 use crate::settings::Visibility;
 use crate::tr;
 
@@ -60,17 +60,15 @@ pub fn comparison_label(comparison: &Comparison, half: Half) -> String {
 }
 
 /// A split choice's name, for the View panel's buttons: the library's
-/// `Comparison::presets` name in the app's language (a name without a
-/// translation shows as it is).
-pub fn split_choice_name(english: &str) -> String {
-    match english {
-        "norm none | approx" => tr!("split-choice-norm"),
-        "filter none | PCF" => tr!("split-choice-filter"),
-        "filter PCF | PCSS" => tr!("split-choice-pcss"),
-        "resolution 256² | 2048²" => tr!("split-choice-resolution"),
-        "shadow map | ray traced" => tr!("split-choice-visibility"),
-        "RGB | spectral" => tr!("split-choice-colour"),
-        _ => english.to_owned(),
+/// `SplitPreset::title` in the app's language.
+pub fn split_choice_name(choice: SplitPreset) -> String {
+    match choice {
+        SplitPreset::Normalization => tr!("split-choice-norm"),
+        SplitPreset::Filter => tr!("split-choice-filter"),
+        SplitPreset::Pcss => tr!("split-choice-pcss"),
+        SplitPreset::Resolution => tr!("split-choice-resolution"),
+        SplitPreset::Visibility => tr!("split-choice-visibility"),
+        SplitPreset::Colour => tr!("split-choice-colour"),
     }
 }
 
@@ -88,8 +86,9 @@ mod tests {
                 preset.description()
             );
         }
-        for (name, comparison) in Comparison::presets() {
-            assert_eq!(split_choice_name(name), name);
+        for choice in SplitPreset::ALL {
+            assert_eq!(split_choice_name(choice), choice.title());
+            let comparison = choice.comparison();
             for half in [Half::A, Half::B] {
                 assert_eq!(comparison_label(&comparison, half), comparison.label(half));
             }

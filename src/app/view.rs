@@ -5,7 +5,7 @@ use super::View;
 use super::state::{SplitLayout, SplitState};
 use crate::colour::ColourModel;
 use crate::physics::Normalization;
-use crate::presets::{Comparison, ComparisonAxis, Half};
+use crate::presets::{ComparisonAxis, Half, SplitPreset};
 use crate::settings::{BiasMode, DebugView, Filter, ViewSettings, Visibility};
 use crate::tr;
 
@@ -76,9 +76,10 @@ fn split_ui(ui: &mut egui::Ui, split: &mut SplitState, max_texture_side: u32) {
         return;
     }
     ui.horizontal_wrapped(|ui| {
-        for (name, preset) in Comparison::presets() {
+        for choice in SplitPreset::ALL {
+            let preset = choice.comparison();
             if ui
-                .selectable_label(*comparison == preset, super::names::split_choice_name(name))
+                .selectable_label(*comparison == preset, super::names::split_choice_name(choice))
                 .on_hover_text(format!(
                     "A: {} | B: {}",
                     super::names::comparison_label(&preset, Half::A),
