@@ -2,4 +2,5 @@
 #![allow(dead_code)]
 
 pub mod builder;
+pub mod corpus;
 pub mod samples;

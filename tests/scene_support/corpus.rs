@@ -1,0 +1,82 @@
+//! Loading the corpus's files, and what the scene tests assert of them.
+
+use super::builder::Doc;
+use glam::Vec3;
+use lumlab::scene::{self, LoadProblem, Scene, SceneError};
+use std::path::Path;
+
+pub const NAME: &str = "case.gltf";
+
+pub fn load_bytes(bytes: &[u8]) -> Result<Scene, SceneError> {
+    scene::gltf::load_slice(bytes, Path::new(NAME), None)
+}
+
+pub fn load_ok(bytes: &[u8]) -> Scene {
+    load_bytes(bytes).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The problem a file has; its message is one line naming the file.
+pub fn problem(bytes: &[u8]) -> LoadProblem {
+    match load_bytes(bytes) {
+        Err(e @ SceneError::Load { .. }) => {
+            let message = e.to_string();
+            assert!(!message.contains('\n') && message.contains(NAME), "{message}");
+            e.problem().cloned().expect("a load problem")
+        }
+        Err(e) => panic!("unexpected error kind: {e}"),
+        Ok(_) => panic!("the file loaded"),
+    }
+}
+
+/// The document loaded as GLB, as .gltf with a data URI and as .gltf with an
+/// external .bin: the three must give the same facts.
+pub fn load_every_form(doc: &Doc) -> Scene {
+    let dir = tempfile::tempdir().unwrap();
+    let external = scene::load(&doc.write_external(dir.path(), "case")).unwrap_or_else(|e| panic!("{e}"));
+    let glb = load_ok(&doc.glb());
+    let embedded = load_ok(&doc.gltf_embedded());
+    assert_eq!(glb.facts(), embedded.facts());
+    assert_eq!(glb.facts(), external.facts());
+    glb
+}
+
+pub fn assert_bounds(scene: &Scene, min: [f32; 3], max: [f32; 3]) {
+    let facts = scene.facts();
+    let (got_min, got_max) = (facts.bounds_min.unwrap(), facts.bounds_max.unwrap());
+    for c in 0..3 {
+        assert!((got_min[c] - min[c]).abs() < 1e-5, "min {got_min:?} vs {min:?}");
+        assert!((got_max[c] - max[c]).abs() < 1e-5, "max {got_max:?} vs {max:?}");
+    }
+}
+
+pub fn has_warning(scene: &Scene, text: &str) -> bool {
+    scene.warnings.iter().any(|w| w.contains(text))
+}
+
+/// Every vertex normal of every object is `expected`.
+pub fn assert_normals_are(scene: &Scene, expected: Vec3) {
+    for object in &scene.objects {
+        for n in &object.mesh.normals {
+            assert!((*n - expected).length() < 1e-6, "{}: {n}", object.name);
+        }
+    }
+}
+
+/// Every triangle's winding agrees with its vertex normals (front faces CCW).
+pub fn assert_front_faces_follow_normals(scene: &Scene) {
+    for object in &scene.objects {
+        let mesh = &object.mesh;
+        for t in 0..mesh.triangle_count() {
+            let [a, b, c] = mesh.triangle(t);
+            let face = (b - a).cross(c - a);
+            for k in 0..3 {
+                let n = mesh.normals[mesh.indices[3 * t + k] as usize];
+                assert!(
+                    face.dot(n) > 0.0,
+                    "{}: triangle {t} winds against its normal",
+                    object.name
+                );
+            }
+        }
+    }
+}
