@@ -1,7 +1,8 @@
 //! The GPU renderer against the CPU reference on the default scene: with
 //! shadows off both compute the same L = c · f_r · E pixel by pixel (same
 //! camera convention, same physics), so they must agree to 1e-3 relative on
-//! every lit pixel.
+//! every lit pixel, give or take what L changes within the rasterizer's
+//! sub-pixel grid (`common::SUBPIXEL_PX`) where it is steep.
 
 mod common;
 
@@ -37,9 +38,10 @@ fn compare(settings: &Settings) -> (usize, f64) {
             }
             let relative = (q[c] as f64 / l_ref[c] - 1.0).abs();
             worst = worst.max(relative);
+            let slack = subpixel_slack(&reference.radiance, settings.image.width, idx, c);
             assert!(
-                relative < 1e-3,
-                "pixel ({}, {}) channel {c}: GPU {} vs reference {} W/m²/sr",
+                (q[c] as f64 - l_ref[c]).abs() < 1e-3 * l_ref[c] + slack,
+                "pixel ({}, {}) channel {c}: GPU {} vs reference {} W/m²/sr (sub-pixel slack {slack:.2e})",
                 idx as u32 % settings.image.width,
                 idx as u32 / settings.image.width,
                 q[c],
@@ -49,6 +51,26 @@ fn compare(settings: &Settings) -> (usize, f64) {
         checked += 1;
     }
     (checked, worst)
+}
+
+/// What channel `c` of L may change within `common::SUBPIXEL_PX` of pixel
+/// `idx`'s centre, from the reference image itself: per axis the smaller of
+/// the differences to the two neighbours (alike where L is smooth; across an
+/// edge between surfaces one is the jump, the other the slope), times the
+/// sub-pixel distance. Pixels on the image's border get none.
+fn subpixel_slack(radiance: &[[f64; 3]], width: u32, idx: usize, c: usize) -> f64 {
+    let w = width as usize;
+    let (x, y) = (idx % w, idx / w);
+    if x == 0 || y == 0 || x + 1 == w || idx + w >= radiance.len() {
+        return 0.0;
+    }
+    let here = radiance[idx][c];
+    let slope = |before: usize, after: usize| {
+        (here - radiance[before][c])
+            .abs()
+            .min((radiance[after][c] - here).abs())
+    };
+    (slope(idx - 1, idx + 1) + slope(idx - w, idx + w)) * common::SUBPIXEL_PX
 }
 
 #[test]

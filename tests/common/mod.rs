@@ -68,20 +68,44 @@ pub fn render(
 
 /// Where the ray through pixel (i, j) meets the plane y = 0, if in front.
 pub fn plane_hit(settings: &Settings, i: u32, j: u32) -> Option<glam::DVec3> {
+    plane_hit_at(settings, i as f64 + 0.5, j as f64 + 0.5)
+}
+
+/// Where the ray through image point (`x`, `y`) (pixels from the top-left
+/// corner) meets the plane y = 0.
+pub fn plane_hit_at(settings: &Settings, x: f64, y: f64) -> Option<glam::DVec3> {
     let camera = lumlab::scene::Camera {
         eye: settings.camera.eye,
         target: settings.camera.target,
         fovy_deg: settings.camera.fovy_deg,
     };
-    let d = camera.ray_direction(
-        i as f64 + 0.5,
-        j as f64 + 0.5,
-        settings.image.width,
-        settings.image.height,
-    );
+    let d = camera.ray_direction(x, y, settings.image.width, settings.image.height);
     let eye = camera.eye.as_dvec3();
     let t = -eye.y / d.y;
     (t > 0.0).then(|| eye + d * t)
+}
+
+/// How far from its centre (pixels) a rasterizer may evaluate a pixel's
+/// attributes: Vulkan snaps vertex positions to a grid of
+/// 2^−subPixelPrecisionBits pixel, 8 bits on NVIDIA (lavapipe's grid is finer),
+/// so the interpolated position is that of a point up to 1/256 pixel away.
+/// Where L changes by tens of percent from one pixel to the next (a sharp
+/// lobe seen closely), that alone is more than 1e-3 of L.
+pub const SUBPIXEL_PX: f64 = 1.0 / 256.0;
+
+/// The range of `value` over the points within `SUBPIXEL_PX` of (`x`, `y`)
+/// on each axis (the corners and edge midpoints of that square, and its
+/// centre): where a rasterizer's pixel may land.
+pub fn subpixel_range(x: f64, y: f64, value: impl Fn(f64, f64) -> f64) -> (f64, f64) {
+    let offsets = [-SUBPIXEL_PX, 0.0, SUBPIXEL_PX];
+    let mut range = (f64::INFINITY, f64::NEG_INFINITY);
+    for dy in offsets {
+        for dx in offsets {
+            let v = value(x + dx, y + dy);
+            range = (range.0.min(v), range.1.max(v));
+        }
+    }
+    range
 }
 
 /// Does the segment from `p` to `q` pass through the box (slab test, f64)?
