@@ -18,6 +18,7 @@ const VIEW_TEXEL_DENSITY: u32 = 8u;
 const VIEW_FRUSTUM: u32 = 9u;
 const VIEW_REF_VISIBILITY: u32 = 10u;
 const VIEW_ERROR: u32 = 11u;
+const VIEW_DELTA_E: u32 = 12u;
 
 // Filters, in settings::Filter order.
 const FILTER_NONE: u32 = 0u;
@@ -81,6 +82,17 @@ struct Globals {
     // Where the shadow map is drawn from, relative to the eye (m): the light,
     // or its stand-in on the same line for a far light.
     shadow_apex_rel: vec3<f32>,
+    // The `delta-e` view (shaders/delta_e.wgsl, gpu::delta_e): the exposure
+    // (EV) the two colours are compared at, displayed = L · 2^EV;
+    exposure_ev: f32,
+    // the other colour model's light colour (spectral ↔ RGB approximation);
+    other_light_color: vec3<f32>,
+    // 1 under a spectral illuminant, where ΔE is defined (0: RGB mode);
+    delta_e_defined: u32,
+    // the other colour model's override colour;
+    other_color_override: vec3<f32>,
+    // linear sRGB → XYZ / XYZ of the illuminant's white, CIE Lab's reference.
+    lab_white_relative: mat3x3<f32>,
 }
 
 // One shadow-map layer: a perspective frustum from the light (gpu::uniforms::ShadowLayerRaw).
@@ -154,6 +166,8 @@ struct Material {
     texture_layer_plus_one: u32,
     // Both faces are shaded (0/1).
     double_sided: u32,
+    // The base colour under the other colour model (the `delta-e` view).
+    other_model_color: vec4<f32>,
 }
 
 // How a view is displayed (gpu::uniforms::DisplayParamsRaw).

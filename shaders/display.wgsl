@@ -121,6 +121,14 @@ fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
                 color = missing(position.xy);
             }
         }
+        case VIEW_DELTA_E: {
+            // ΔE2000 on a fixed scale; negative: no spectral illuminant, no ΔE.
+            if q.x < 0.0 {
+                color = missing(position.xy);
+            } else {
+                color = ramp(q.x / DELTA_E_VIEW_MAX, false);
+            }
+        }
         default: {
             color = q * exp2(params.exposure_ev);
         }

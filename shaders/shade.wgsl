@@ -66,6 +66,9 @@ struct Surface {
     n_geo: vec3<f32>,
     // BRDF colour c (linear RGB), k and m.
     c: vec3<f32>,
+    // c under the other colour model (spectral ↔ RGB approximation), for
+    // the delta-e view.
+    other_c: vec3<f32>,
     k: f32,
     m: f32,
 }
@@ -99,12 +102,16 @@ fn surface_at(in: VsOut, front_facing: bool) -> Surface {
         s.m = select(s.m, mat.own_m, mat.has_own_m != 0u);
     }
     s.c = mat.base_color.rgb;
+    s.other_c = mat.other_model_color.rgb;
     if mat.texture_layer_plus_one > 0u {
         let layer = i32(mat.texture_layer_plus_one - 1u);
-        s.c *= textureSampleLevel(base_textures, base_sampler, in.uv, layer, 0.0).rgb;
+        let texel = textureSampleLevel(base_textures, base_sampler, in.uv, layer, 0.0).rgb;
+        s.c *= texel;
+        s.other_c *= texel;
     }
     if globals.use_color_override != 0u {
         s.c = globals.color_override;
+        s.other_c = globals.other_color_override;
     }
     return s;
 }
@@ -131,6 +138,21 @@ fn visibility(p_l: vec3<f32>, s: Surface, incidence: LightIncidence, pixel: vec2
     }
 }
 
+// The delta-e view's value: ΔE2000 between the pixel shaded with this
+// colour model and with the other one (both as displayed, × 2^EV); −1 where
+// no spectral illuminant makes ΔE defined (the display shows "nothing").
+// The BRDF's shape, E and V do not depend on the wavelength (colour::shading),
+// so the two radiances differ only by their tints: radiance = tint · scale,
+// scale = f_r/c · E · V.
+fn delta_e_quantity(s: Surface, radiance: vec3<f32>, scale: f32) -> f32 {
+    if globals.delta_e_defined == 0u {
+        return -1.0;
+    }
+    let exposure = exp2(globals.exposure_ev);
+    let other = tint(s.other_c, globals.other_light_color) * scale;
+    return pixel_delta_e(radiance * exposure, other * exposure, globals.lab_white_relative);
+}
+
 // The quantity the chosen view shows, L = tint · (f_d + f_s) E V for
 // `shaded`, given the visibility v from whichever source.
 fn view_quantity(s: Surface, incidence: LightIncidence, v: f32, density: f32) -> vec3<f32> {
@@ -145,6 +167,10 @@ fn view_quantity(s: Surface, incidence: LightIncidence, v: f32, density: f32) ->
         case VIEW_DIFFUSE: { return radiance_scale * f.x; }
         case VIEW_SPECULAR: { return radiance_scale * f.y; }
         case VIEW_TEXEL_DENSITY: { return vec3<f32>(density); }
+        case VIEW_DELTA_E: {
+            let brdf = f.x + f.y;
+            return vec3<f32>(delta_e_quantity(s, radiance_scale * brdf, e * v * brdf), 0.0, 0.0);
+        }
         default: { return radiance_scale * (f.x + f.y); }
     }
 }

@@ -11,7 +11,6 @@ mod common;
 use bytemuck::{Pod, Zeroable};
 use glam::{DVec3, Vec3};
 use lumlab::gpu::Renderer;
-use lumlab::gpu::readback::map_and_read;
 use lumlab::gpu::shaders::with_common;
 use lumlab::physics::{BrdfParams, Normalization, brdf, colour};
 use lumlab::reference::{Reference, ReferenceOptions, RenderControl, luminance};
@@ -73,64 +72,7 @@ struct GpuResult {
 }
 
 fn run_kernel(cases: &[Case]) -> Vec<GpuResult> {
-    use wgpu::util::DeviceExt;
-    let gpu = common::gpu();
-    let device = &gpu.device;
-    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some("parity kernel"),
-        source: wgpu::ShaderSource::Wgsl(with_common(KERNEL).into()),
-    });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("parity kernel"),
-        layout: None,
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
-    let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("cases"),
-        contents: bytemuck::cast_slice(cases),
-        usage: wgpu::BufferUsages::STORAGE,
-    });
-    let size = (cases.len() * std::mem::size_of::<GpuResult>()) as u64;
-    let output = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("results"),
-        size,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        mapped_at_creation: false,
-    });
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("results readback"),
-        size,
-        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-        mapped_at_creation: false,
-    });
-    let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("parity kernel"),
-        layout: &pipeline.get_bind_group_layout(0),
-        entries: &[
-            wgpu::BindGroupEntry {
-                binding: 0,
-                resource: input.as_entire_binding(),
-            },
-            wgpu::BindGroupEntry {
-                binding: 1,
-                resource: output.as_entire_binding(),
-            },
-        ],
-    });
-    let mut encoder = device.create_command_encoder(&Default::default());
-    {
-        let mut pass = encoder.begin_compute_pass(&Default::default());
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups((cases.len() as u32).div_ceil(64), 1, 1);
-    }
-    encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, size);
-    gpu.queue.submit([encoder.finish()]);
-    let bytes = map_and_read(device, &readback, size as usize, size as usize);
-    bytemuck::cast_slice(&bytes).to_vec()
+    common::kernel::run(&with_common(KERNEL), cases)
 }
 
 fn case(n: Vec3, l: Vec3, o: Vec3, k: f32, m: f32, norm: Normalization) -> Case {

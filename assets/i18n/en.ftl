@@ -139,6 +139,7 @@ view-texel-density-tip = Shadow-map texels per screen pixel (log₂), red: magni
 view-frustum-tip = The light's frustum (or cube faces) drawn over the shaded image
 view-ref-visibility-tip = The CPU reference's visibility V_ref (compute it in the Reference panel)
 view-error-tip = Signed error of luminance L − L_ref against the CPU reference (W/m²/sr)
+view-delta-e-tip = ΔE2000 per pixel between the spectral result and the RGB product, both as displayed (L · 2^EV), in CIE Lab with the illuminant's white at Y = 1 (CIEDE2000, Sharma, Wu & Dalal 2005): about 1 is just visible, 2.3 is the JND. Needs a spectral illuminant (Colour panel)
 view-show = Show
 view-show-tip = What the image shows (V: next view)
 view-exposure = exposure
@@ -421,6 +422,8 @@ legend-ref-visibility = reference visibility V_ref
 legend-depth = light's depth map (linear distance)
 legend-near = near
 legend-far = far
+legend-delta-e = ΔE2000, RGB product vs spectral (1: visible, 2.3: JND)
+legend-delta-e-needs-illuminant = ΔE needs a spectral illuminant: choose one in the Colour panel (in RGB mode both models are the same)
 
 ## Background jobs (lab/jobs.rs)
 

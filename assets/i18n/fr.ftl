@@ -145,6 +145,7 @@ view-texel-density-tip = Texels de la carte d'ombres par pixel de l'écran (log�
 view-frustum-tip = Le frustum de la lumière (ou les faces du cube) tracé sur l'image ombrée
 view-ref-visibility-tip = La visibilité V_ref de la référence CPU (à calculer dans le panneau Référence)
 view-error-tip = Erreur signée de luminance L − L_ref par rapport à la référence CPU (W/m²/sr)
+view-delta-e-tip = ΔE2000 par pixel entre le résultat spectral et le produit RVB, tous deux tels qu'affichés (L · 2^EV), dans CIE Lab avec le blanc de l'illuminant à Y = 1 (CIEDE2000, Sharma, Wu & Dalal 2005) : vers 1 à peine visible, 2.3 le seuil de discrimination (JND). Demande un illuminant spectral (panneau Couleur)
 view-show = Afficher
 view-show-tip = Ce que montre l'image (V : vue suivante)
 view-exposure = exposition
@@ -427,6 +428,8 @@ legend-ref-visibility = visibilité de référence V_ref
 legend-depth = carte de profondeur de la lumière (distance linéaire)
 legend-near = proche
 legend-far = loin
+legend-delta-e = ΔE2000, produit RVB / spectral (1 : visible, 2.3 : JND)
+legend-delta-e-needs-illuminant = ΔE demande un illuminant spectral : choisissez-en un dans le panneau Couleur (en mode RVB les deux modèles coïncident)
 
 ## Background jobs (lab/jobs.rs)
 

@@ -48,8 +48,31 @@ pub fn for_view(view: DebugView, scale: Option<f32>) -> Option<Legend> {
             ticks: quarters([&tr!("legend-near"), "", "", "", &tr!("legend-far")]),
         }),
         DebugView::TexelDensity => colormap::legend(view, 1.0),
+        DebugView::DeltaE => Some(colormap::delta_e_legend(tr!("legend-delta-e"))),
         _ => colormap::legend(view, scale?),
     }
+}
+
+/// Paints `note` where a legend would be: what a view needs before it can
+/// show anything (the `delta-e` view without a spectral illuminant).
+pub fn paint_note(painter: &egui::Painter, area: Rect, note: &str) {
+    let width = (area.width() - 24.0).clamp(120.0, 420.0);
+    let galley = painter.layout(
+        note.to_string(),
+        FontId::proportional(15.0),
+        Color32::WHITE,
+        width - 20.0,
+    );
+    let height = galley.size().y + 12.0;
+    if area.height() < height + 24.0 {
+        return;
+    }
+    let card = Rect::from_min_size(
+        Pos2::new(area.center().x - width / 2.0, area.max.y - height - 12.0),
+        Vec2::new(width, height),
+    );
+    painter.rect_filled(card, 6.0, Color32::from_black_alpha(190));
+    painter.galley(card.min + Vec2::new(10.0, 6.0), galley, Color32::WHITE);
 }
 
 fn color(c: [f32; 3]) -> Color32 {
@@ -140,6 +163,15 @@ mod tests {
         assert!(for_view(DebugView::Irradiance, None).is_none());
         assert!(for_view(DebugView::Visibility, None).is_some());
         assert!(for_view(DebugView::Shaded, Some(1.0)).is_none());
+        // A fixed scale: shown before (and whatever) the read-back scale.
+        let delta_e = for_view(DebugView::DeltaE, None).unwrap();
+        assert_eq!(delta_e.ticks.last().unwrap().1, "≥ 10");
+        assert!(
+            delta_e
+                .ticks
+                .iter()
+                .any(|(t, l)| (*t - 0.23).abs() < 1e-6 && l == "2.3")
+        );
         assert!(
             for_view(DebugView::Error, Some(0.5))
                 .unwrap()

@@ -5,7 +5,6 @@
 //! (read back without blocking).
 
 use super::widgets::{length, number, position, quantity, rgb, value_row, vector};
-use crate::colour::ColourModel;
 use crate::colour::shading::pixel_delta_e;
 use crate::colour::tristimulus::linear_srgb_to_xyz;
 use crate::gpu::ComparisonImage;
@@ -164,10 +163,7 @@ fn delta_e_at(
 ) -> Option<f64> {
     let illuminant = settings.colour.illuminant?;
     let mut other = settings.clone();
-    other.colour.model = match settings.colour.model {
-        ColourModel::Spectral => ColourModel::RgbApprox,
-        ColourModel::RgbApprox => ColourModel::Spectral,
-    };
+    other.colour.model = settings.colour.model.other();
     let other = trace(tracer, &other, pixel, size)?;
     let exposure = 2f64.powf(settings.view.exposure_ev as f64);
     Some(pixel_delta_e(

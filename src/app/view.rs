@@ -31,6 +31,7 @@ pub fn view_help(view: DebugView) -> String {
         DebugView::Frustum => tr!("view-frustum-tip"),
         DebugView::RefVisibility => tr!("view-ref-visibility-tip"),
         DebugView::Error => tr!("view-error-tip"),
+        DebugView::DeltaE => tr!("view-delta-e-tip"),
     }
 }
 

@@ -331,6 +331,15 @@ impl Viewport<'_> {
             if compares && !h.has_comparison {
                 continue;
             }
+            if view == DebugView::DeltaE
+                && Self::settings_for(settings, split, half)
+                    .colour
+                    .illuminant
+                    .is_none()
+            {
+                legend::paint_note(&painter, area, &tr!("legend-delta-e-needs-illuminant"));
+                continue;
+            }
             if let Some(l) = legend::for_view(view, h.scale) {
                 legend::paint(&painter, area, &l);
             }

@@ -83,6 +83,14 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
         settings.shadow.rt_max_frames = frames;
     }
+    // Without a spectrum both colour models are the RGB one: no ΔE to show.
+    let no_delta_e = settings.view.mode == DebugView::DeltaE && settings.colour.illuminant.is_none();
+    if no_delta_e {
+        eprintln!(
+            "lumlab: warning: --view delta-e compares the RGB approximation with the spectral result \
+             and needs --illuminant (D65, A, …); the image shows a checker"
+        );
+    }
     // These views compare with the CPU reference of the same settings.
     let compare = matches!(settings.view.mode, DebugView::Error | DebugView::RefVisibility);
     let reference_options = ReferenceOptions::DEFAULT;
@@ -115,7 +123,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     match format {
         ImageFormat::Png => {
             let image = renderer.read_display();
-            let legend = crate::gpu::colormap::legend(settings.view.mode, renderer.read_scale());
+            let legend = crate::gpu::colormap::legend(settings.view.mode, renderer.read_scale())
+                .filter(|_| !no_delta_e);
             match legend {
                 Some(legend) => write_png_rgba8(&args.out, &crate::plot::with_legend(&image, &legend)?)?,
                 None => write_png_rgba8(&args.out, &image)?,

@@ -45,6 +45,16 @@ named_enum! {
     }
 }
 
+impl ColourModel {
+    /// The other model: what the `delta-e` view and the probe compare with.
+    pub fn other(self) -> Self {
+        match self {
+            Self::Spectral => Self::RgbApprox,
+            Self::RgbApprox => Self::Spectral,
+        }
+    }
+}
+
 /// A material whose name starts with this, followed by the patch number
 /// (01–24), has that ColorChecker patch's measured reflectance
 /// ("ColorChecker 13 blue"); every other material gets the smooth

@@ -23,6 +23,16 @@ pub const DIVERGING: [[f32; 3]; STOPS] = [
     [0.75, 0.12, 0.12],
 ];
 
+/// The `delta-e` view's scale: ΔE2000 from 0 (black) to this (white), so
+/// that images compare whatever they show; larger values saturate.
+pub const DELTA_E_VIEW_MAX: f32 = 10.0;
+
+/// Named differences on the ΔE2000 scale, marked on its legend: about 1 is
+/// the smallest an observer notices side by side; 2.3 is the
+/// just-noticeable difference (JND) Sharma (Digital Color Imaging Handbook,
+/// 2003) gives for CIE Lab.
+pub const DELTA_E_THRESHOLDS: [f32; 2] = [1.0, 2.3];
+
 /// The sRGB colour of `t` ∈ [0, 1] on a ramp (what the shader computes).
 pub fn sample(ramp: &[[f32; 3]; STOPS], t: f32) -> [f32; 3] {
     let x = t.clamp(0.0, 1.0) * (STOPS - 1) as f32;
@@ -42,7 +52,8 @@ pub fn wgsl() -> String {
     format!(
         "const RAMP_STOPS: u32 = {STOPS}u;\n\
          var<private> SEQUENTIAL: array<vec3<f32>, {STOPS}> = array<vec3<f32>, {STOPS}>({});\n\
-         var<private> DIVERGING: array<vec3<f32>, {STOPS}> = array<vec3<f32>, {STOPS}>({});\n",
+         var<private> DIVERGING: array<vec3<f32>, {STOPS}> = array<vec3<f32>, {STOPS}>({});\n\
+         const DELTA_E_VIEW_MAX: f32 = {DELTA_E_VIEW_MAX:?};\n",
         list(&SEQUENTIAL),
         list(&DIVERGING)
     )
@@ -55,6 +66,21 @@ pub struct Legend {
     pub ramp: &'static [[f32; 3]; STOPS],
     /// Positions along the ramp (0 … 1) and their labels.
     pub ticks: Vec<(f32, String)>,
+}
+
+/// The `delta-e` view's legend: its fixed scale 0 … [`DELTA_E_VIEW_MAX`]
+/// with the named thresholds marked; `title` names them (the app translates).
+pub fn delta_e_legend(title: String) -> Legend {
+    let max = DELTA_E_VIEW_MAX as f64;
+    let mut ticks = vec![(0.0, "0".to_string())];
+    ticks.extend(DELTA_E_THRESHOLDS.map(|v| (v / DELTA_E_VIEW_MAX, short(v as f64))));
+    ticks.push((0.5, short(0.5 * max)));
+    ticks.push((1.0, format!("≥ {}", short(max))));
+    Legend {
+        title,
+        ramp: &SEQUENTIAL,
+        ticks,
+    }
 }
 
 /// A short number for a tick label.
@@ -96,6 +122,7 @@ pub fn legend(view: crate::settings::DebugView, scale: f32) -> Option<Legend> {
             ramp: &DIVERGING,
             ticks: ticks(&|t| short((2.0 * t as f64 - 1.0) * scale)),
         },
+        V::DeltaE => delta_e_legend("ΔE2000, RGB approximation vs spectral (1: visible, 2.3: JND)".into()),
         _ => return None,
     };
     Some(legend)

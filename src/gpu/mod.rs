@@ -14,6 +14,7 @@ pub mod bvh;
 pub mod capabilities;
 pub mod colormap;
 pub mod context;
+pub mod delta_e;
 pub mod display;
 pub mod flat;
 pub mod light_frustum;

@@ -256,9 +256,14 @@ impl Renderer {
             light_radius_m: settings.light.radius_m,
             eye: camera.eye.to_array(),
             light_power_w: settings.light.power_w,
-            light_color: colours.light.as_vec3().to_array(),
+            light_color: colours.shown.light.as_vec3().to_array(),
             k: m.k,
-            color_override: colours.color_override.unwrap_or_default().as_vec3().to_array(),
+            color_override: colours
+                .shown
+                .color_override
+                .unwrap_or_default()
+                .as_vec3()
+                .to_array(),
             m: m.m,
             view: code(DebugView::ALL, &settings.view.mode),
             normalization: code(Normalization::ALL, &m.norm),
@@ -267,6 +272,7 @@ impl Renderer {
             use_color_override: m.color_override.is_some() as u32,
             ..Default::default()
         };
+        let globals = super::delta_e::with_delta_e(globals, settings, colours);
         self.queue
             .write_buffer(&self.shade.globals, 0, bytemuck::bytes_of(&globals));
         let display_params = DisplayParamsRaw {

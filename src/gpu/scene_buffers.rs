@@ -151,6 +151,7 @@ impl GpuScene {
                     .and_then(|t| layer_of.get(t).copied())
                     .map_or(0, |l| l + 1),
                 double_sided: m.double_sided as u32,
+                other_model_color: m.base_color.to_array(),
                 ..Default::default()
             })
             .collect();
@@ -200,17 +201,25 @@ impl GpuScene {
     }
 
     /// Makes the materials buffer hold `colours` (one per material, see
-    /// [`crate::colour::shading_colours`]) unless it already holds those of `key`.
+    /// [`crate::colour::shading_colours`]) and, for the `delta-e` view, the
+    /// `other` colour model's, unless it already holds those of `key`.
     /// Views sharing the scene may differ (a split "RGB | spectral"): each
     /// writes its own before it submits, and a write lands before the next
     /// submission, so each frame reads its own.
-    pub fn write_colours(&mut self, queue: &wgpu::Queue, key: ColourKey, colours: &[glam::DVec3]) {
+    pub fn write_colours(
+        &mut self,
+        queue: &wgpu::Queue,
+        key: ColourKey,
+        colours: &[glam::DVec3],
+        other: &[glam::DVec3],
+    ) {
         if self.colours_written == Some(key) {
             return;
         }
-        for (raw, c) in self.materials_raw.iter_mut().zip(colours) {
+        for ((raw, c), o) in self.materials_raw.iter_mut().zip(colours).zip(other) {
             let alpha = raw.base_color[3];
             raw.base_color = c.as_vec3().extend(alpha).to_array();
+            raw.other_model_color = o.as_vec3().extend(alpha).to_array();
         }
         queue.write_buffer(&self.materials, 0, bytemuck::cast_slice(&self.materials_raw));
         self.colours_written = Some(key);

@@ -82,6 +82,7 @@ impl Shader {
                 include_str!("../../shaders/shadow_map.wgsl"),
                 include_str!("../../shaders/bvh.wgsl"),
                 include_str!("../../shaders/raytrace.wgsl"),
+                include_str!("../../shaders/delta_e.wgsl"),
                 include_str!("../../shaders/shade.wgsl")
             ),
             Self::Reduce => include_str!("../../shaders/reduce.wgsl"),

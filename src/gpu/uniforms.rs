@@ -41,7 +41,18 @@ pub struct GlobalsRaw {
     /// Where the shadow map is drawn from, relative to the eye (m): the
     /// light, or its stand-in for a far light (`light_frustum::shadow_apex`).
     pub shadow_apex_rel: [f32; 3],
-    pub _padding_end: u32,
+    /// The `delta-e` view's fields (see `gpu::delta_e`): exposure (EV)
+    /// the colours are compared at.
+    pub exposure_ev: f32,
+    /// The other colour model's light colour.
+    pub other_light_color: [f32; 3],
+    /// ΔE is defined: a spectral illuminant is on (0/1).
+    pub delta_e_defined: u32,
+    /// The other colour model's override colour.
+    pub other_color_override: [f32; 3],
+    pub _padding_delta_e: u32,
+    /// Linear sRGB → XYZ over the illuminant's white (columns, vec4-padded).
+    pub lab_white_relative: [[f32; 4]; 3],
 }
 
 /// `ShadowLayer`: one frustum of the light.
@@ -124,6 +135,8 @@ pub struct MaterialRaw {
     /// Both faces are shaded (0/1).
     pub double_sided: u32,
     pub _padding: [u32; 2],
+    /// The base colour under the other colour model (the `delta-e` view).
+    pub other_model_color: [f32; 4],
 }
 
 /// `DisplayParams`: how the display pass shows the view.

@@ -345,6 +345,9 @@ named_enum! {
         RefVisibility = "ref-visibility",
         /// Signed error of L against the CPU reference.
         Error = "error",
+        /// ΔE2000 per pixel between the RGB approximation and the spectral
+        /// result under the illuminant (`[colour]`), false colour 0 … 10.
+        DeltaE = "delta-e",
     }
 }
 

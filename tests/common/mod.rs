@@ -2,6 +2,8 @@
 //! scenes built from `scene::shapes`, and rendering helpers.
 #![allow(dead_code)]
 
+pub mod kernel;
+
 use glam::Vec3;
 use lumlab::gpu::{FrameReport, GpuContext, Renderer};
 use lumlab::scene::shapes::{cuboid, ground, ground_grid};
