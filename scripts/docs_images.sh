@@ -13,6 +13,8 @@ size=480x270
 for view in shaded depth visibility ndotl irradiance brdf diffuse specular texel-density frustum ref-visibility error; do
   "$lumlab" render --size "$size" --view "$view" --out "docs/views/$view.png"
 done
+# ΔE2000 needs a spectral light: the RGB product against the spectral result under A.
+"$lumlab" render --size "$size" --view delta-e --illuminant A --out docs/views/delta-e.png
 # A close look at the thin occluder's shadow: R = 0.25 m gives a wide penumbra.
 close=(--size "$size" --camera=-3.7,2.4,2.4:-3.7,0,-0.1:40 --light-radius 0.25 --shadow-res 1024)
 for filter in none hw2x2 pcf poisson pcss vsm evsm msm; do

@@ -451,3 +451,45 @@ fn chart_in_the_view(illuminant: Illuminant) -> (Vec<f64>, Vec<f64>) {
     }
     (shown, printed)
 }
+
+/// `lumlab render` with `args`, into `out` (EXR: ΔE in R, coverage in A);
+/// returns the pixels and the standard error.
+fn render_cli(args: &[&str], out: &std::path::Path) -> (Vec<[f32; 4]>, String) {
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_lumlab"))
+        .args(["render", "--size", "96x54", "--out"])
+        .arg(out)
+        .args(args)
+        .output()
+        .expect("the lumlab binary runs");
+    let stderr = String::from_utf8_lossy(&run.stderr).into_owned();
+    assert!(run.status.success(), "{args:?}: {stderr}");
+    let image = image::open(out).expect("an EXR").to_rgba32f();
+    (image.pixels().map(|p| p.0).collect(), stderr)
+}
+
+#[test]
+fn the_command_line_renders_the_view_from_its_flags_and_from_a_settings_file() {
+    let dir = std::env::temp_dir().join(format!("lumlab-delta-e-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (flags, _) = render_cli(
+        &["--view", "delta-e", "--illuminant", "A"],
+        &dir.join("flags.exr"),
+    );
+    let covered: Vec<f32> = flags.iter().filter(|p| p[3] > 0.0).map(|p| p[0]).collect();
+    assert!(covered.iter().all(|&d| d >= 0.0));
+    // The chart's saturated patches, at least, are plainly off under A.
+    assert!(covered.iter().any(|&d| d > 2.3));
+    let settings = dir.join("delta-e.toml");
+    std::fs::write(
+        &settings,
+        "[view]\nmode = \"delta-e\"\n\n[colour]\nilluminant = \"A\"\n",
+    )
+    .unwrap();
+    let (from_file, _) = render_cli(&["--settings", settings.to_str().unwrap()], &dir.join("file.exr"));
+    assert_eq!(from_file, flags);
+    // No illuminant: said, and nothing that reads as a ΔE.
+    let (rgb, stderr) = render_cli(&["--view", "delta-e"], &dir.join("rgb.exr"));
+    assert!(stderr.contains("needs --illuminant"), "{stderr}");
+    assert!(rgb.iter().filter(|p| p[3] > 0.0).all(|p| p[0] == -1.0));
+    let _ = std::fs::remove_dir_all(&dir);
+}
