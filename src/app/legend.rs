@@ -53,26 +53,34 @@ pub fn for_view(view: DebugView, scale: Option<f32>) -> Option<Legend> {
     }
 }
 
-/// Paints `note` where a legend would be: what a view needs before it can
-/// show anything (the `delta-e` view without a spectral illuminant).
-pub fn paint_note(painter: &egui::Painter, area: Rect, note: &str) {
-    let width = (area.width() - 24.0).clamp(120.0, 420.0);
-    let galley = painter.layout(
-        note.to_string(),
-        FontId::proportional(15.0),
-        Color32::WHITE,
-        width - 20.0,
-    );
-    let height = galley.size().y + 12.0;
+/// The width of a legend's card in `area`.
+fn card_width(area: Rect) -> f32 {
+    (area.width() - 24.0).clamp(120.0, 420.0)
+}
+
+/// Paints a dark card of `height` at the bottom of `area` and returns it;
+/// None when `area` is too short for it.
+fn card(painter: &egui::Painter, area: Rect, height: f32) -> Option<Rect> {
     if area.height() < height + 24.0 {
-        return;
+        return None;
     }
+    let width = card_width(area);
     let card = Rect::from_min_size(
         Pos2::new(area.center().x - width / 2.0, area.max.y - height - 12.0),
         Vec2::new(width, height),
     );
     painter.rect_filled(card, 6.0, Color32::from_black_alpha(190));
-    painter.galley(card.min + Vec2::new(10.0, 6.0), galley, Color32::WHITE);
+    Some(card)
+}
+
+/// Paints `note` where a legend would be: what a view needs before it can
+/// show anything (the `delta-e` view without a spectral illuminant).
+pub fn paint_note(painter: &egui::Painter, area: Rect, note: &str) {
+    let font = FontId::proportional(15.0);
+    let galley = painter.layout(note.to_string(), font, Color32::WHITE, card_width(area) - 20.0);
+    if let Some(card) = card(painter, area, galley.size().y + 12.0) {
+        painter.galley(card.min + Vec2::new(10.0, 6.0), galley, Color32::WHITE);
+    }
 }
 
 fn color(c: [f32; 3]) -> Color32 {
@@ -83,16 +91,9 @@ fn color(c: [f32; 3]) -> Color32 {
 /// Paints `legend` at the bottom of `area`: a dark card with the title, the
 /// ramp and its labelled ticks, large enough to read from the back of a room.
 pub fn paint(painter: &egui::Painter, area: Rect, legend: &Legend) {
-    let width = (area.width() - 24.0).clamp(120.0, 420.0);
-    let height = 78.0;
-    if area.height() < height + 24.0 {
+    let Some(card) = card(painter, area, 78.0) else {
         return;
-    }
-    let card = Rect::from_min_size(
-        Pos2::new(area.center().x - width / 2.0, area.max.y - height - 12.0),
-        Vec2::new(width, height),
-    );
-    painter.rect_filled(card, 6.0, Color32::from_black_alpha(190));
+    };
     let font = FontId::proportional(15.0);
     painter.text(
         card.min + Vec2::new(10.0, 6.0),
