@@ -503,6 +503,8 @@ probe-v-gpu-traced = V (GPU ray traced)
 probe-v-gpu-traced-tip = Visibility traced on the GPU in f32 through the BVH: exact for a point light, the mean of the accumulated frames' samples for a sphere light
 probe-xyz-tip = CIE 1931 XYZ of L (linear sRGB → XYZ, IEC 61966-2-1); under a spectral light the reference integrated S(λ) R(λ) against x̄, ȳ, z̄
 probe-delta-e-tip = ΔE2000 between the spectral result and the RGB product at this pixel (L · 2^EV in CIE Lab, the illuminant's white at Y = 1): below 1 invisible, above 3 another colour
+probe-delta-e-gpu = ΔE2000 (GPU view)
+probe-delta-e-gpu-tip = The delta-e view's value at this pixel: both colour models shaded by the GPU in f32, CIEDE2000 in WGSL (shaders/delta_e.wgsl); it should match the ΔE2000 above, traced in f64
 
 ## Timings panel (timings.rs)
 

@@ -509,6 +509,8 @@ probe-v-gpu-traced = V (lancer de rayons GPU)
 probe-v-gpu-traced-tip = Visibilité tracée sur le GPU en f32 à travers le BVH : exacte pour une lumière ponctuelle, moyenne des échantillons des images accumulées pour une lumière sphérique
 probe-xyz-tip = XYZ CIE 1931 de L (sRGB linéaire → XYZ, IEC 61966-2-1) ; sous une lumière spectrale, la référence a intégré S(λ) R(λ) contre x̄, ȳ, z̄
 probe-delta-e-tip = ΔE2000 entre le résultat spectral et le produit RVB en ce pixel (L · 2^EV dans CIE Lab, le blanc de l'illuminant à Y = 1) : sous 1 invisible, au-dessus de 3 une autre couleur
+probe-delta-e-gpu = ΔE2000 (vue GPU)
+probe-delta-e-gpu-tip = La valeur de la vue delta-e en ce pixel : les deux modèles de couleur ombrés par le GPU en f32, CIEDE2000 en WGSL (shaders/delta_e.wgsl) ; elle doit égaler le ΔE2000 ci-dessus, tracé en f64
 
 ## Timings panel (timings.rs)
 

@@ -391,6 +391,8 @@ impl PendingProbe {
                 method: self.method,
                 texel_density: aux[1],
                 radiance: quantity_is_radiance(self.view).then_some([quantity[0], quantity[1], quantity[2]]),
+                // Negative: no illuminant, no ΔE (gpu::delta_e).
+                delta_e: (self.view == DebugView::DeltaE && quantity[0] >= 0.0).then_some(quantity[0]),
             }),
             _ => ReadState::Waiting,
         }

@@ -184,6 +184,8 @@ pub struct GpuSample {
     pub texel_density: f32,
     /// The GPU's L (W/m²/sr), when the view's quantity is the radiance.
     pub radiance: Option<[f32; 3]>,
+    /// The `delta-e` view's ΔE2000 here, where it is defined.
+    pub delta_e: Option<f32>,
 }
 
 /// The reference's values at the probed pixel.
@@ -351,6 +353,13 @@ impl Probe {
                 if let Some(gpu_l) = g.radiance {
                     let v = DVec3::from_array(gpu_l.map(f64::from));
                     rows.push((tr!("probe-l-gpu"), rgb(v, "W/m²/sr"), tr!("probe-l-gpu-tip")));
+                }
+                if let Some(delta_e) = g.delta_e {
+                    rows.push((
+                        tr!("probe-delta-e-gpu"),
+                        number(delta_e as f64),
+                        tr!("probe-delta-e-gpu-tip"),
+                    ));
                 }
             }
             None => rows.extend([

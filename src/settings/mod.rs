@@ -537,7 +537,7 @@ mod tests {
         assert_eq!(BiasMode::choices(), "auto|constant|slope|normal");
         assert_eq!(
             DebugView::choices(),
-            "shaded|depth|visibility|ndotl|irradiance|brdf|diffuse|specular|texel-density|frustum|ref-visibility|error"
+            "shaded|depth|visibility|ndotl|irradiance|brdf|diffuse|specular|texel-density|frustum|ref-visibility|error|delta-e"
         );
         let err = Settings::from_toml("[shadow]\nfilter = \"blur\"\n").unwrap_err();
         assert!(err.contains("pcf") && err.contains("blur"), "{err}");
