@@ -12,6 +12,8 @@
 //! Lab and CIEDE2000 in WGSL; the display maps ΔE to a fixed false-colour
 //! scale (`colormap::DELTA_E_VIEW_MAX`). Without a spectral illuminant the
 //! two models are one and ΔE is undefined: the view shows "nothing here".
+//! A ray-traced sphere light's frames average ΔE itself, not the colours:
+//! the two differ only in penumbrae, where V varies from frame to frame.
 
 use super::spectral::ModelColours;
 use super::uniforms::GlobalsRaw;
