@@ -16,6 +16,7 @@
 //! The f64 test decides every hit, so the BVH answers exactly what testing
 //! every triangle would (see `closest_hit_brute_force` and the tests).
 
+mod lanes;
 mod packet;
 
 use super::intersect::{ShearedRay, TriangleHit};

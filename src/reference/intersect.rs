@@ -66,7 +66,7 @@ pub struct TriangleHit {
 
 /// The two other axes of kz, cyclic, swapped on request.
 #[inline(always)]
-const fn other_axes(kz: usize, swap: bool) -> (usize, usize) {
+pub(crate) const fn other_axes(kz: usize, swap: bool) -> (usize, usize) {
     let (kx, ky) = ((kz + 1) % 3, (kz + 2) % 3);
     if swap { (ky, kx) } else { (kx, ky) }
 }
@@ -100,6 +100,11 @@ impl ShearedRay {
 
     pub fn axes(&self) -> Axes {
         self.axes
+    }
+
+    /// The shear constants d_kx / d_kz and d_ky / d_kz.
+    pub fn shear(&self) -> (f64, f64) {
+        (self.sx, self.sy)
     }
 
     /// 1 / |d_kz|: a point at depth z along the ray's main axis is at t = z / |d_kz|.

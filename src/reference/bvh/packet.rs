@@ -20,6 +20,7 @@
 //!   least depth is beyond what a ray can reach holds nothing for it, and
 //!   ties are still tested, so the lowest index wins among equal distances.
 
+use super::lanes::{Groups, LANES};
 use super::{Hit, TRAVERSAL, TriangleBvh, closer};
 use crate::reference::intersect::{ShearedRay, with_axes};
 // `UVec2` is named inside obvhs's `traverse!` macro.
@@ -160,6 +161,7 @@ impl TriangleBvh {
             packet.limits.push(f64::INFINITY);
             packet.hits.push(None);
         }
+        packet.groups.fill(&packet.rays);
         self.walk_cone(cone, packet);
     }
 
@@ -177,6 +179,7 @@ impl TriangleBvh {
                 .limits
                 .push(depth + ROUNDING * (o - cone.apex).abs().element_sum());
         }
+        packet.groups.fill(&packet.rays);
         self.walk_cone(cone, packet);
     }
 }
@@ -189,6 +192,29 @@ pub struct PrimaryPacket {
     along: Vec<f64>,
     limits: Vec<f64>,
     pub hits: Vec<Option<Hit>>,
+    /// The rays in groups for the four-lane miss test.
+    groups: Groups,
+}
+
+impl PrimaryPacket {
+    /// Ray k's test against the triangle (`relative` to the apex, the
+    /// rays' common origin), kept when it is the closest hit so far.
+    #[inline(always)]
+    fn test_ray<const KZ: usize, const SWAP: bool>(
+        &mut self,
+        k: usize,
+        triangle: usize,
+        relative: &[DVec3; 3],
+    ) {
+        let best = &mut self.hits[k];
+        let limit = best.map_or(f64::INFINITY, |b| b.at.t.next_up());
+        if let Some(at) = self.rays[k].intersect_in::<KZ, SWAP>(relative, 0.0, limit)
+            && best.is_none_or(|b| closer(at, triangle, b))
+        {
+            *best = Some(Hit { triangle, at });
+            self.limits[k] = at.t * self.along[k] * (1.0 + ROUNDING);
+        }
+    }
 }
 
 impl Rays for PrimaryPacket {
@@ -199,19 +225,26 @@ impl Rays for PrimaryPacket {
     #[inline(always)]
     fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64) {
         let triangle = bvh.original[slot];
-        for (k, ray) in self.rays.iter().enumerate() {
-            if nearest > self.limits[k] {
-                continue;
-            }
-            let best = &mut self.hits[k];
-            let limit = best.map_or(f64::INFINITY, |b| b.at.t.next_up());
-            let found =
-                with_axes!(ray.axes(), KZ, SWAP => ray.intersect_in::<KZ, SWAP>(relative, 0.0, limit));
-            if let Some(at) = found
-                && best.is_none_or(|b| closer(at, triangle, b))
-            {
-                *best = Some(Hit { triangle, at });
-                self.limits[k] = at.t * self.along[k] * (1.0 + ROUNDING);
+        if let Some(axes) = self.groups.axes {
+            with_axes!(axes, KZ, SWAP => {
+                for g in 0..self.groups.groups.len() {
+                    let live = reaching(&self.limits, g, nearest);
+                    if live == 0 {
+                        continue;
+                    }
+                    let mut lanes = live & self.groups.groups[g].may_hit::<KZ, SWAP, true>(relative);
+                    while lanes != 0 {
+                        let k = g * LANES + lanes.trailing_zeros() as usize;
+                        lanes &= lanes - 1;
+                        self.test_ray::<KZ, SWAP>(k, triangle, relative);
+                    }
+                }
+            });
+            return;
+        }
+        for k in 0..self.rays.len() {
+            if nearest <= self.limits[k] {
+                with_axes!(self.rays[k].axes(), KZ, SWAP => self.test_ray::<KZ, SWAP>(k, triangle, relative));
             }
         }
     }
@@ -223,6 +256,8 @@ pub struct ShadowPacket {
     rays: Vec<ShearedRay>,
     limits: Vec<f64>,
     t_max: f64,
+    /// The rays in groups for the four-lane miss test.
+    groups: Groups,
 }
 
 impl ShadowPacket {
@@ -243,12 +278,43 @@ impl Rays for ShadowPacket {
             return;
         }
         let corners = &bvh.corners[slot];
+        if let Some(axes) = self.groups.axes {
+            with_axes!(axes, KZ, SWAP => {
+                for (g, group) in self.groups.groups.iter().enumerate() {
+                    let live = reaching(&self.limits, g, nearest);
+                    if live == 0 {
+                        continue;
+                    }
+                    let mut lanes = live & group.may_hit::<KZ, SWAP, false>(corners);
+                    while lanes != 0 {
+                        let k = g * LANES + lanes.trailing_zeros() as usize;
+                        lanes &= lanes - 1;
+                        let ray = &self.rays[k];
+                        if ray.hits_in::<KZ, SWAP>(&ray.relative(corners), 0.0, self.t_max)
+                        {
+                            self.limits[k] = f64::NEG_INFINITY;
+                        }
+                    }
+                }
+            });
+            return;
+        }
         for (ray, limit) in self.rays.iter().zip(self.limits.iter_mut()) {
             if nearest <= *limit && ray.hits(corners, 0.0, self.t_max) {
                 *limit = f64::NEG_INFINITY;
             }
         }
     }
+}
+
+/// Bit l set when ray `LANES · group + l` can still reach depth `nearest`.
+#[inline(always)]
+fn reaching(limits: &[f64], group: usize, nearest: f64) -> u32 {
+    limits[group * LANES..]
+        .iter()
+        .take(LANES)
+        .enumerate()
+        .fold(0, |m, (l, &limit)| m | u32::from(nearest <= limit) << l)
 }
 
 /// The cone, for boxes of the BVH's normalized frame.
@@ -261,44 +327,51 @@ struct FrameCone {
 impl FrameCone {
     /// obvhs's hit mask of the children of `node` whose boxes meet the cone
     /// with a least depth no deeper than `farthest`.
+    ///
+    /// A child's box is p + e·q (q its quantized corners, 0 to 255), so a
+    /// plane's value at the box's farthest corner along n is
+    /// n·p + Σ_k (n_k e_k) q_k: three products per plane and child, for the
+    /// eight children side by side. Every box lies within p … p + 255 e,
+    /// whose size sets one rounding allowance for all of them (no smaller
+    /// than each box's own; the rearranged sums round by some 10⁻¹⁵ of it).
     #[inline(always)]
     fn child_mask(&self, bvh: &TriangleBvh, node: &CwBvhNode, farthest: f64, oct_inv4: u32) -> u32 {
         let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
         let scale = 1.0 / bvh.per_scale;
-        // Boxes decoded exactly in f64, relative to the apex, in world units.
-        let extent = node.compute_extent().as_dvec3() * scale;
+        // In f64, relative to the apex, in world units.
+        let e = node.compute_extent().as_dvec3() * scale;
         let p = node.p.as_dvec3() * scale + bvh.centre - self.cone.apex;
+        let size = p.abs().max((p + e * 255.0).abs()).max_element();
+        let slack = ROUNDING * (size + self.apex_size);
+        let lo = [&node.child_min_x, &node.child_min_y, &node.child_min_z];
+        let hi = [&node.child_max_x, &node.child_max_y, &node.child_max_z];
+        // The value of n·x at each child's corner farthest along n (nearest: against n).
+        let values = |n: DVec3, farthest_along: bool| -> [f64; 8] {
+            let q = std::array::from_fn::<_, 3, _>(|k| {
+                if (n[k] > 0.0) == farthest_along {
+                    hi[k]
+                } else {
+                    lo[k]
+                }
+            });
+            let (base, w) = (n.dot(p), n * e);
+            std::array::from_fn(|c| base + w.x * q[0][c] as f64 + w.y * q[1][c] as f64 + w.z * q[2][c] as f64)
+        };
+        let mut inside = [true; 8];
+        for n in self.cone.planes {
+            let bound = -slack * n.abs().element_sum();
+            let v = values(n, true);
+            for c in 0..8 {
+                inside[c] &= !(v[c] < bound);
+            }
+        }
+        let depth = values(self.cone.axis, false);
         let mut hit_mask = 0;
         for child in 0..8 {
-            if node.is_child_empty(child) {
-                continue;
-            }
-            let q = |v: &[u8; 8]| v[child] as f64;
-            let lo =
-                p + extent * DVec3::new(q(&node.child_min_x), q(&node.child_min_y), q(&node.child_min_z));
-            let hi =
-                p + extent * DVec3::new(q(&node.child_max_x), q(&node.child_max_y), q(&node.child_max_z));
-            if self.meets(lo, hi, farthest) {
+            if inside[child] && !node.is_child_empty(child) && depth[child] - slack <= farthest {
                 hit_mask |= extract_byte64(child_bits8, child) << extract_byte64(bit_index8, child);
             }
         }
         hit_mask
-    }
-
-    /// Whether the box (relative to the apex) meets the cone no deeper than `farthest`.
-    #[inline(always)]
-    fn meets(&self, lo: DVec3, hi: DVec3, farthest: f64) -> bool {
-        let slack = ROUNDING * (lo.abs().max(hi.abs()).max_element() + self.apex_size);
-        let outside = |n: DVec3| {
-            // The box's corner farthest along n.
-            let far = DVec3::select(n.cmpgt(DVec3::ZERO), hi, lo);
-            n.dot(far) < -slack * n.abs().element_sum()
-        };
-        if self.cone.planes.iter().any(|&n| outside(n)) {
-            return false;
-        }
-        let a = self.cone.axis;
-        let near = DVec3::select(a.cmpgt(DVec3::ZERO), lo, hi);
-        a.dot(near) - slack <= farthest
     }
 }
