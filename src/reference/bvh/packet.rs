@@ -362,7 +362,8 @@ impl FrameCone {
             let bound = -slack * n.abs().element_sum();
             let v = values(n, true);
             for c in 0..8 {
-                inside[c] &= !(v[c] < bound);
+                // NaN (never for finite boxes) keeps the child.
+                inside[c] &= v[c] >= bound || v[c].is_nan();
             }
         }
         let depth = values(self.cone.axis, false);
