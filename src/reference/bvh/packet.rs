@@ -18,7 +18,10 @@
 //!   t along a primary ray d has depth t (d · a), and a shadow ray's points
 //!   lie between the light (depth 0) and its origin; a box or triangle whose
 //!   least depth is beyond what a ray can reach holds nothing for it, and
-//!   ties are still tested, so the lowest index wins among equal distances.
+//!   ties are still tested, so the lowest index wins among equal distances;
+//! - rays that share their main axis are tested four at a time by the miss
+//!   half of the watertight test (`bvh/lanes.rs`), with the scalar test's
+//!   own operations, so a lane it rules out is a miss of the scalar test.
 
 use super::lanes::{Groups, LANES};
 use super::{Hit, TRAVERSAL, TriangleBvh, closer};
