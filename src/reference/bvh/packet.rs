@@ -346,30 +346,16 @@ impl FrameCone {
         let p = node.p.as_dvec3() * scale + bvh.centre - self.cone.apex;
         let size = p.abs().max((p + e * 255.0).abs()).max_element();
         let slack = ROUNDING * (size + self.apex_size);
-        let lo = [&node.child_min_x, &node.child_min_y, &node.child_min_z];
-        let hi = [&node.child_max_x, &node.child_max_y, &node.child_max_z];
-        // The value of n·x at each child's corner farthest along n (nearest: against n).
-        let values = |n: DVec3, farthest_along: bool| -> [f64; 8] {
-            let q = std::array::from_fn::<_, 3, _>(|k| {
-                if (n[k] > 0.0) == farthest_along {
-                    hi[k]
-                } else {
-                    lo[k]
-                }
-            });
-            let (base, w) = (n.dot(p), n * e);
-            std::array::from_fn(|c| base + w.x * q[0][c] as f64 + w.y * q[1][c] as f64 + w.z * q[2][c] as f64)
-        };
         let mut inside = [true; 8];
         for n in self.cone.planes {
             let bound = -slack * n.abs().element_sum();
-            let v = values(n, true);
+            let v = corner_values(node, n, p, e, true);
             for c in 0..8 {
                 // NaN (never for finite boxes) keeps the child.
                 inside[c] &= v[c] >= bound || v[c].is_nan();
             }
         }
-        let depth = values(self.cone.axis, false);
+        let depth = corner_values(node, self.cone.axis, p, e, false);
         let mut hit_mask = 0;
         for child in 0..8 {
             if inside[child] && !node.is_child_empty(child) && depth[child] - slack <= farthest {
@@ -378,4 +364,15 @@ impl FrameCone {
         }
         hit_mask
     }
+}
+
+/// The value of n·x at each child box's corner farthest along n (nearest
+/// when not `farthest`): the box is p + e·q, q its quantized corners.
+#[inline(always)]
+fn corner_values(node: &CwBvhNode, n: DVec3, p: DVec3, e: DVec3, farthest: bool) -> [f64; 8] {
+    let lo = [&node.child_min_x, &node.child_min_y, &node.child_min_z];
+    let hi = [&node.child_max_x, &node.child_max_y, &node.child_max_z];
+    let q: [&[u8; 8]; 3] = std::array::from_fn(|k| if (n[k] > 0.0) == farthest { hi[k] } else { lo[k] });
+    let (base, w) = (n.dot(p), n * e);
+    std::array::from_fn(|c| base + w.x * q[0][c] as f64 + w.y * q[1][c] as f64 + w.z * q[2][c] as f64)
 }
