@@ -1,12 +1,11 @@
 //! The miss test of the watertight triangle test for four rays at once: the
-//! packets' first filter. It runs the very operations of
-//! [`ShearedRay::edges`](crate::reference::intersect::ShearedRay) — the same
-//! subtractions, products and sign tests in the same order, with no fused
-//! multiply-add — lane by lane on arrays that the compiler turns into SIMD
-//! (two f64 per SSE2 register, four per AVX2 one where the CPU has it), so
-//! each lane's edge functions carry the scalar test's bits. A lane it calls a
-//! miss is one the scalar test calls a miss; every other lane goes on to the
-//! scalar test, which decides. The answers are the scalar path's, bit for bit.
+//! packets' first filter. It runs the very operations of the scalar test
+//! (`ShearedRay::edges`) — the same subtractions, products and sign tests in
+//! the same order, with no fused multiply-add — two lanes per SSE2 register
+//! (part of every x86-64 CPU; plain pairs elsewhere), so each lane's edge
+//! functions carry the scalar test's bits. A lane it calls a miss is one the
+//! scalar test calls a miss; every other lane goes on to the scalar test,
+//! which decides. The answers are the scalar path's, bit for bit.
 
 use crate::reference::intersect::{Axes, ShearedRay, other_axes};
 use glam::DVec3;
