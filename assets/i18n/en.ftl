@@ -535,6 +535,7 @@ timings-gpu-total-tip = Sum of the timed passes
 timings-shadow-map = shadow map
 timings-redrawn = redrawn this frame
 timings-reused = reused
+timings-unused = not drawn: ray-traced V reads no shadow map
 timings-shadow-map-tip = Redrawn only when the light, the geometry or the shadow settings change
 timings-layout = layout
 timings-layout-tip = One frustum fitted to the scene, or the cube faces that see geometry

@@ -541,6 +541,7 @@ timings-gpu-total-tip = Somme des passes chronométrées
 timings-shadow-map = carte d'ombres
 timings-redrawn = retracée à cette image
 timings-reused = réutilisée
+timings-unused = non tracée : V tracé par rayons ne lit aucune carte d'ombres
 timings-shadow-map-tip = Retracée seulement quand la lumière, la géométrie ou les réglages d'ombre changent
 timings-layout = disposition
 timings-layout-tip = Un frustum ajusté à la scène, ou les faces du cube qui voient de la géométrie

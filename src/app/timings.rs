@@ -152,6 +152,8 @@ pub fn ui(ui: &mut egui::Ui, clock: &FrameClock, gpu: Option<&GpuViews>) {
                     &tr!("timings-shadow-map"),
                     &if r.shadow_redrawn {
                         tr!("timings-redrawn")
+                    } else if r.shadow_map_unused {
+                        tr!("timings-unused")
                     } else {
                         tr!("timings-reused")
                     },

@@ -38,6 +38,9 @@ pub struct FrameReport {
     /// This frame drew its shadow map (otherwise it read one already drawn,
     /// by this view or by another that shares the scene).
     pub shadow_redrawn: bool,
+    /// Nothing this frame reads the shadow map (ray-traced visibility, any
+    /// view but `depth`): it was neither drawn nor looked for.
+    pub shadow_map_unused: bool,
     /// The light's layers; None when shadows are off or nothing is drawn.
     pub layout: Option<ShadowLayout>,
     /// Casters drawn per layer by the current shadow map.
@@ -239,6 +242,7 @@ impl Renderer {
             ..Default::default()
         };
         let apex = shadow_apex(light, &shared.scene.scene_bounds());
+        report.shadow_map_unused = !reads_shadow_map(settings);
         let prepared = shared.prepare_shadows(self.view, settings, apex, &visible_bounds, &mut report);
         self.queue
             .write_buffer(&self.shadow_uniform, 0, bytemuck::bytes_of(&prepared.raw));
@@ -517,6 +521,14 @@ impl Drop for Renderer {
     fn drop(&mut self) {
         lock(&self.shared).remove_view(self.view);
     }
+}
+
+/// Whether a frame with `settings` reads the shadow map's textures: V comes
+/// from it, or the `depth` view shows it. Under ray-traced visibility every
+/// other view needs only the map's layout (texel density, frustum overlay),
+/// which is fitted without drawing.
+fn reads_shadow_map(settings: &Settings) -> bool {
+    settings.shadow.visibility == Visibility::ShadowMap || settings.view.mode == DebugView::Depth
 }
 
 /// The shared scene, even if another view panicked while holding it (its

@@ -136,8 +136,8 @@ impl SharedScene {
     }
 
     /// Fits the light's layers, picks casters, finds a slot that already
-    /// holds this map or takes the view's own to redraw; returns the
-    /// shadow uniforms with that choice.
+    /// holds this map or takes the view's own to redraw (unless
+    /// `report.shadow_map_unused`); returns the shadow uniforms with that choice.
     pub(super) fn prepare_shadows(
         &mut self,
         view: usize,
@@ -211,6 +211,9 @@ impl SharedScene {
         });
         let (slot, redraw) = match holding {
             Some(i) => (i, false),
+            // Nobody reads the map: the view's slot stays as it is (its key
+            // still says what it holds), nothing is drawn.
+            None if report.shadow_map_unused => (view, false),
             None => {
                 let own = self.slots[view].as_mut().expect("a live view's slot exists");
                 if own.textures.resolution != resolution
