@@ -42,7 +42,13 @@ struct VsOut {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) @interpolate(flat) material: u32,
+    // 0: the object receives no shadows (V = 1).
+    @location(4) @interpolate(flat) receives_shadows: u32,
 }
+
+// gpu::scene_buffers::Vertex::NO_SHADOWS_RECEIVED: set in a vertex's material
+// word on objects that receive no shadows.
+const NO_SHADOWS_RECEIVED: u32 = 0x80000000u;
 
 @vertex
 fn vs(in: VsIn) -> VsOut {
@@ -51,7 +57,8 @@ fn vs(in: VsIn) -> VsOut {
     out.clip = globals.view_proj * vec4<f32>(out.rel, 1.0);
     out.normal = in.normal;
     out.uv = in.uv;
-    out.material = in.material;
+    out.material = in.material & ~NO_SHADOWS_RECEIVED;
+    out.receives_shadows = u32((in.material & NO_SHADOWS_RECEIVED) == 0u);
     return out;
 }
 
@@ -71,6 +78,8 @@ struct Surface {
     other_c: vec3<f32>,
     k: f32,
     m: f32,
+    // The object receives shadows (Object::receives_shadows).
+    receives_shadows: bool,
 }
 
 // Normals, colour, k and m at the fragment. Uses derivatives: call it in
@@ -94,6 +103,7 @@ fn surface_at(in: VsOut, front_facing: bool) -> Surface {
         s.n = -s.n;
     }
     s.n_geo = select(facet, -facet, dot(facet, s.n) < 0.0);
+    s.receives_shadows = in.receives_shadows != 0u;
 
     s.k = globals.k;
     s.m = globals.m;
@@ -120,6 +130,10 @@ fn surface_at(in: VsOut, front_facing: bool) -> Surface {
 // (a V texture, a GPU ray tracer) is one more case here; the radiance code
 // does not change. p_l: the point relative to the light.
 fn visibility(p_l: vec3<f32>, s: Surface, incidence: LightIncidence, pixel: vec2<f32>) -> f32 {
+    // The reference's rule for every source: no shadow rays, V = 1.
+    if !s.receives_shadows {
+        return 1.0;
+    }
     if visibility_mode() == VISIBILITY_RAY_TRACED {
         // Its own attached-shadow rule: a sphere light straddling the horizon is partly seen.
         return ray_traced_visibility(p_l + globals.shadow_apex_rel, s.n, s.n_geo, pixel);

@@ -1,6 +1,7 @@
 //! What each visibility source reads and honours: under ray-traced V the
 //! shadow map is drawn only for the view that shows it, and the images do
-//! not depend on it.
+//! not depend on it; an object that receives no shadows has V = 1 under both
+//! sources, as in the reference.
 
 mod common;
 
@@ -68,4 +69,72 @@ fn ray_traced_visibility_draws_no_shadow_map_and_its_images_do_not_change() {
     assert_eq!(skipping.shadow_draws(), 1);
     drawing.render(&map, size(&map));
     assert_eq!(skipping.read_display(), drawing.read_display());
+}
+
+/// Pixels whose 3×3 neighbourhood is covered and satisfies `keep`.
+fn interior(width: usize, coverage: &[f32], keep: impl Fn(usize) -> bool) -> Vec<usize> {
+    let height = coverage.len() / width;
+    (0..coverage.len())
+        .filter(|&i| {
+            let (x, y) = (i % width, i / width);
+            x > 0
+                && y > 0
+                && x + 1 < width
+                && y + 1 < height
+                && (y - 1..=y + 1).all(|ny| {
+                    (x - 1..=x + 1).all(|nx| {
+                        let j = ny * width + nx;
+                        coverage[j] > 0.0 && keep(j)
+                    })
+                })
+        })
+        .collect()
+}
+
+#[test]
+fn an_object_that_receives_no_shadows_has_the_references_v_under_both_sources() {
+    let gpu = common::gpu();
+    let receiving = lumlab::scene::default_scene();
+    let mut scene = receiving.clone();
+    let ground = scene
+        .objects
+        .iter_mut()
+        .find(|o| o.name == "ground")
+        .expect("a ground");
+    ground.receives_shadows = false;
+    let mut s = ray_traced_point_light(240, 135);
+    s.shadow.filter = lumlab::settings::Filter::None;
+    let reference = |scene: &Scene| {
+        use lumlab::reference::{Reference, ReferenceOptions, RenderControl};
+        Reference::new(scene)
+            .render(&s, &ReferenceOptions::DEFAULT, &RenderControl::default())
+            .expect("reference")
+    };
+    let (with, without) = (reference(&receiving), reference(&scene));
+    let width = s.image.width as usize;
+    // Umbra that the flag takes away: shadowed with it, lit without, well
+    // inside both (the ground's cast shadows, no silhouette nearby).
+    let lifted = interior(width, &without.coverage, |j| {
+        with.visibility[j] == 0.0 && without.visibility[j] == 1.0
+    });
+    // Umbra on the objects that still receive.
+    let kept = interior(width, &without.coverage, |j| without.visibility[j] == 0.0);
+    let pixels = without.coverage.len();
+    assert!(lifted.len() > pixels / 100, "{} lifted pixels", lifted.len());
+    assert!(!kept.is_empty(), "some umbra stays");
+    for visibility in [Visibility::RayTraced, Visibility::ShadowMap] {
+        s.shadow.visibility = visibility;
+        let (_, _, aux) = common::render(&gpu, &scene, &s);
+        let v = |i: usize| aux[i][0];
+        let wrong_lifted = lifted.iter().filter(|&&i| v(i) != 1.0).count();
+        let wrong_kept = kept.iter().filter(|&&i| v(i) != 0.0).count();
+        assert_eq!(wrong_lifted, 0, "{visibility:?}: non-receiver shadowed");
+        assert_eq!(wrong_kept, 0, "{visibility:?}: receivers lost their umbra");
+        if visibility == Visibility::RayTraced {
+            let differ = (0..pixels)
+                .filter(|&i| without.coverage[i] > 0.0 && (v(i) - without.visibility[i]).abs() > 1e-6)
+                .count();
+            assert!(differ as f64 <= 1e-3 * pixels as f64, "{differ} pixels differ");
+        }
+    }
 }

@@ -19,6 +19,11 @@ pub struct Vertex {
 }
 
 impl Vertex {
+    /// Set in `material` on the vertices of an object that does not receive
+    /// shadows (`Object::receives_shadows`): its V is 1 under every
+    /// visibility source, as in the reference. The low bits are the index.
+    pub const NO_SHADOWS_RECEIVED: u32 = 1 << 31;
+
     pub const ATTRIBUTES: [wgpu::VertexAttribute; 4] =
         wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Uint32];
 
@@ -99,7 +104,12 @@ impl GpuScene {
                 object.material
             } else {
                 fallback
-            } as u32;
+            } as u32
+                | if object.receives_shadows {
+                    0
+                } else {
+                    Vertex::NO_SHADOWS_RECEIVED
+                };
             draws.push(Draw {
                 first_index: indices.len() as u32,
                 index_count: mesh.indices.len() as u32,
