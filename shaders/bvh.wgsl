@@ -22,7 +22,8 @@ struct BvhTriangle {
 @group(2) @binding(2) var<storage, read> bvh_triangles: array<BvhTriangle>;
 
 // Nodes waiting to be visited: far more than a BVH of millions of triangles
-// is deep.
+// is deep. A deeper (degenerate) tree does not lose nodes: a ray whose stack
+// overflows and finds no hit in the nodes it kept tests every triangle.
 const BVH_STACK_SIZE: u32 = 64u;
 // Barycentric slack of the triangle test: triangles grow by 2·10⁻⁶ of their
 // size, so that a ray through an edge shared by two triangles hits one of
@@ -73,6 +74,7 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, node_count: u32) -> bool
     var stack: array<u32, BVH_STACK_SIZE>;
     var depth = 0u;
     var index = 0u;
+    var overflowed = false;
     loop {
         let node = bvh_nodes[index];
         if node.count > 0u {
@@ -86,9 +88,13 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, node_count: u32) -> bool
             let b = node.first + 1u;
             let hit_a = bvh_hits_box(bvh_nodes[a], o, inv_d, t_max);
             let hit_b = bvh_hits_box(bvh_nodes[b], o, inv_d, t_max);
-            if hit_a && hit_b && depth < BVH_STACK_SIZE {
-                stack[depth] = b;
-                depth += 1u;
+            if hit_a && hit_b {
+                if depth < BVH_STACK_SIZE {
+                    stack[depth] = b;
+                    depth += 1u;
+                } else {
+                    overflowed = true;
+                }
                 index = a;
                 continue;
             }
@@ -106,6 +112,14 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, node_count: u32) -> bool
         }
         depth -= 1u;
         index = stack[depth];
+    }
+    if overflowed {
+        // Subtrees were left out: the slow, exact answer.
+        for (var i = 0u; i < arrayLength(&bvh_triangles); i++) {
+            if bvh_hits_triangle(bvh_triangles[i], o, d, t_max) {
+                return true;
+            }
+        }
     }
     return false;
 }

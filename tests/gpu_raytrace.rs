@@ -1,6 +1,7 @@
 //! The GPU ray-traced visibility against what it must equal: its BVH
-//! traversal against testing every triangle (a compute kernel), its hard
-//! shadows against the CPU reference's V pixel by pixel, and its progressive
+//! traversal against testing every triangle (a compute kernel; also on a
+//! degenerate tree deeper than its stack), its hard shadows against the CPU
+//! reference's V pixel by pixel, and its progressive
 //! accumulation under a sphere light converging to the reference's V as 1/√N.
 
 mod common;
@@ -414,4 +415,75 @@ fn accumulate_needs_ray_traced_visibility_and_renders_n_frames() {
         "{message}"
     );
     assert!(out.exists());
+}
+
+/// A caterpillar BVH as deep as it has triangles (node 0 the root, an
+/// inner node's children at `first` and `first + 1`): each inner node's
+/// first child is the rest of the chain, its second a leaf of one triangle.
+/// Every box is the whole scene's, so the traversal visits every node and
+/// keeps one pending leaf per level: far more than its stack holds.
+fn caterpillar(triangles: &[[Vec3; 3]]) -> FlatBvh {
+    let (lo, hi) = triangles
+        .iter()
+        .flatten()
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(*p), hi.max(*p))
+        });
+    let node = |count: u32, first: u32| BvhNodeRaw {
+        min: (lo - 1.0).to_array(),
+        count,
+        max: (hi + 1.0).to_array(),
+        first,
+    };
+    let n = triangles.len() as u32;
+    // Inner node k at 2k (k = 0 … n − 2), its children at 2k + 2 (the next
+    // inner node, or the last triangle's leaf) and 2k + 3 (triangle k's
+    // leaf); node 1 is unused.
+    let mut nodes = vec![node(0, 0); 2 * n as usize];
+    for k in 0..n - 1 {
+        nodes[2 * k as usize].first = 2 * k + 2;
+        nodes[2 * k as usize + 3] = node(1, k);
+    }
+    nodes[2 * (n - 1) as usize] = node(1, n - 1);
+    let triangles = triangles
+        .iter()
+        .map(|[a, b, c]| BvhTriangleRaw {
+            v0: a.to_array(),
+            e1: (*b - *a).to_array(),
+            e2: (*c - *a).to_array(),
+            ..Default::default()
+        })
+        .collect();
+    FlatBvh { nodes, triangles }
+}
+
+#[test]
+fn a_bvh_deeper_than_the_traversal_stack_loses_no_triangle() {
+    // 300 small triangles side by side in the plane z = 0; each ray crosses
+    // one of them, through it (t_max 1) or stopping short (0.4).
+    let triangles: Vec<[Vec3; 3]> = (0..300)
+        .map(|k| {
+            let x = k as f32;
+            [
+                Vec3::new(x, 0.0, 0.0),
+                Vec3::new(x + 0.5, 0.0, 0.0),
+                Vec3::new(x, 0.5, 0.0),
+            ]
+        })
+        .collect();
+    let flat = caterpillar(&triangles);
+    let mut rays = Vec::new();
+    for k in 0..triangles.len() {
+        for t_max in [1.0, 0.4] {
+            rays.push([k as f32 + 0.1, 0.1, -1.0, t_max]);
+            rays.push([0.0, 0.0, 2.0, 0.0]);
+        }
+    }
+    let answers = trace(&common::gpu(), &flat, &rays);
+    let blocked = answers.iter().filter(|a| a[1] == 1).count();
+    assert_eq!(blocked, triangles.len(), "each triangle blocks its own ray");
+    let differ: Vec<usize> = (0..answers.len())
+        .filter(|&i| answers[i][0] != answers[i][1])
+        .collect();
+    assert!(differ.is_empty(), "the BVH 300 deep disagrees on rays {differ:?}");
 }

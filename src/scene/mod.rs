@@ -131,7 +131,7 @@ pub struct Object {
     pub bounds: Aabb,
     /// Drawn into the shadow map.
     pub casts_shadows: bool,
-    /// Shaded with shadows (V from the shadow map); otherwise V = 1.
+    /// Shaded with shadows (V from the visibility source); otherwise V = 1.
     pub receives_shadows: bool,
 }
 
