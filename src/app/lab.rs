@@ -11,6 +11,7 @@
 
 mod apply;
 mod desktop;
+mod drag_bench;
 mod image;
 mod jobs;
 mod panels;
@@ -99,6 +100,7 @@ pub struct LabApp {
     help_open: bool,
     jobs: Jobs,
     script: Option<Script>,
+    drag_bench: Option<drag_bench::DragBench>,
     outcome: Arc<Mutex<Option<String>>>,
     frames: u64,
     viewport_size: (u32, u32),
@@ -230,6 +232,7 @@ impl LabApp {
             help_open: false,
             jobs: Jobs::default(),
             script,
+            drag_bench: options.drag_bench_frames.map(drag_bench::DragBench::new),
             outcome,
             frames: 0,
             viewport_size: (0, 0),
@@ -380,6 +383,7 @@ impl LabApp {
         }
         self.schedule_repaint(&ctx);
         self.run_script(&ctx);
+        self.run_drag_bench(&ctx);
         self.clock.end(start);
     }
 
@@ -464,6 +468,19 @@ impl eframe::App for LabApp {
 
     fn persist_egui_memory(&self) -> bool {
         self.script.is_none()
+    }
+
+    fn raw_input_hook(&mut self, _ctx: &egui::Context, raw_input: &mut egui::RawInput) {
+        if let Some(bench) = &mut self.drag_bench {
+            let gpu = self.gpu.as_ref();
+            let a = gpu.and_then(|g| g.half(Half::A));
+            let before = [
+                gpu.map_or(1.0, |g| g.rendered_scale(Half::A)),
+                self.clock.ui_ms,
+                a.and_then(|h| h.times).map_or(0.0, |t| t.total_ms()),
+            ];
+            bench.inject(raw_input, self.viewport_rect, before);
+        }
     }
 
     fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {

@@ -79,6 +79,8 @@ pub struct LaunchOptions {
     /// `--tour [FILE]`: open at the first step of the lecture tour (None
     /// inside: the built-in tour).
     pub tour: Option<Option<PathBuf>>,
+    /// `--drag-bench N` (hidden): orbit for N frames, print the frame rate, quit.
+    pub drag_bench_frames: Option<u32>,
 }
 
 impl LaunchOptions {
@@ -88,7 +90,7 @@ impl LaunchOptions {
     /// A scripted run (screenshot or a frame count) neither reads nor
     /// writes the stored state, so that it is reproducible.
     pub fn is_scripted(&self) -> bool {
-        self.screenshot.is_some() || self.quit_after_frames.is_some()
+        self.screenshot.is_some() || self.quit_after_frames.is_some() || self.drag_bench_frames.is_some()
     }
 }
 

@@ -50,6 +50,10 @@ pub struct Cli {
     /// (assets/tour.toml), or FILE.
     #[arg(long, value_name = "FILE", num_args = 0..=1)]
     pub tour: Option<Option<PathBuf>>,
+    /// Measure the window's frame rate while orbiting: drag over the
+    /// viewport for N frames, print the frames/s and render scales, quit.
+    #[arg(long, value_name = "N", hide = true, value_parser = clap::value_parser!(u32).range(1..))]
+    pub drag_bench: Option<u32>,
 }
 
 impl Cli {
@@ -62,6 +66,7 @@ impl Cli {
             screenshot: self.screenshot.clone(),
             quit_after_frames: self.quit_after_frames,
             tour: self.tour.clone(),
+            drag_bench_frames: self.drag_bench,
         };
         let any = options.settings.is_some()
             || options.scene.is_some()

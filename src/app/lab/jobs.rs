@@ -28,9 +28,13 @@ impl Script {
     pub(super) fn new(options: &LaunchOptions) -> Self {
         Self {
             screenshot: options.screenshot.clone(),
+            // A drag bench quits when it has measured its frames.
             frames: options
                 .quit_after_frames
-                .unwrap_or(LaunchOptions::DEFAULT_SCREENSHOT_FRAMES)
+                .unwrap_or(match options.drag_bench_frames {
+                    Some(_) => u32::MAX,
+                    None => LaunchOptions::DEFAULT_SCREENSHOT_FRAMES,
+                })
                 .max(1),
             requested: false,
         }
@@ -231,6 +235,17 @@ impl LabApp {
 
     /// The scripted run: after its frames, a screenshot command (the same
     /// as F12's) or closing the window.
+    /// `--drag-bench`: frames follow one another; once measured, the
+    /// result on standard output and the window closes.
+    pub(super) fn run_drag_bench(&mut self, ctx: &egui::Context) {
+        let Some(bench) = &mut self.drag_bench else { return };
+        ctx.request_repaint();
+        if let Some(line) = bench.report(self.viewport_size) {
+            println!("{line}");
+            ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+        }
+    }
+
     pub(super) fn run_script(&mut self, ctx: &egui::Context) {
         let Some(script) = &mut self.script else { return };
         ctx.request_repaint();
