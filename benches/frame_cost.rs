@@ -159,11 +159,78 @@ fn interaction(renderer: &mut Renderer) {
     println!();
 }
 
+/// What the camera pass's cost is made of (`-- breakdown`): the specialised
+/// pass at full scale with one ingredient taken away at a time, against the
+/// flat pass: the filter's taps (PCF 5×5 → one tap → no shadows), the BRDF
+/// (the `visibility` view), the second target (aux).
+fn breakdown(renderer: &mut Renderer) {
+    println!(
+        "viewport {}×{}, camera pass GPU ms, median of {FRAMES} orbiting frames; median (min–max) of {RUNS} runs\n",
+        VIEWPORT.0, VIEWPORT.1
+    );
+    println!("| variant | camera pass (ms) | / flat |\n|---|---|---|");
+    type Variant = (&'static str, fn(&mut Settings), bool);
+    let variants: [Variant; 6] = [
+        ("default: PCF 5×5, shaded, quantity only", |_| {}, false),
+        ("+ aux target (two targets written)", |_| {}, true),
+        (
+            "filter none (one depth tap)",
+            |s| s.shadow.filter = Filter::None,
+            false,
+        ),
+        (
+            "shadows off (no shadow-map lookup)",
+            |s| s.shadow.enabled = false,
+            false,
+        ),
+        (
+            "visibility view (PCF, no BRDF)",
+            |s| s.view.mode = lumlab::settings::DebugView::Visibility,
+            false,
+        ),
+        (
+            "shadows off, visibility view (neither)",
+            |s| {
+                s.shadow.enabled = false;
+                s.view.mode = lumlab::settings::DebugView::Visibility;
+            },
+            false,
+        ),
+    ];
+    let mut flat = Vec::new();
+    let mut rows: Vec<Vec<(f64, f64)>> = vec![Vec::new(); variants.len()];
+    for _ in 0..RUNS {
+        for (k, (_, change, aux)) in variants.iter().enumerate() {
+            let mut settings = Settings::default();
+            change(&mut settings);
+            renderer.set_shade_options(ShadeOptions {
+                specialised: true,
+                aux: *aux,
+            });
+            let (shade, _, _) = orbit(renderer, &mut settings, VIEWPORT);
+            let f = median((0..FRAMES).filter_map(|_| renderer.minimal_pass_ms()).collect());
+            flat.push(f);
+            rows[k].push((shade, shade / f));
+        }
+    }
+    renderer.set_shade_options(ShadeOptions::default());
+    for ((name, _, _), row) in variants.iter().zip(&rows) {
+        let ms: Vec<f64> = row.iter().map(|r| r.0).collect();
+        let ratio: Vec<f64> = row.iter().map(|r| r.1).collect();
+        println!("| {name} | {} | {} |", spread(&ms), spread(&ratio));
+    }
+    println!("| flat pass | {} | 1 |\n", spread(&flat));
+}
+
 fn main() {
     let gpu = GpuContext::headless().unwrap_or_else(|e| panic!("{e}"));
     let scene = lumlab::scene::default_scene();
     let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
     println!("adapter: {}\n", gpu.describe());
+    if std::env::args().any(|a| a == "breakdown") {
+        breakdown(&mut renderer);
+        return;
+    }
     interaction(&mut renderer);
     if std::env::args().any(|a| a == "interaction") {
         return;

@@ -34,10 +34,16 @@ fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
     // Shares the generic renderer's shadow maps: the same V inputs.
     let mut specialised = generic.sharing();
     let size = (64, 48);
-    for &filter in Filter::ALL {
+    // Every filter with shadows on, and shadows off (one pipeline for all filters).
+    let cases = Filter::ALL
+        .iter()
+        .map(|&f| (f, true))
+        .chain([(Filter::Pcf, false)]);
+    for (filter, shadows) in cases {
         let mut shaded_views = Vec::new();
         for &view in DebugView::ALL {
             let mut s = lumlab::settings::Settings::default();
+            s.shadow.enabled = shadows;
             s.shadow.filter = filter;
             s.light.radius_m = 0.2;
             s.view.mode = view;
@@ -46,7 +52,7 @@ fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
             specialised.set_shade_options(ShadeOptions::default());
             specialised.render(&s, size);
             let (q1, a1) = (specialised.read_quantity(), specialised.read_aux());
-            let what = format!("{filter} × {view}");
+            let what = format!("{filter}{} × {view}", if shadows { "" } else { ", shadows off" });
             assert!(a0.iter().any(|t| t[3] > 0.0), "{what}: the scene is in view");
             assert!(worst_difference(&q1, &q0) < 2e-3, "{what}: quantity");
             assert!(worst_difference(&a1, &a0) < 2e-3, "{what}: aux");

@@ -77,7 +77,11 @@ impl DragBench {
             raw.events.push(Event::PointerMoved(start));
             raw.events.push(button(start, true));
         } else {
-            let direction = if (d / SWING_FRAMES).is_multiple_of(2) { 1.0 } else { -1.0 };
+            let direction = if (d / SWING_FRAMES).is_multiple_of(2) {
+                1.0
+            } else {
+                -1.0
+            };
             self.offset += direction * STEP_POINTS;
             raw.events.push(Event::PointerMoved(at(self.offset)));
             if d > SETTLE_FRAMES + 1
