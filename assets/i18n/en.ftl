@@ -496,7 +496,7 @@ visibility-label-tip = Where V(p, q) ∈ [0, 1] comes from: L = f_r · E · V
 visibility-rays = rays / frame
 visibility-rays-tip = S: shadow rays per pixel and frame towards a sphere light, on nx × ny strata of its solid angle (squares stratify best); a point light needs one
 visibility-frames = frames
-visibility-frames-tip = N: frames averaged while nothing changes; the noise of V falls as 1/√(N·S), then the image holds
+visibility-frames-tip = N: frames averaged while nothing changes under a sphere light; the noise of V falls as 1/√(N·S), then the image holds. A point light is exact after one frame
 visibility-exact = exact
 visibility-accumulation = { $frames } / { $max } frames × { $rays } rays, { $noise }
 probe-v-gpu-traced = V (GPU ray traced)

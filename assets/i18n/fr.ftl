@@ -502,7 +502,7 @@ visibility-label-tip = D'où vient V(p, q) ∈ [0, 1] : L = f_r · E · V
 visibility-rays = rayons / image
 visibility-rays-tip = S : rayons d'ombre par pixel et par image vers une lumière sphérique, sur nx × ny strates de son angle solide (les carrés stratifient le mieux) ; une lumière ponctuelle n'en demande qu'un
 visibility-frames = images
-visibility-frames-tip = N : images moyennées tant que rien ne change ; le bruit de V décroît en 1/√(N·S), puis l'image reste fixe
+visibility-frames-tip = N : images moyennées tant que rien ne change sous une lumière sphérique ; le bruit de V décroît en 1/√(N·S), puis l'image reste fixe. Une lumière ponctuelle est exacte dès la première image
 visibility-exact = exact
 visibility-accumulation = { $frames } / { $max } images × { $rays } rayons, { $noise }
 probe-v-gpu-traced = V (lancer de rayons GPU)

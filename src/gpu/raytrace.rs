@@ -32,7 +32,8 @@ pub struct RayTraceRaw {
 pub struct Accumulation {
     /// Frames in the running mean.
     pub frames: u32,
-    /// Frames after which the image holds.
+    /// Frames after which the image holds ([`Settings::ray_traced_frames`]:
+    /// one under a point light).
     pub max_frames: u32,
     /// Shadow rays per pixel and frame (1 for a point light).
     pub rays_per_frame: u32,
@@ -152,7 +153,7 @@ impl RayTracePass {
             self.frames = 0;
         }
         self.key = traced.then_some(key);
-        let max_frames = s.rt_max_frames.max(1);
+        let max_frames = settings.ray_traced_frames();
         let frames_before = self.frames;
         let weight = if frames_before >= max_frames {
             0.0

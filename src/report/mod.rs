@@ -210,7 +210,7 @@ fn measure(
     let size = (settings.image.width, settings.image.height);
     // A ray-traced point is its accumulated image: N frames of S rays.
     let frames = match settings.shadow.visibility {
-        Visibility::RayTraced => settings.shadow.rt_max_frames.max(1),
+        Visibility::RayTraced => settings.ray_traced_frames(),
         Visibility::ShadowMap => 1,
     };
     let mut report = renderer.render(settings, size);

@@ -31,7 +31,9 @@ pub struct SweepPoint {
 
 /// The default sweep: 2 resolutions × 7 filters × 2 biases = 28 shadow
 /// maps, and 6 ray-traced points (shadow rays per frame × frames
-/// accumulated) from 1 ray to 256 rays per pixel: 34 points.
+/// accumulated) from 1 ray to 256 rays per pixel: 34 points under a sphere
+/// light. Under a point light one ray is exact and the six are one point:
+/// 29.
 pub const DEFAULT_SWEEP: &str = r#"
 [cross]
 resolution = [512, 2048]
@@ -133,7 +135,7 @@ pub fn parse(text: &str, base: &Settings) -> Result<Vec<SweepPoint>, SweepError>
     for table in &tables {
         // A cross-product can ask for values the filter never reads (a PCF
         // size with VSM): such points render alike, and are measured once.
-        let point = point(table, &base.shadow)?;
+        let point = point(table, base)?;
         if !points.iter().any(|p| p.shadow == point.shadow) {
             points.push(point);
         }
@@ -207,8 +209,8 @@ fn cross_product(axes: &toml::Table) -> Result<Vec<toml::Table>, SweepError> {
 }
 
 /// The base shadow settings with the table's keys replaced.
-fn point(table: &toml::Table, base: &ShadowSettings) -> Result<SweepPoint, SweepError> {
-    let mut merged = toml::Table::try_from(base).map_err(|e| SweepError::Invalid(e.to_string()))?;
+fn point(table: &toml::Table, base: &Settings) -> Result<SweepPoint, SweepError> {
+    let mut merged = toml::Table::try_from(base.shadow).map_err(|e| SweepError::Invalid(e.to_string()))?;
     let mut bias_text = None;
     for (key, value) in table {
         match (key.as_str(), value) {
@@ -227,7 +229,7 @@ fn point(table: &toml::Table, base: &ShadowSettings) -> Result<SweepPoint, Sweep
             .parse_onto(&text)
             .map_err(|e| SweepError::Invalid(format!("bias: {e}")))?;
     }
-    let shadow = effective(shadow);
+    let shadow = effective(shadow, base.light.radius_m > 0.0);
     Ok(SweepPoint {
         label: label(&shadow),
         shadow,
@@ -236,15 +238,21 @@ fn point(table: &toml::Table, base: &ShadowSettings) -> Result<SweepPoint, Sweep
 
 /// The settings with every value the filter and the bias mode do not read
 /// set to its default, so that two points that render alike are equal.
-fn effective(mut s: ShadowSettings) -> ShadowSettings {
+fn effective(mut s: ShadowSettings, sphere_light: bool) -> ShadowSettings {
     let d = ShadowSettings::default();
     if s.visibility == Visibility::RayTraced {
-        // No shadow map: only the rays and frames matter.
+        // No shadow map: only the rays and frames matter, and under a point
+        // light not even those (one exact ray, one frame).
+        let (rt_light_samples, rt_max_frames) = if sphere_light {
+            (s.rt_light_samples, s.rt_max_frames)
+        } else {
+            (1, 1)
+        };
         return ShadowSettings {
             enabled: s.enabled,
             visibility: s.visibility,
-            rt_light_samples: s.rt_light_samples,
-            rt_max_frames: s.rt_max_frames,
+            rt_light_samples,
+            rt_max_frames,
             ..d
         };
     }
@@ -349,7 +357,9 @@ mod tests {
 
     #[test]
     fn the_default_sweep_has_34_distinct_points_of_both_methods() {
-        let points = parse(DEFAULT_SWEEP, &Settings::default()).unwrap();
+        let mut sphere = Settings::default();
+        sphere.light.radius_m = 0.3;
+        let points = parse(DEFAULT_SWEEP, &sphere).unwrap();
         assert_eq!(points.len(), 34);
         let mut labels: Vec<_> = points.iter().map(|p| p.label.clone()).collect();
         labels.sort();
@@ -361,6 +371,20 @@ mod tests {
             .count();
         assert_eq!(traced, 6);
         assert!(labels.contains(&"ray-traced 4×16".to_string()));
+    }
+
+    #[test]
+    fn under_a_point_light_the_ray_traced_points_are_one() {
+        let point_light = Settings::default();
+        assert_eq!(point_light.light.radius_m, 0.0);
+        let points = parse(DEFAULT_SWEEP, &point_light).unwrap();
+        assert_eq!(points.len(), 29);
+        let traced: Vec<_> = points
+            .iter()
+            .filter(|p| p.shadow.visibility == Visibility::RayTraced)
+            .map(|p| p.label.as_str())
+            .collect();
+        assert_eq!(traced, ["ray-traced 1×1"]);
     }
 
     #[test]

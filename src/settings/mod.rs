@@ -424,6 +424,18 @@ impl Settings {
         s
     }
 
+    /// Frames that ray-traced visibility accumulates before its image
+    /// holds: `rt_max_frames` under a sphere light; one under a point
+    /// light, whose single shadow ray per pixel is exact, so further
+    /// frames would only repeat it.
+    pub fn ray_traced_frames(&self) -> u32 {
+        if self.light.radius_m > 0.0 {
+            self.shadow.rt_max_frames.max(1)
+        } else {
+            1
+        }
+    }
+
     /// Reads, parses and validates a settings file.
     pub fn load(path: &Path) -> Result<Self, SettingsError> {
         let limit = crate::input::SETTINGS_LIMIT_BYTES;
