@@ -23,8 +23,9 @@ fn worst_difference(a: &[[f32; 4]], b: &[[f32; 4]]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-#[test]
-fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
+/// A renderer running the generic pipeline on the default scene, and one
+/// sharing its shadow maps (the same V inputs) for the specialised ones.
+fn generic_and_specialised() -> (Renderer, Renderer) {
     let gpu = gpu();
     let scene = lumlab::scene::default_scene();
     let mut generic = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
@@ -32,8 +33,13 @@ fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
         specialised: false,
         aux: true,
     });
-    // Shares the generic renderer's shadow maps: the same V inputs.
-    let mut specialised = generic.sharing();
+    let specialised = generic.sharing();
+    (generic, specialised)
+}
+
+#[test]
+fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
+    let (mut generic, mut specialised) = generic_and_specialised();
     let size = (64, 48);
     // Every filter with shadows on, and shadows off (one pipeline for all filters).
     let cases = Filter::ALL
@@ -87,14 +93,7 @@ fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
 
 #[test]
 fn every_bias_mode_and_map_layout_specialisation_matches_the_generic_pipeline() {
-    let gpu = gpu();
-    let scene = lumlab::scene::default_scene();
-    let mut generic = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
-    generic.set_shade_options(ShadeOptions {
-        specialised: false,
-        aux: true,
-    });
-    let mut specialised = generic.sharing();
+    let (mut generic, mut specialised) = generic_and_specialised();
     let size = (64, 48);
     // The light high above the scene: one fitted frustum; at its default
     // height (the ground seen wider than a frustum takes): six cube faces.
