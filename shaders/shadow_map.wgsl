@@ -19,6 +19,22 @@ fn filter_mode() -> u32 {
     return select(SPECIALISED_FILTER, shadow.filter_mode, SPECIALISED_FILTER == SPECIALISE_ANY);
 }
 
+// The bias mode (BIAS_*) and the map's layout (0: one frustum, 1: six cube
+// faces) a pipeline is compiled for, or SPECIALISE_ANY to read the uniform.
+// A software rasterizer runs every case of a switch on a uniform, and a
+// filter's every tap paid for all four biases and for the cube faces'
+// addressing; specialised, a single-frustum map's taps keep none of it.
+override SPECIALISED_BIAS: u32 = SPECIALISE_ANY;
+override SPECIALISED_CUBE: u32 = SPECIALISE_ANY;
+
+fn bias_mode() -> u32 {
+    return select(SPECIALISED_BIAS, shadow.bias_mode, SPECIALISED_BIAS == SPECIALISE_ANY);
+}
+
+fn is_cube() -> bool {
+    return select(SPECIALISED_CUBE, shadow.cube, SPECIALISED_CUBE == SPECIALISE_ANY) != 0u;
+}
+
 // Where a receiver falls in the shadow map.
 struct Receiver {
     layer: u32,
@@ -37,7 +53,7 @@ struct Receiver {
 }
 
 fn choose_layer(p_l: vec3<f32>) -> u32 {
-    if shadow.cube == 0u {
+    if !is_cube() {
         return 0u;
     }
     // Cube faces in the order +X, −X, +Y, −Y, +Z, −Z.
@@ -110,7 +126,7 @@ fn auto_bias_slack(r: Receiver) -> f32 {
 
 // The depth the receiver is compared with at a texel, per bias mode.
 fn compared_depth(r: Receiver, texel: vec2<i32>) -> f32 {
-    switch shadow.bias_mode {
+    switch bias_mode() {
         case BIAS_AUTO: {
             // The facet's plane predicts its own depth at texels nearer the
             // light (where acne comes from); further texels compare with the
@@ -174,7 +190,7 @@ fn tap(r: Receiver, texel: vec2<i32>) -> Tap {
     if in_map(texel) {
         return Tap(r, texel, true);
     }
-    if shadow.cube == 0u {
+    if !is_cube() {
         return Tap(r, texel, false);
     }
     let dir_v = vec3<f32>(tangent_of_texel(vec2<f32>(texel) + 0.5, r.layer), -1.0);
@@ -187,6 +203,11 @@ fn tap(r: Receiver, texel: vec2<i32>) -> Tap {
     // A face with no geometry in it was not drawn (its texels are stale).
     let drawn = (shadow.layer_mask & (1u << layer)) != 0u;
     return Tap(q, clamp(t, vec2<i32>(0), last), drawn);
+}
+
+// depth_test for a texel on the receiver's own face (in_map(texel)).
+fn own_face_test(r: Receiver, texel: vec2<i32>) -> f32 {
+    return select(0.0, 1.0, compared_depth(r, texel) <= stored_depth(r.layer, texel));
 }
 
 // 1 when the texel's stored depth does not hide the receiver.
@@ -212,7 +233,7 @@ fn bilinear_test(r: Receiver, tc: vec2<f32>) -> f32 {
 
 fn filter_hw2x2(r: Receiver) -> f32 {
     var z_ref = r.z;
-    switch shadow.bias_mode {
+    switch bias_mode() {
         case BIAS_AUTO: {
             // The four texels lie up to one texel away: one texel of slope.
             z_ref = r.z - (r.texel_m * r.tan_theta + auto_bias_slack(r));
@@ -238,11 +259,30 @@ fn filter_pcf(r: Receiver) -> f32 {
     let base = vec2<i32>(floor(c)) - vec2<i32>((n - 1) / 2);
     let f = fract(c);
     var sum = 0.0;
+    // The taps on the receiver's own face first, then, only where the
+    // kernel reaches past the face's edge, those beyond it (depth_test's
+    // cube addressing). A software rasterizer runs both sides of a branch for
+    // a block of pixels, but a loop stops once no pixel in the block is
+    // active: kernels inside their face pay for one tap's addressing, not
+    // (n + 1)² of them. The same taps and weights as one loop over depth_test.
     for (var j = 0; j <= n; j++) {
         let wy = select(select(1.0, f.y, j == n), 1.0 - f.y, j == 0);
         for (var i = 0; i <= n; i++) {
             let wx = select(select(1.0, f.x, i == n), 1.0 - f.x, i == 0);
-            sum += wx * wy * depth_test(r, base + vec2<i32>(i, j));
+            let texel = base + vec2<i32>(i, j);
+            sum += select(0.0, wx * wy * own_face_test(r, texel), in_map(texel));
+        }
+    }
+    if !(in_map(base) && in_map(base + vec2<i32>(n))) {
+        for (var j = 0; j <= n; j++) {
+            let wy = select(select(1.0, f.y, j == n), 1.0 - f.y, j == 0);
+            for (var i = 0; i <= n; i++) {
+                let wx = select(select(1.0, f.x, i == n), 1.0 - f.x, i == 0);
+                let texel = base + vec2<i32>(i, j);
+                if !in_map(texel) {
+                    sum += wx * wy * depth_test(r, texel);
+                }
+            }
         }
     }
     return sum / f32(n * n);
@@ -409,7 +449,7 @@ fn shadow_map_texel_density(p_l: vec3<f32>, n_geo: vec3<f32>, l: vec3<f32>) -> f
 // n_geo lit from l (n_geo · l > 0), filtered and biased as the settings say.
 fn shadow_map_visibility(p_l: vec3<f32>, n_geo: vec3<f32>, l: vec3<f32>, pixel: vec2<f32>) -> f32 {
     var receiver = make_receiver(p_l, n_geo, dot(n_geo, l));
-    let mode = shadow.bias_mode;
+    let mode = bias_mode();
     if mode == BIAS_NORMAL || mode == BIAS_AUTO {
         // Normal offset: N texels (one for auto) along the facet normal
         // lifts the lookup off its own surface and out of concave corners.

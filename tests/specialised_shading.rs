@@ -1,4 +1,4 @@
-//! The camera pass specialised per view × filter (one pipeline each, the
+//! The camera pass specialised per view × filter × bias × map layout (one pipeline each, the
 //! other cases compiled away) gives the pixels of the generic pipeline that
 //! branches on the uniforms, and the pipeline without the aux target gives
 //! the same quantity and displayed image. Every specialisation is compiled
@@ -8,8 +8,9 @@
 mod common;
 
 use common::*;
+use lumlab::gpu::light_frustum::LayoutKind;
 use lumlab::gpu::{Renderer, ShadeOptions};
-use lumlab::settings::{DebugView, Filter};
+use lumlab::settings::{BiasMode, DebugView, Filter};
 
 /// Largest |a − b| / max(1, |b|) over every channel: the targets are
 /// half floats (relative step 2⁻¹¹), so equal shading agrees to a few of those.
@@ -22,8 +23,9 @@ fn worst_difference(a: &[[f32; 4]], b: &[[f32; 4]]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-#[test]
-fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
+/// A renderer running the generic pipeline on the default scene, and one
+/// sharing its shadow maps (the same V inputs) for the specialised ones.
+fn generic_and_specialised() -> (Renderer, Renderer) {
     let gpu = gpu();
     let scene = lumlab::scene::default_scene();
     let mut generic = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
@@ -31,8 +33,13 @@ fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
         specialised: false,
         aux: true,
     });
-    // Shares the generic renderer's shadow maps: the same V inputs.
-    let mut specialised = generic.sharing();
+    let specialised = generic.sharing();
+    (generic, specialised)
+}
+
+#[test]
+fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
+    let (mut generic, mut specialised) = generic_and_specialised();
     let size = (64, 48);
     // Every filter with shadows on, and shadows off (one pipeline for all filters).
     let cases = Filter::ALL
@@ -81,5 +88,35 @@ fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
             distinct >= 6,
             "{filter}: only {distinct} views differ from shaded"
         );
+    }
+}
+
+#[test]
+fn every_bias_mode_and_map_layout_specialisation_matches_the_generic_pipeline() {
+    let (mut generic, mut specialised) = generic_and_specialised();
+    let size = (64, 48);
+    // The light high above the scene: one fitted frustum; at its default
+    // height (the ground seen wider than a frustum takes): six cube faces.
+    for (light_y_m, layout) in [(40.0, LayoutKind::Single), (6.0, LayoutKind::Cube)] {
+        // PCF's taps go through tap() and the per-tap bias; hw2x2 through its own bias.
+        for filter in [Filter::Pcf, Filter::Hw2x2] {
+            for &bias in BiasMode::ALL {
+                let mut s = lumlab::settings::Settings::default();
+                s.light.position.y = light_y_m;
+                s.shadow.filter = filter;
+                s.shadow.bias.mode = bias;
+                let report = generic.render(&s, size);
+                let what = format!("{filter}, bias {bias:?}, {layout:?} map");
+                assert_eq!(report.layout.map(|l| l.kind), Some(layout), "{what}");
+                let (q0, a0) = (generic.read_quantity(), generic.read_aux());
+                specialised.set_shade_options(ShadeOptions::default());
+                specialised.render(&s, size);
+                let (q1, a1) = (specialised.read_quantity(), specialised.read_aux());
+                assert!(a0.iter().any(|t| t[3] > 0.0), "{what}: the scene is in view");
+                assert!(a0.iter().any(|t| t[3] > 0.0 && t[0] < 0.5), "{what}: some shadow");
+                assert!(worst_difference(&q1, &q0) < 2e-3, "{what}: quantity");
+                assert!(worst_difference(&a1, &a0) < 2e-3, "{what}: aux");
+            }
+        }
     }
 }

@@ -101,6 +101,9 @@ pub struct LabApp {
     jobs: Jobs,
     script: Option<Script>,
     drag_bench: Option<drag_bench::DragBench>,
+    /// The host clears the window to the panels' colour (eframe, through
+    /// `clear_color`): the panels then paint no fill of their own.
+    pub(super) window_cleared_to_panel_fill: bool,
     outcome: Arc<Mutex<Option<String>>>,
     frames: u64,
     viewport_size: (u32, u32),
@@ -233,6 +236,7 @@ impl LabApp {
             jobs: Jobs::default(),
             script,
             drag_bench: options.drag_bench_frames.map(drag_bench::DragBench::new),
+            window_cleared_to_panel_fill: false,
             outcome,
             frames: 0,
             viewport_size: (0, 0),
@@ -358,8 +362,12 @@ impl LabApp {
         self.queue.extend(shortcuts::pressed(&ctx));
         self.apply_queued(&ctx);
 
-        egui::Panel::top("top bar").show(ui, |ui| self.top_bar(ui));
-        egui::Panel::bottom("status bar").show(ui, |ui| self.status_bar(ui));
+        egui::Panel::top("top bar")
+            .frame(self.panel_frame(ui))
+            .show(ui, |ui| self.top_bar(ui));
+        egui::Panel::bottom("status bar")
+            .frame(self.panel_frame(ui))
+            .show(ui, |ui| self.status_bar(ui));
         self.lecture_panel(ui);
         self.side_panels(ui);
         self.apply_queued(&ctx);

@@ -201,7 +201,7 @@ pub fn run(options: LaunchOptions) -> anyhow::Result<()> {
         "lumlab",
         native,
         Box::new(move |cc| {
-            let app = LabApp::new(
+            let mut app = LabApp::new(
                 cc.wgpu_render_state.clone(),
                 cc.storage,
                 &options,
@@ -209,6 +209,8 @@ pub fn run(options: LaunchOptions) -> anyhow::Result<()> {
                 app_outcome,
             )
             .map_err(|e| -> Box<dyn std::error::Error + Send + Sync> { e.into() })?;
+            // eframe clears the window to `LabApp::clear_color`, the panels' fill.
+            app.window_cleared_to_panel_fill = true;
             Ok(Box::new(app))
         }),
     )

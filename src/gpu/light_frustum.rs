@@ -142,7 +142,7 @@ pub struct LightLayer {
 }
 
 /// How the light's view of the scene is split into layers.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum LayoutKind {
     /// One frustum fitted around the scene.
     Single,

@@ -342,7 +342,7 @@ impl Renderer {
         let shadow_group = self
             .shade
             .shadow_group(&self.device, shadow_textures, &shared.dummy_moments);
-        let specialisation = Specialisation::for_frame(settings, self.shade_options);
+        let specialisation = Specialisation::for_frame(settings, layout.map(|l| l.kind), self.shade_options);
         self.shade.prepare(&self.device, specialisation);
         let raytrace_group = self.raytrace.prepare(
             &self.device,

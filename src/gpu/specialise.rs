@@ -1,16 +1,18 @@
 //! The camera pass compiled per view, per filter and per visibility source.
 //! shaders/shade.wgsl and shadow_map.wgsl read their mode through
 //! pipeline-overridable constants (`SPECIALISED_VIEW`, `SPECIALISED_FILTER`,
-//! `SPECIALISED_VISIBILITY`); a pipeline given one value keeps only that
+//! `SPECIALISED_VISIBILITY`, `SPECIALISED_BIAS`, `SPECIALISED_CUBE`: the
+//! shadow map's layout); a pipeline given one value keeps only that
 //! case of each `switch` (the compiler folds the rest away), the default
 //! value `SPECIALISE_ANY` reads the uniforms: the generic pipeline the tests
 //! hold the specialised ones to. A new mode (another visibility source, a
 //! bias mode) is one more constant here and one more `*_mode()` in WGSL.
 
+use super::light_frustum::LayoutKind;
 use super::renderer::code;
 use super::scene_buffers::Vertex;
 use super::shadow::DEPTH_FORMAT;
-use crate::settings::{DebugView, Filter, Settings, Visibility};
+use crate::settings::{BiasMode, DebugView, Filter, Settings, Visibility};
 
 /// How a renderer runs its camera pass.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,13 +41,17 @@ pub struct Specialisation {
     pub view: Option<DebugView>,
     pub filter: Option<Filter>,
     pub visibility: Option<Visibility>,
+    pub bias: Option<BiasMode>,
+    /// The shadow map's layout (None also when no map is drawn).
+    pub layout: Option<LayoutKind>,
     /// Writes the aux target beside the quantity.
     pub aux: bool,
 }
 
 impl Specialisation {
-    /// The pipeline a frame with `settings` uses.
-    pub fn for_frame(settings: &Settings, options: ShadeOptions) -> Self {
+    /// The pipeline a frame with `settings` and a shadow map laid out as
+    /// `layout` uses.
+    pub fn for_frame(settings: &Settings, layout: Option<LayoutKind>, options: ShadeOptions) -> Self {
         let on = options.specialised;
         Self {
             view: on.then_some(settings.view.mode),
@@ -58,6 +64,8 @@ impl Specialisation {
                 Filter::None
             }),
             visibility: on.then_some(settings.shadow.visibility),
+            bias: on.then_some(settings.shadow.bias.mode),
+            layout: layout.filter(|_| on),
             aux: options.aux,
         }
     }
@@ -76,6 +84,13 @@ impl Specialisation {
                 "SPECIALISED_VISIBILITY",
                 code(Visibility::ALL, &visibility) as f64,
             ));
+        }
+        if let Some(bias) = self.bias {
+            constants.push(("SPECIALISED_BIAS", code(BiasMode::ALL, &bias) as f64));
+        }
+        if let Some(layout) = self.layout {
+            let cube = layout == LayoutKind::Cube;
+            constants.push(("SPECIALISED_CUBE", f64::from(u8::from(cube))));
         }
         constants
     }

@@ -3,7 +3,10 @@
 //! after a warm-up, prints the frame rate the window reached and the render
 //! scales chosen, and quits. A frame's time is the interval between two
 //! frames' input hooks: everything a frame costs (egui's layout and
-//! painting, the renderer, the copy to the window) is in it.
+//! painting, the renderer, the copy to the window) is in it. The CPU time
+//! the process spent over the measured frames (all threads: the UI thread
+//! and a software adapter's rasterizer threads) is given per frame beside
+//! it: unlike the frame rate it hardly depends on what else the machine runs.
 
 use egui::{Event, PointerButton, Pos2, Rect};
 use std::time::Instant;
@@ -29,6 +32,10 @@ pub(super) struct DragBench {
     ui_ms: Vec<f64>,
     /// GPU time of the renderer's passes, as last measured (ms).
     gpu_ms: Vec<f64>,
+    /// CPU time (process, UI thread) when the measured frames began (s).
+    cpu_start: Option<CpuTime>,
+    /// CPU time spent over the measured frames (s).
+    cpu_spent: Option<CpuTime>,
     /// The pointer's offset from where the drag started (points).
     offset: f32,
     released: bool,
@@ -45,6 +52,8 @@ impl DragBench {
             scales: Vec::new(),
             ui_ms: Vec::new(),
             gpu_ms: Vec::new(),
+            cpu_start: None,
+            cpu_spent: None,
             offset: 0.0,
             released: false,
             reported: false,
@@ -84,6 +93,9 @@ impl DragBench {
             };
             self.offset += direction * STEP_POINTS;
             raw.events.push(Event::PointerMoved(at(self.offset)));
+            if d == SETTLE_FRAMES + 1 {
+                self.cpu_start = CpuTime::now();
+            }
             if d > SETTLE_FRAMES + 1
                 && let Some(last) = self.last
             {
@@ -91,6 +103,9 @@ impl DragBench {
                 self.scales.push(scale);
                 self.ui_ms.push(ui_ms);
                 self.gpu_ms.push(gpu_ms);
+                if self.done() {
+                    self.cpu_spent = self.cpu_start.zip(CpuTime::now()).map(|(a, b)| b.minus(a));
+                }
             }
         }
         self.last = Some(now);
@@ -112,13 +127,58 @@ impl DragBench {
             sorted.sort_by(f64::total_cmp);
             quantile(&sorted, 0.5)
         };
+        let n = self.intervals_s.len() as f64;
+        let cpu = self.cpu_spent.map_or(String::new(), |c| {
+            format!(
+                "; CPU per frame {:.1} ms (all threads), UI thread {:.1} ms",
+                c.process_s / n * 1e3,
+                c.thread_s / n * 1e3
+            )
+        });
         Some(format!(
-            "{}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms",
+            "{}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms{cpu}",
             summary(&self.intervals_s, &self.scales, viewport),
             median(&self.ui_ms),
             median(&self.gpu_ms),
         ))
     }
+}
+
+/// CPU time used so far (s): by the whole process and by the calling thread.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct CpuTime {
+    process_s: f64,
+    thread_s: f64,
+}
+
+impl CpuTime {
+    /// From Linux's /proc (None elsewhere).
+    fn now() -> Option<Self> {
+        let read = |path: &str| std::fs::read_to_string(path).ok().and_then(|s| stat_cpu_s(&s));
+        Some(Self {
+            process_s: read("/proc/self/stat")?,
+            thread_s: read("/proc/thread-self/stat")?,
+        })
+    }
+
+    fn minus(self, earlier: Self) -> Self {
+        Self {
+            process_s: self.process_s - earlier.process_s,
+            thread_s: self.thread_s - earlier.thread_s,
+        }
+    }
+}
+
+/// User + system CPU time (s) from a /proc `stat` line: fields 14 and 15,
+/// in clock ticks of 1/100 s (Linux's USER_HZ). The command name (field 2,
+/// in parentheses) may hold spaces: fields are counted after its `)`.
+fn stat_cpu_s(stat: &str) -> Option<f64> {
+    const TICKS_PER_S: f64 = 100.0;
+    let after_name = &stat[stat.rfind(')')? + 1..];
+    let mut fields = after_name.split_whitespace().skip(11);
+    let user: u64 = fields.next()?.parse().ok()?;
+    let system: u64 = fields.next()?.parse().ok()?;
+    Some((user + system) as f64 / TICKS_PER_S)
 }
 
 /// `q`-quantile of sorted values (nearest rank).
@@ -167,6 +227,14 @@ mod tests {
             line.contains("render scale median 0.50 (range 0.25–0.50)"),
             "{line}"
         );
+    }
+
+    #[test]
+    fn cpu_time_is_read_after_the_command_name() {
+        // utime 250 ticks, stime 50 ticks: 3 s; the name holds a space and a ')'.
+        let line = "1234 (llvm pipe) x) S 1 2 3 4 5 6 7 8 9 10 250 50 0 0 20 0 3 0";
+        assert_eq!(stat_cpu_s(line), Some(3.0));
+        assert_eq!(stat_cpu_s("1234 (name) S 1 2"), None);
     }
 
     #[test]

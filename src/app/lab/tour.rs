@@ -82,6 +82,7 @@ impl LabApp {
         // As tall as the step's words: nothing of them is ever cut off.
         egui::Panel::bottom("lecture panel")
             .resizable(false)
+            .frame(self.panel_frame(ui))
             .show(ui, |ui| {
                 let panels = self.state.panels;
                 if let Some(command) = self.lecture.ui(ui, &self.state.settings, panels) {
