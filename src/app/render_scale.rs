@@ -19,6 +19,20 @@ pub const MIN_SCALE: f64 = 0.25;
 const UNTIMED_SCALE: f64 = 0.5;
 /// Frame intervals longer than this (s) are pauses, not frame times.
 const PAUSE_S: f64 = 0.5;
+/// The scales a drag may use: steps of √2 per side (half the pixels each),
+/// so that a drag's images keep one size while the cost hovers near a
+/// step, instead of a new size (new targets, new allocations, on a software
+/// adapter new shader variants) every frame.
+pub const STEPS: [f64; 5] = [
+    MIN_SCALE,
+    0.25 * std::f64::consts::SQRT_2,
+    0.5,
+    0.5 * std::f64::consts::SQRT_2,
+    1.0,
+];
+/// A drag moves up a step only when the cost model leaves this much room
+/// above it: frame costs that wobble by less never flip the size.
+const STEP_UP_MARGIN: f64 = 1.1;
 
 #[derive(Debug)]
 pub struct RenderScale {
@@ -79,7 +93,8 @@ impl RenderScale {
     /// t(s) = t_fixed + t_pixels · (s / scale)², where t_fixed (the shadow
     /// map and its blur) does not depend on the image size and t_pixels (the
     /// camera and display passes) is proportional to its pixel count:
-    /// s = scale · √((budget − t_fixed) / t_pixels), within [MIN_SCALE, 1].
+    /// s = scale · √((budget − t_fixed) / t_pixels), rounded down to one of
+    /// [`STEPS`]; a step up needs [`STEP_UP_MARGIN`] of room.
     pub fn observe(&mut self, scale: f64, times: &PassTimes) {
         let fixed_ms = times.shadow_ms.unwrap_or(0.0) + times.blur_ms.unwrap_or(0.0);
         let pixels_ms = times.shade_ms.unwrap_or(0.0) + times.display_ms.unwrap_or(0.0);
@@ -88,7 +103,15 @@ impl RenderScale {
         }
         let room_ms = (Self::budget_ms() - fixed_ms).max(0.0);
         let ideal = scale * (room_ms / pixels_ms).sqrt();
-        self.interactive = ideal.clamp(MIN_SCALE, 1.0);
+        // The largest step that fits (a rounding's worth of slack).
+        let fits = |step: f64| step <= ideal * (1.0 + 1e-9);
+        let step = STEPS.into_iter().rev().find(|&s| fits(s)).unwrap_or(MIN_SCALE);
+        if step < self.interactive || fits(step * STEP_UP_MARGIN) {
+            self.interactive = step;
+        } else if step > self.interactive {
+            // Not clearly room for the step above: one step below it.
+            self.interactive = STEPS.into_iter().rev().find(|&s| s < step).unwrap_or(MIN_SCALE);
+        }
     }
 }
 
@@ -120,6 +143,29 @@ mod tests {
         );
         assert!((scale.begin_frame(true) - 0.5).abs() < 1e-12);
         assert_eq!(scale.begin_frame(false), 1.0, "idle frames are full resolution");
+    }
+
+    #[test]
+    fn the_scale_moves_by_steps_and_does_not_flip_on_a_wobble() {
+        let mut scale = RenderScale::default();
+        let budget = RenderScale::budget_ms();
+        // Room for 0.6 per side: the step below, 0.5.
+        scale.observe(1.0, &times(0.0, budget / 0.36));
+        assert_eq!(scale.begin_frame(true), 0.5);
+        // Costs that wobble around a step's boundary keep one size.
+        // Measured at `shown`, a cost whose ideal scale is `ideal`.
+        let at = |shown: f64, ideal: f64| times(0.0, budget * (shown / ideal).powi(2));
+        for ideal in [0.72, 0.70, 0.73, 0.69, 0.75] {
+            scale.observe(0.5, &at(0.5, ideal));
+            assert_eq!(scale.begin_frame(true), 0.5, "ideal {ideal}");
+        }
+        // Clear room above the step: up one.
+        scale.observe(0.5, &at(0.5, 0.8));
+        assert_eq!(scale.begin_frame(true), STEPS[3]);
+        // Down at once when over the budget.
+        scale.observe(STEPS[3], &at(STEPS[3], 0.6));
+        assert_eq!(scale.begin_frame(true), 0.5);
+        assert!(STEPS.windows(2).all(|w| w[0] < w[1]));
     }
 
     #[test]
