@@ -23,7 +23,7 @@
 //!   half of the watertight test (`bvh/lanes.rs`), with the scalar test's
 //!   own operations, so a lane it rules out is a miss of the scalar test.
 
-use super::lanes::{Groups, LANES};
+use super::lanes::{Groups, LANES, with_avx2};
 use super::{Hit, TRAVERSAL, TriangleBvh, closer};
 use crate::reference::intersect::{ShearedRay, with_axes};
 // `UVec2` is named inside obvhs's `traverse!` macro.
@@ -109,8 +109,17 @@ pub trait Rays {
 }
 
 impl TriangleBvh {
-    /// Walks the BVH with a packet of rays inside `cone`.
+    /// Walks the BVH with a packet of rays inside `cone`, compiled for
+    /// AVX2 where the CPU has it (same IEEE operations, wider registers).
     pub fn walk_cone(&self, cone: &Cone, rays: &mut impl Rays) {
+        with_avx2(
+            #[inline(always)]
+            || self.walk_cone_here(cone, rays),
+        );
+    }
+
+    #[inline(always)]
+    fn walk_cone_here(&self, cone: &Cone, rays: &mut impl Rays) {
         let Some(bvh) = self.bvh.as_ref() else {
             return;
         };
@@ -120,7 +129,10 @@ impl TriangleBvh {
         };
         let deepest = |limits: &[f64]| limits.iter().fold(f64::NEG_INFINITY, |m, &l| m.max(l));
         let mut farthest = deepest(rays.limits());
-        TRAVERSAL.with_borrow_mut(|state| {
+        // Taken out of its cell, so that the walk is compiled into the caller.
+        let mut owned = TRAVERSAL.take();
+        let state = &mut owned;
+        {
             state.reinit(cone.axis.as_vec3a());
             let mut node;
             obvhs::traverse!(
@@ -147,7 +159,8 @@ impl TriangleBvh {
                     }
                 }
             );
-        });
+        }
+        TRAVERSAL.set(owned);
     }
 
     /// The closest hit, t > 0, of each ray from the cone's apex along
