@@ -19,11 +19,11 @@
 //!   lie between the light (depth 0) and its origin; a box or triangle whose
 //!   least depth is beyond what a ray can reach holds nothing for it, and
 //!   ties are still tested, so the lowest index wins among equal distances;
-//! - rays that share their main axis are tested four at a time by the miss
-//!   half of the watertight test (`bvh/lanes.rs`), with the scalar test's
-//!   own operations, so a lane it rules out is a miss of the scalar test.
+//! - rays are tested eight at a time against the triangle's edge planes
+//!   through the apex in f32 (`bvh/lanes.rs`), with a margin that makes a
+//!   ray it rules out a miss of the scalar test.
 
-use super::lanes::{Groups, LANES, with_avx2};
+use super::lanes::{LANES, Lines, with_avx2};
 use super::{Hit, TRAVERSAL, TriangleBvh, closer};
 use crate::reference::intersect::{ShearedRay, with_axes};
 // `UVec2` is named inside obvhs's `traverse!` macro.
@@ -177,7 +177,7 @@ impl TriangleBvh {
             packet.limits.push(f64::INFINITY);
             packet.hits.push(None);
         }
-        packet.groups.fill(&packet.rays);
+        packet.lines.fill(directions.iter().copied(), 0.0);
         self.walk_cone(cone, packet);
     }
 
@@ -188,14 +188,16 @@ impl TriangleBvh {
         packet.rays.clear();
         packet.limits.clear();
         packet.t_max = t_max;
+        let mut spread = 0.0_f64;
         for &o in origins {
             packet.rays.push(ShearedRay::new(o, cone.apex - o));
             let depth = (o - cone.apex).dot(cone.axis);
             packet
                 .limits
                 .push(depth + ROUNDING * (o - cone.apex).abs().element_sum());
+            spread = spread.max((o - cone.apex).abs().max_element());
         }
-        packet.groups.fill(&packet.rays);
+        packet.lines.fill(packet.rays.iter().map(|r| r.direction), spread);
         self.walk_cone(cone, packet);
     }
 }
@@ -208,8 +210,8 @@ pub struct PrimaryPacket {
     along: Vec<f64>,
     limits: Vec<f64>,
     pub hits: Vec<Option<Hit>>,
-    /// The rays in groups for the four-lane miss test.
-    groups: Groups,
+    /// The rays in blocks for the eight-lane miss test.
+    lines: Lines,
 }
 
 impl PrimaryPacket {
@@ -241,25 +243,15 @@ impl Rays for PrimaryPacket {
     #[inline(always)]
     fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64) {
         let triangle = bvh.original[slot];
-        if let Some(axes) = self.groups.axes {
-            with_axes!(axes, KZ, SWAP => {
-                for g in 0..self.groups.groups.len() {
-                    let live = reaching(&self.limits, g, nearest);
-                    if live == 0 {
-                        continue;
-                    }
-                    let mut lanes = live & self.groups.groups[g].may_hit::<KZ, SWAP, true>(relative);
-                    while lanes != 0 {
-                        let k = g * LANES + lanes.trailing_zeros() as usize;
-                        lanes &= lanes - 1;
-                        self.test_ray::<KZ, SWAP>(k, triangle, relative);
-                    }
-                }
-            });
-            return;
-        }
-        for k in 0..self.rays.len() {
-            if nearest <= self.limits[k] {
+        let planes = self.lines.planes(relative);
+        for b in 0..self.lines.blocks() {
+            let mut lanes = reaching(&self.limits, b, nearest);
+            if lanes != 0 {
+                lanes &= self.lines.may_hit(b, &planes);
+            }
+            while lanes != 0 {
+                let k = b * LANES + lanes.trailing_zeros() as usize;
+                lanes &= lanes - 1;
                 with_axes!(self.rays[k].axes(), KZ, SWAP => self.test_ray::<KZ, SWAP>(k, triangle, relative));
             }
         }
@@ -272,8 +264,8 @@ pub struct ShadowPacket {
     rays: Vec<ShearedRay>,
     limits: Vec<f64>,
     t_max: f64,
-    /// The rays in groups for the four-lane miss test.
-    groups: Groups,
+    /// The rays in blocks for the eight-lane miss test.
+    lines: Lines,
 }
 
 impl ShadowPacket {
@@ -289,44 +281,32 @@ impl Rays for ShadowPacket {
     }
 
     #[inline(always)]
-    fn test(&mut self, bvh: &TriangleBvh, slot: usize, _: &[DVec3; 3], nearest: f64) {
+    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64) {
         if !bvh.occludes[slot] {
             return;
         }
         let corners = &bvh.corners[slot];
-        if let Some(axes) = self.groups.axes {
-            with_axes!(axes, KZ, SWAP => {
-                for (g, group) in self.groups.groups.iter().enumerate() {
-                    let live = reaching(&self.limits, g, nearest);
-                    if live == 0 {
-                        continue;
-                    }
-                    let mut lanes = live & group.may_hit::<KZ, SWAP, false>(corners);
-                    while lanes != 0 {
-                        let k = g * LANES + lanes.trailing_zeros() as usize;
-                        lanes &= lanes - 1;
-                        let ray = &self.rays[k];
-                        if ray.hits_in::<KZ, SWAP>(&ray.relative(corners), 0.0, self.t_max)
-                        {
-                            self.limits[k] = f64::NEG_INFINITY;
-                        }
-                    }
+        let planes = self.lines.planes(relative);
+        for b in 0..self.lines.blocks() {
+            let mut lanes = reaching(&self.limits, b, nearest);
+            if lanes != 0 {
+                lanes &= self.lines.may_hit(b, &planes);
+            }
+            while lanes != 0 {
+                let k = b * LANES + lanes.trailing_zeros() as usize;
+                lanes &= lanes - 1;
+                if self.rays[k].hits(corners, 0.0, self.t_max) {
+                    self.limits[k] = f64::NEG_INFINITY;
                 }
-            });
-            return;
-        }
-        for (ray, limit) in self.rays.iter().zip(self.limits.iter_mut()) {
-            if nearest <= *limit && ray.hits(corners, 0.0, self.t_max) {
-                *limit = f64::NEG_INFINITY;
             }
         }
     }
 }
 
-/// Bit l set when ray `LANES · group + l` can still reach depth `nearest`.
+/// Bit l set when ray `LANES · block + l` can still reach depth `nearest`.
 #[inline(always)]
-fn reaching(limits: &[f64], group: usize, nearest: f64) -> u32 {
-    limits[group * LANES..]
+fn reaching(limits: &[f64], block: usize, nearest: f64) -> u32 {
+    limits[block * LANES..]
         .iter()
         .take(LANES)
         .enumerate()
