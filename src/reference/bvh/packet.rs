@@ -198,6 +198,15 @@ impl TriangleBvh {
             spread = spread.max((o - cone.apex).abs().max_element());
         }
         packet.lines.fill(packet.rays.iter().map(|r| r.direction), spread);
+        // The triangle that blocked a ray of the previous packet first: it
+        // often blocks these too, and a blocked ray is done (any hit will do).
+        if let Some(slot) = packet.last_blocker {
+            let relative = self.corners[slot].map(|p| p - cone.apex);
+            packet.test(self, slot, &relative, f64::MIN);
+            if packet.limits.iter().all(|&l| l < 0.0) {
+                return;
+            }
+        }
         self.walk_cone(cone, packet);
     }
 }
@@ -264,6 +273,8 @@ pub struct ShadowPacket {
     rays: Vec<ShearedRay>,
     limits: Vec<f64>,
     t_max: f64,
+    /// The slot of the last triangle found blocking a ray.
+    last_blocker: Option<usize>,
     /// The rays in blocks for the eight-lane miss test.
     lines: Lines,
 }
@@ -297,6 +308,7 @@ impl Rays for ShadowPacket {
                 lanes &= lanes - 1;
                 if self.rays[k].hits(corners, 0.0, self.t_max) {
                     self.limits[k] = f64::NEG_INFINITY;
+                    self.last_blocker = Some(slot);
                 }
             }
         }
