@@ -105,21 +105,60 @@ impl Lines {
     /// of `planes` (see the module's note); unused lanes may be set.
     #[inline(always)]
     pub fn may_hit(&self, block: usize, planes: &EdgePlanes) -> u32 {
-        let b = &self.blocks[block];
-        let mut positive = [false; LANES];
-        let mut negative = [false; LANES];
+        !sure_misses(&self.blocks[block], planes) & ((1 << LANES) - 1)
+    }
+}
+
+/// Bit l: lane l's edge values take both signs beyond their margins,
+/// E = (d_x n_x + d_y n_y) + d_z n_z against |d|∞ τ + floor. SSE (part of
+/// every x86-64 CPU), four lanes per register.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn sure_misses(b: &Block, planes: &EdgePlanes) -> u32 {
+    use std::arch::x86_64::*;
+    let mut bits = 0;
+    for half in 0..LANES / 4 {
+        // SAFETY: SSE is part of the x86-64 baseline; each load reads four
+        // in-bounds f32 (half < LANES / 4).
+        unsafe {
+            let load = |a: &[f32; LANES]| _mm_loadu_ps(a[4 * half..4 * half + 4].as_ptr());
+            let (dx, dy, dz, reach) = (load(&b.d[0]), load(&b.d[1]), load(&b.d[2]), load(&b.reach));
+            let (mut positive, mut negative) = (_mm_setzero_ps(), _mm_setzero_ps());
+            for e in 0..3 {
+                let [nx, ny, nz] = planes.n[e].map(|x| _mm_set1_ps(x));
+                let value = _mm_add_ps(
+                    _mm_add_ps(_mm_mul_ps(dx, nx), _mm_mul_ps(dy, ny)),
+                    _mm_mul_ps(dz, nz),
+                );
+                let margin = _mm_add_ps(_mm_mul_ps(reach, _mm_set1_ps(planes.tau[e])), _mm_set1_ps(FLOOR));
+                positive = _mm_or_ps(positive, _mm_cmpgt_ps(value, margin));
+                negative = _mm_or_ps(
+                    negative,
+                    _mm_cmplt_ps(value, _mm_sub_ps(_mm_setzero_ps(), margin)),
+                );
+            }
+            bits |= (_mm_movemask_ps(_mm_and_ps(positive, negative)) as u32) << (4 * half);
+        }
+    }
+    bits
+}
+
+/// [`sure_misses`] lane by lane, where there is no SSE.
+#[cfg(not(target_arch = "x86_64"))]
+fn sure_misses(b: &Block, planes: &EdgePlanes) -> u32 {
+    let mut bits = 0;
+    for l in 0..LANES {
+        let (mut positive, mut negative) = (false, false);
         for e in 0..3 {
             let [nx, ny, nz] = planes.n[e];
-            let tau = planes.tau[e];
-            for l in 0..LANES {
-                let value = b.d[0][l] * nx + b.d[1][l] * ny + b.d[2][l] * nz;
-                let margin = b.reach[l] * tau + FLOOR;
-                positive[l] |= value > margin;
-                negative[l] |= value < -margin;
-            }
+            let value = (b.d[0][l] * nx + b.d[1][l] * ny) + b.d[2][l] * nz;
+            let margin = b.reach[l] * planes.tau[e] + FLOOR;
+            positive |= value > margin;
+            negative |= value < -margin;
         }
-        (0..LANES).fold(0, |m, l| m | u32::from(!(positive[l] && negative[l])) << l)
+        bits |= u32::from(positive && negative) << l;
     }
+    bits
 }
 
 /// Runs `f` compiled with AVX2 enabled when the CPU has it (inlined code
