@@ -103,9 +103,34 @@ impl Cone {
 pub trait Rays {
     /// Each ray's deepest depth that still matters (negative: done).
     fn limits(&self) -> &[f64];
-    /// Tests the triangle in leaf slot `slot` (corners `relative` to the
-    /// apex, least depth `nearest`) against every ray that can reach it.
-    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64);
+    /// The rays as lines through the apex, for the eight-lane filter.
+    fn lines(&self) -> &Lines;
+    /// Whether the triangle in leaf slot `slot` matters to these rays.
+    fn takes(&self, bvh: &TriangleBvh, slot: usize) -> bool;
+    /// Ray k's own f64 test against the triangle in leaf slot `slot`
+    /// (corners `relative` to the apex).
+    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize);
+
+    /// Tests the triangle (least depth `nearest`) against every ray that
+    /// can reach it and that the eight-lane filter keeps.
+    #[inline(always)]
+    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64) {
+        if !self.takes(bvh, slot) {
+            return;
+        }
+        let planes = self.lines().planes(relative);
+        for b in 0..self.lines().blocks() {
+            let mut lanes = reaching(self.limits(), b, nearest);
+            if lanes != 0 {
+                lanes &= self.lines().may_hit(b, &planes);
+            }
+            while lanes != 0 {
+                let k = b * LANES + lanes.trailing_zeros() as usize;
+                lanes &= lanes - 1;
+                self.test_ray(bvh, slot, relative, k);
+            }
+        }
+    }
 }
 
 impl TriangleBvh {
@@ -227,7 +252,7 @@ impl PrimaryPacket {
     /// Ray k's test against the triangle (`relative` to the apex, the
     /// rays' common origin), kept when it is the closest hit so far.
     #[inline(always)]
-    fn test_ray<const KZ: usize, const SWAP: bool>(
+    fn test_axes<const KZ: usize, const SWAP: bool>(
         &mut self,
         k: usize,
         triangle: usize,
@@ -249,21 +274,18 @@ impl Rays for PrimaryPacket {
         &self.limits
     }
 
+    fn lines(&self) -> &Lines {
+        &self.lines
+    }
+
+    fn takes(&self, _: &TriangleBvh, _: usize) -> bool {
+        true
+    }
+
     #[inline(always)]
-    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64) {
+    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize) {
         let triangle = bvh.original[slot];
-        let planes = self.lines.planes(relative);
-        for b in 0..self.lines.blocks() {
-            let mut lanes = reaching(&self.limits, b, nearest);
-            if lanes != 0 {
-                lanes &= self.lines.may_hit(b, &planes);
-            }
-            while lanes != 0 {
-                let k = b * LANES + lanes.trailing_zeros() as usize;
-                lanes &= lanes - 1;
-                with_axes!(self.rays[k].axes(), KZ, SWAP => self.test_ray::<KZ, SWAP>(k, triangle, relative));
-            }
-        }
+        with_axes!(self.rays[k].axes(), KZ, SWAP => self.test_axes::<KZ, SWAP>(k, triangle, relative));
     }
 }
 
@@ -291,26 +313,19 @@ impl Rays for ShadowPacket {
         &self.limits
     }
 
+    fn lines(&self) -> &Lines {
+        &self.lines
+    }
+
+    fn takes(&self, bvh: &TriangleBvh, slot: usize) -> bool {
+        bvh.occludes[slot]
+    }
+
     #[inline(always)]
-    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64) {
-        if !bvh.occludes[slot] {
-            return;
-        }
-        let corners = &bvh.corners[slot];
-        let planes = self.lines.planes(relative);
-        for b in 0..self.lines.blocks() {
-            let mut lanes = reaching(&self.limits, b, nearest);
-            if lanes != 0 {
-                lanes &= self.lines.may_hit(b, &planes);
-            }
-            while lanes != 0 {
-                let k = b * LANES + lanes.trailing_zeros() as usize;
-                lanes &= lanes - 1;
-                if self.rays[k].hits(corners, 0.0, self.t_max) {
-                    self.limits[k] = f64::NEG_INFINITY;
-                    self.last_blocker = Some(slot);
-                }
-            }
+    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, _: &[DVec3; 3], k: usize) {
+        if self.rays[k].hits(&bvh.corners[slot], 0.0, self.t_max) {
+            self.limits[k] = f64::NEG_INFINITY;
+            self.last_blocker = Some(slot);
         }
     }
 }
