@@ -105,7 +105,11 @@ impl Lines {
     /// of `planes` (see the module's note); unused lanes may be set.
     #[inline(always)]
     pub fn may_hit(&self, block: usize, planes: &EdgePlanes) -> u32 {
-        !sure_misses(&self.blocks[block], planes) & ((1 << LANES) - 1)
+        #[cfg(target_arch = "x86_64")]
+        let misses = sure_misses(&self.blocks[block], planes);
+        #[cfg(not(target_arch = "x86_64"))]
+        let misses = sure_misses_by_lane(&self.blocks[block], planes);
+        !misses & ((1 << LANES) - 1)
     }
 }
 
@@ -143,9 +147,10 @@ fn sure_misses(b: &Block, planes: &EdgePlanes) -> u32 {
     bits
 }
 
-/// [`sure_misses`] lane by lane, where there is no SSE.
-#[cfg(not(target_arch = "x86_64"))]
-fn sure_misses(b: &Block, planes: &EdgePlanes) -> u32 {
+/// `sure_misses` lane by lane, where there is no SSE (and in the tests,
+/// against the SSE version).
+#[cfg(any(not(target_arch = "x86_64"), test))]
+fn sure_misses_by_lane(b: &Block, planes: &EdgePlanes) -> u32 {
     let mut bits = 0;
     for l in 0..LANES {
         let (mut positive, mut negative) = (false, false);
@@ -226,6 +231,14 @@ mod tests {
                 .fold(0.0_f64, |m, r| m.max((r.origin - apex).abs().max_element()));
             lines.fill(rays.iter().map(|r| r.direction), spread);
             let planes = lines.planes(&tri.map(|p| p - apex));
+            #[cfg(target_arch = "x86_64")]
+            for block in &lines.blocks {
+                assert_eq!(
+                    sure_misses(block, &planes),
+                    sure_misses_by_lane(block, &planes),
+                    "case {case}: SSE and lane by lane differ"
+                );
+            }
             for (k, ray) in rays.iter().enumerate() {
                 let kept = lines.may_hit(k / LANES, &planes) & (1 << (k % LANES)) != 0;
                 let hit = ray.intersect(&tri, f64::NEG_INFINITY, f64::INFINITY).is_some();
