@@ -1,238 +1,253 @@
-//! The miss test of the watertight triangle test for four rays at once: the
-//! packets' first filter. It runs the very operations of the scalar test
-//! (`ShearedRay::edges`) — the same subtractions, products and sign tests in
-//! the same order, with no fused multiply-add — two lanes per SSE2 register
-//! (part of every x86-64 CPU; plain pairs elsewhere), so each lane's edge
-//! functions carry the scalar test's bits. A lane it calls a miss is one the
-//! scalar test calls a miss; every other lane goes on to the scalar test,
-//! which decides. The answers are the scalar path's, bit for bit.
+//! The packets' first filter: which rays surely miss a triangle, eight at a
+//! time in f32, with a proven margin, so that only rays near its edges and
+//! those that hit it go on to the exact f64 test.
+//!
+//! Every ray of a packet lies on a line through the cone's apex L (primary
+//! rays start there; shadow rays end there). For a ray along d from o with
+//! o − L ∥ d, the watertight test's edge function opposite corner A is
+//! U = ±det(d, C − o, B − o) / d_kz = ±d · n_A / d_kz, n_A = (C − L) × (B − L),
+//! with one sign for the three edges of a ray. The ray misses when two edge
+//! functions take opposite signs. Here E = d · n runs in f32, and a sign
+//! counts only where |E| > T = |d|∞ · τ + floor, with
+//! τ = 8 ε₃₂ |n|₁ + 128 ε₆₄ (|C − L|∞ + R)(|B − L|∞ + R), R the farthest
+//! origin from L:
+//! - f32: rounding d and n and the three products and two sums move E by
+//!   at most 5 ε₃₂ Σ|d_i n_i| ≤ 5 ε₃₂ |d|∞ |n|₁ (the floor covers underflow);
+//! - f64: the scalar test's U (shear, products, difference, corners taken
+//!   relative to o), n's own rounding and d ∦ o − L by d's rounding move
+//!   d_kz U by less than 80 ε₆₄ |d|∞ |C − o|∞ |B − o|∞, and
+//!   |C − o|∞ ≤ |C − L|∞ + R.
+//!
+//! So a sign found here is the sign of the scalar test's edge function, and
+//! a ray called a miss is one the scalar test misses. NaN and infinities
+//! fail both comparisons: such a ray goes on to the scalar test.
 
-use crate::reference::intersect::{Axes, ShearedRay, other_axes};
 use glam::DVec3;
 
-/// Rays per group.
-pub const LANES: usize = 4;
+/// Rays per block.
+pub const LANES: usize = 8;
 
-/// Up to [`LANES`] rays with one set of axes, their shear and origins as
-/// arrays (one entry per lane).
-#[derive(Clone, Copy, Debug)]
-pub struct Group {
-    sx: [f64; LANES],
-    sy: [f64; LANES],
-    origin: [[f64; LANES]; 3],
-    /// Bit l: lane l holds a ray.
-    pub used: u32,
+/// Added to every margin: the rounding of f32 products that underflow.
+const FLOOR: f32 = 1e-30;
+
+/// Eight rays' directions (d, any nonzero multiple) and |d|∞, lane by lane.
+#[derive(Clone, Copy, Debug, Default)]
+struct Block {
+    d: [[f32; LANES]; 3],
+    reach: [f32; LANES],
 }
 
-impl Group {
-    /// The rays, in lane order (at most [`LANES`], all with the axes `axes`).
-    pub fn new(rays: &[ShearedRay], axes: Axes) -> Self {
-        debug_assert!(rays.len() <= LANES && rays.iter().all(|r| r.axes() == axes));
-        let mut group = Self {
-            sx: [0.0; LANES],
-            sy: [0.0; LANES],
-            origin: [[0.0; LANES]; 3],
-            used: 0,
-        };
-        for (l, ray) in rays.iter().enumerate() {
-            (group.sx[l], group.sy[l]) = ray.shear();
-            for k in 0..3 {
-                group.origin[k][l] = ray.origin[k];
-            }
-            group.used |= 1 << l;
-        }
-        group
-    }
-
-    /// Bit l set unless lane l's ray surely misses the triangle: its edge
-    /// functions take both signs. `corners` relative to the rays' origins
-    /// when `RELATIVE` (the lanes' origins then go unused), else absolute.
-    #[inline(always)]
-    pub fn may_hit<const KZ: usize, const SWAP: bool, const RELATIVE: bool>(
-        &self,
-        corners: &[DVec3; 3],
-    ) -> u32 {
-        let (kx, ky) = other_axes(KZ, SWAP);
-        let mut mask = 0;
-        for half in 0..LANES / 2 {
-            let at = |p: &DVec3, k: usize| {
-                let c = X2::splat(p[k]);
-                if RELATIVE {
-                    c
-                } else {
-                    // p − origin, as ShearedRay::relative computes it.
-                    c - X2::load(&self.origin[k], half)
-                }
-            };
-            let (sx, sy) = (X2::load(&self.sx, half), X2::load(&self.sy, half));
-            let [a, b, c] = corners;
-            let (ax, ay) = (at(a, kx) - sx * at(a, KZ), at(a, ky) - sy * at(a, KZ));
-            let (bx, by) = (at(b, kx) - sx * at(b, KZ), at(b, ky) - sy * at(b, KZ));
-            let (cx, cy) = (at(c, kx) - sx * at(c, KZ), at(c, ky) - sy * at(c, KZ));
-            let u = cx * by - cy * bx;
-            let v = ax * cy - ay * cx;
-            let w = bx * ay - by * ax;
-            let negative = u.negative_bits() | v.negative_bits() | w.negative_bits();
-            let positive = u.positive_bits() | v.positive_bits() | w.positive_bits();
-            mask |= (!(negative & positive) & 0b11) << (2 * half);
-        }
-        mask & self.used
-    }
-}
-
-/// Two f64 lanes: SSE2 on x86-64 (every such CPU has it), plain pairs
-/// elsewhere; IEEE operations lane by lane either way.
-#[derive(Clone, Copy)]
-struct X2(Pair);
-
-#[cfg(target_arch = "x86_64")]
-type Pair = std::arch::x86_64::__m128d;
-#[cfg(not(target_arch = "x86_64"))]
-type Pair = [f64; 2];
-
-#[cfg(target_arch = "x86_64")]
-mod pair {
-    use super::{LANES, X2};
-    // SAFETY (every block below): SSE2 is part of the x86-64 baseline, and
-    // the loads read two in-bounds f64 (half < LANES / 2).
-    use std::arch::x86_64::*;
-
-    impl X2 {
-        #[inline(always)]
-        pub fn splat(x: f64) -> Self {
-            Self(unsafe { _mm_set1_pd(x) })
-        }
-        #[inline(always)]
-        pub fn load(values: &[f64; LANES], half: usize) -> Self {
-            Self(unsafe { _mm_loadu_pd(values[2 * half..2 * half + 2].as_ptr()) })
-        }
-        /// Bit l: lane l < 0.
-        #[inline(always)]
-        pub fn negative_bits(self) -> u32 {
-            unsafe { _mm_movemask_pd(_mm_cmplt_pd(self.0, _mm_setzero_pd())) as u32 }
-        }
-        /// Bit l: lane l > 0.
-        #[inline(always)]
-        pub fn positive_bits(self) -> u32 {
-            unsafe { _mm_movemask_pd(_mm_cmpgt_pd(self.0, _mm_setzero_pd())) as u32 }
-        }
-    }
-    impl std::ops::Sub for X2 {
-        type Output = Self;
-        #[inline(always)]
-        fn sub(self, o: Self) -> Self {
-            Self(unsafe { _mm_sub_pd(self.0, o.0) })
-        }
-    }
-    impl std::ops::Mul for X2 {
-        type Output = Self;
-        #[inline(always)]
-        fn mul(self, o: Self) -> Self {
-            Self(unsafe { _mm_mul_pd(self.0, o.0) })
-        }
-    }
-}
-
-#[cfg(not(target_arch = "x86_64"))]
-mod pair {
-    use super::{LANES, X2};
-
-    impl X2 {
-        pub fn splat(x: f64) -> Self {
-            Self([x, x])
-        }
-        pub fn load(values: &[f64; LANES], half: usize) -> Self {
-            Self([values[2 * half], values[2 * half + 1]])
-        }
-        pub fn negative_bits(self) -> u32 {
-            u32::from(self.0[0] < 0.0) | u32::from(self.0[1] < 0.0) << 1
-        }
-        pub fn positive_bits(self) -> u32 {
-            u32::from(self.0[0] > 0.0) | u32::from(self.0[1] > 0.0) << 1
-        }
-    }
-    impl std::ops::Sub for X2 {
-        type Output = Self;
-        fn sub(self, o: Self) -> Self {
-            Self([self.0[0] - o.0[0], self.0[1] - o.0[1]])
-        }
-    }
-    impl std::ops::Mul for X2 {
-        type Output = Self;
-        fn mul(self, o: Self) -> Self {
-            Self([self.0[0] * o.0[0], self.0[1] * o.0[1]])
-        }
-    }
-}
-
-/// Rays split into groups of [`LANES`] when they all share one set of axes
-/// (None otherwise: each ray is then tested on its own).
+/// The rays of a packet as lines through the apex, in blocks of [`LANES`].
 #[derive(Debug, Default)]
-pub struct Groups {
-    pub axes: Option<Axes>,
-    pub groups: Vec<Group>,
+pub struct Lines {
+    blocks: Vec<Block>,
+    /// R: the farthest ray origin from the apex (|·|∞, 0 for primary rays).
+    spread: f64,
 }
 
-impl Groups {
-    pub fn fill(&mut self, rays: &[ShearedRay]) {
-        self.groups.clear();
-        let first = rays.first().map(|r| r.axes());
-        self.axes = first.filter(|&a| rays.iter().all(|r| r.axes() == a));
-        if let Some(axes) = self.axes {
-            self.groups
-                .extend(rays.chunks(LANES).map(|chunk| Group::new(chunk, axes)));
+/// A triangle's three edge planes through the apex, as [`Lines::may_hit`]
+/// takes them: normals n (f32) and margins τ per unit of |d|∞.
+#[derive(Clone, Copy, Debug)]
+pub struct EdgePlanes {
+    n: [[f32; 3]; 3],
+    tau: [f32; 3],
+}
+
+impl Lines {
+    /// The rays along `directions` (one per ray, in order), each on a line
+    /// through the apex from an origin within `spread` (|·|∞) of it.
+    pub fn fill(&mut self, directions: impl Iterator<Item = DVec3>, spread: f64) {
+        self.blocks.clear();
+        self.spread = spread;
+        for (k, d) in directions.enumerate() {
+            let l = k % LANES;
+            if l == 0 {
+                // Unused lanes stay zero: E = 0 is never a sure sign.
+                self.blocks.push(Block::default());
+            }
+            let block = self.blocks.last_mut().expect("pushed above");
+            let d = d.as_vec3();
+            for i in 0..3 {
+                block.d[i][l] = d[i];
+            }
+            block.reach[l] = d.abs().max_element();
         }
     }
+
+    pub fn blocks(&self) -> usize {
+        self.blocks.len()
+    }
+
+    /// The edge planes of the triangle with corners `relative` to the apex.
+    #[inline(always)]
+    pub fn planes(&self, [a, b, c]: &[DVec3; 3]) -> EdgePlanes {
+        let r = self.spread;
+        let edge = |p: &DVec3, q: &DVec3| {
+            let n = p.cross(*q);
+            let f32_part = 8.0 * f32::EPSILON as f64 * n.abs().element_sum();
+            let f64_part = 128.0 * f64::EPSILON * (p.abs().max_element() + r) * (q.abs().max_element() + r);
+            // Rounded up to f32.
+            (
+                n.as_vec3().to_array(),
+                ((f32_part + f64_part) * (1.0 + 1e-6)) as f32,
+            )
+        };
+        let (nu, tu) = edge(c, b);
+        let (nv, tv) = edge(a, c);
+        let (nw, tw) = edge(b, a);
+        EdgePlanes {
+            n: [nu, nv, nw],
+            tau: [tu, tv, tw],
+        }
+    }
+
+    /// Bit l set unless ray `LANES · block + l` surely misses the triangle
+    /// of `planes` (see the module's note); unused lanes may be set.
+    #[inline(always)]
+    pub fn may_hit(&self, block: usize, planes: &EdgePlanes) -> u32 {
+        #[cfg(target_arch = "x86_64")]
+        let misses = sure_misses(&self.blocks[block], planes);
+        #[cfg(not(target_arch = "x86_64"))]
+        let misses = sure_misses_by_lane(&self.blocks[block], planes);
+        !misses & ((1 << LANES) - 1)
+    }
+}
+
+/// Bit l: lane l's edge values take both signs beyond their margins,
+/// E = (d_x n_x + d_y n_y) + d_z n_z against |d|∞ τ + floor. SSE (part of
+/// every x86-64 CPU), four lanes per register.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn sure_misses(b: &Block, planes: &EdgePlanes) -> u32 {
+    use std::arch::x86_64::*;
+    let mut bits = 0;
+    for half in 0..LANES / 4 {
+        // SAFETY: SSE is part of the x86-64 baseline; each load reads four
+        // in-bounds f32 (half < LANES / 4).
+        unsafe {
+            let load = |a: &[f32; LANES]| _mm_loadu_ps(a[4 * half..4 * half + 4].as_ptr());
+            let (dx, dy, dz, reach) = (load(&b.d[0]), load(&b.d[1]), load(&b.d[2]), load(&b.reach));
+            let (mut positive, mut negative) = (_mm_setzero_ps(), _mm_setzero_ps());
+            for e in 0..3 {
+                let [nx, ny, nz] = planes.n[e].map(|x| _mm_set1_ps(x));
+                let value = _mm_add_ps(
+                    _mm_add_ps(_mm_mul_ps(dx, nx), _mm_mul_ps(dy, ny)),
+                    _mm_mul_ps(dz, nz),
+                );
+                let margin = _mm_add_ps(_mm_mul_ps(reach, _mm_set1_ps(planes.tau[e])), _mm_set1_ps(FLOOR));
+                positive = _mm_or_ps(positive, _mm_cmpgt_ps(value, margin));
+                negative = _mm_or_ps(
+                    negative,
+                    _mm_cmplt_ps(value, _mm_sub_ps(_mm_setzero_ps(), margin)),
+                );
+            }
+            bits |= (_mm_movemask_ps(_mm_and_ps(positive, negative)) as u32) << (4 * half);
+        }
+    }
+    bits
+}
+
+/// `sure_misses` lane by lane, where there is no SSE (and in the tests,
+/// against the SSE version).
+#[cfg(any(not(target_arch = "x86_64"), test))]
+fn sure_misses_by_lane(b: &Block, planes: &EdgePlanes) -> u32 {
+    let mut bits = 0;
+    for l in 0..LANES {
+        let (mut positive, mut negative) = (false, false);
+        for e in 0..3 {
+            let [nx, ny, nz] = planes.n[e];
+            let value = (b.d[0][l] * nx + b.d[1][l] * ny) + b.d[2][l] * nz;
+            let margin = b.reach[l] * planes.tau[e] + FLOOR;
+            positive |= value > margin;
+            negative |= value < -margin;
+        }
+        bits |= u32::from(positive && negative) << l;
+    }
+    bits
+}
+
+/// Runs `f` compiled with AVX2 enabled when the CPU has it (inlined code
+/// then uses 256-bit registers and three-operand instructions), as it is
+/// otherwise. Fused multiply-add stays off: every result keeps its bits.
+#[inline(always)]
+pub fn with_avx2<R>(f: impl FnOnce() -> R) -> R {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        #[target_feature(enable = "avx2")]
+        fn avx2<R>(f: impl FnOnce() -> R) -> R {
+            f()
+        }
+        // SAFETY: the CPU has AVX2.
+        return unsafe { avx2(f) };
+    }
+    f()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::reference::intersect::with_axes;
+    use crate::reference::intersect::ShearedRay;
     use crate::reference::sampling::Rng;
 
+    /// Rays through corners, along edges and near them, from random points
+    /// on lines through an apex (behind it for shadow rays, at it for
+    /// primary rays): whenever the scalar test finds the triangle (at any
+    /// distance), the lanes must not have ruled it out; and they do rule
+    /// out most misses of rays aimed at random points (near-edge rays are
+    /// left to the scalar test by design).
     #[test]
     fn a_lane_called_a_miss_is_a_miss_of_the_scalar_test() {
-        // Rays through corners, along edges and near them, from random
-        // origins: whenever the scalar test finds the triangle (at any
-        // distance), the lanes must not have ruled it out; and they do rule
-        // out most misses.
         let mut rng = Rng::new(31, 0, 0);
         let mut point = |scale: f64| DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) * scale;
         let (mut found, mut ruled_out, mut misses) = (0, 0, 0);
+        let mut lines = Lines::default();
         for case in 0..4000 {
+            let apex = point(8.0) - DVec3::splat(4.0);
             let tri = [point(2.0), point(2.0), point(2.0)];
-            let origin = point(8.0) - DVec3::splat(4.0);
-            let aims = [
-                tri[0],
-                tri[1].lerp(tri[2], 0.5),
-                tri[case % 3].lerp(tri[(case + 1) % 3], 0.3),
-                tri[0].lerp(tri[1], 0.5).lerp(tri[2], 0.5),
-            ];
             let jitter = [0.0, 1e-15, 1e-9, 1e-3][case % 4];
+            let aims: Vec<DVec3> = (0..LANES + 3)
+                .map(|l| match l % 4 {
+                    0 => tri[l % 3],
+                    1 => tri[l % 3].lerp(tri[(l + 1) % 3], 0.3 + 0.01 * l as f64),
+                    2 => tri[0].lerp(tri[1], 0.5).lerp(tri[2], 0.5),
+                    _ => point(2.0),
+                } + point(jitter))
+                .collect();
+            // Shadow rays start beyond the triangle and end at the apex.
+            let shadow = case % 2 == 1;
             let rays: Vec<ShearedRay> = aims
                 .iter()
-                .map(|&p| ShearedRay::new(origin, p - origin + point(jitter)))
+                .map(|&p| {
+                    if shadow {
+                        let o = apex + (p - apex) * 1.5;
+                        ShearedRay::new(o, apex - o)
+                    } else {
+                        ShearedRay::new(apex, p - apex)
+                    }
+                })
                 .collect();
-            let axes = rays[0].axes();
-            let same: Vec<ShearedRay> = rays.iter().copied().filter(|r| r.axes() == axes).collect();
-            let group = Group::new(&same, axes);
-            let relative = same[0].relative(&tri);
-            let (shifted, rel) = with_axes!(axes, KZ, SWAP => (
-                group.may_hit::<KZ, SWAP, false>(&tri),
-                group.may_hit::<KZ, SWAP, true>(&relative),
-            ));
-            assert_eq!(
-                shifted, rel,
-                "case {case}: one origin, either way of giving the corners"
-            );
-            for (l, ray) in same.iter().enumerate() {
+            let spread = rays
+                .iter()
+                .fold(0.0_f64, |m, r| m.max((r.origin - apex).abs().max_element()));
+            lines.fill(rays.iter().map(|r| r.direction), spread);
+            let planes = lines.planes(&tri.map(|p| p - apex));
+            #[cfg(target_arch = "x86_64")]
+            for block in &lines.blocks {
+                assert_eq!(
+                    sure_misses(block, &planes),
+                    sure_misses_by_lane(block, &planes),
+                    "case {case}: SSE and lane by lane differ"
+                );
+            }
+            for (k, ray) in rays.iter().enumerate() {
+                let kept = lines.may_hit(k / LANES, &planes) & (1 << (k % LANES)) != 0;
                 let hit = ray.intersect(&tri, f64::NEG_INFINITY, f64::INFINITY).is_some();
-                let kept = shifted & (1 << l) != 0;
-                assert!(kept || !hit, "case {case}, lane {l}: a hit ruled out");
+                assert!(kept || !hit, "case {case}, ray {k}: a hit ruled out");
                 found += usize::from(hit);
-                misses += usize::from(!hit);
-                ruled_out += usize::from(!kept);
+                if k % 4 == 3 && !hit {
+                    misses += 1;
+                    ruled_out += usize::from(!kept);
+                }
             }
         }
         assert!(found > 4000, "too few hits to tell: {found}");

@@ -19,11 +19,11 @@
 //!   lie between the light (depth 0) and its origin; a box or triangle whose
 //!   least depth is beyond what a ray can reach holds nothing for it, and
 //!   ties are still tested, so the lowest index wins among equal distances;
-//! - rays that share their main axis are tested four at a time by the miss
-//!   half of the watertight test (`bvh/lanes.rs`), with the scalar test's
-//!   own operations, so a lane it rules out is a miss of the scalar test.
+//! - rays are tested eight at a time against the triangle's edge planes
+//!   through the apex in f32 (`bvh/lanes.rs`), with a margin that makes a
+//!   ray it rules out a miss of the scalar test.
 
-use super::lanes::{Groups, LANES};
+use super::lanes::{LANES, Lines, with_avx2};
 use super::{Hit, TRAVERSAL, TriangleBvh, closer};
 use crate::reference::intersect::{ShearedRay, with_axes};
 // `UVec2` is named inside obvhs's `traverse!` macro.
@@ -103,14 +103,48 @@ impl Cone {
 pub trait Rays {
     /// Each ray's deepest depth that still matters (negative: done).
     fn limits(&self) -> &[f64];
-    /// Tests the triangle in leaf slot `slot` (corners `relative` to the
-    /// apex, least depth `nearest`) against every ray that can reach it.
-    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64);
+    /// The rays as lines through the apex, for the eight-lane filter.
+    fn lines(&self) -> &Lines;
+    /// Whether the triangle in leaf slot `slot` matters to these rays.
+    fn takes(&self, bvh: &TriangleBvh, slot: usize) -> bool;
+    /// Ray k's own f64 test against the triangle in leaf slot `slot`
+    /// (corners `relative` to the apex).
+    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize);
+
+    /// Tests the triangle (least depth `nearest`) against every ray that
+    /// can reach it and that the eight-lane filter keeps.
+    #[inline(always)]
+    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64) {
+        if !self.takes(bvh, slot) {
+            return;
+        }
+        let planes = self.lines().planes(relative);
+        for b in 0..self.lines().blocks() {
+            let mut lanes = reaching(self.limits(), b, nearest);
+            if lanes != 0 {
+                lanes &= self.lines().may_hit(b, &planes);
+            }
+            while lanes != 0 {
+                let k = b * LANES + lanes.trailing_zeros() as usize;
+                lanes &= lanes - 1;
+                self.test_ray(bvh, slot, relative, k);
+            }
+        }
+    }
 }
 
 impl TriangleBvh {
-    /// Walks the BVH with a packet of rays inside `cone`.
+    /// Walks the BVH with a packet of rays inside `cone`, compiled for
+    /// AVX2 where the CPU has it (same IEEE operations, wider registers).
     pub fn walk_cone(&self, cone: &Cone, rays: &mut impl Rays) {
+        with_avx2(
+            #[inline(always)]
+            || self.walk_cone_here(cone, rays),
+        );
+    }
+
+    #[inline(always)]
+    fn walk_cone_here(&self, cone: &Cone, rays: &mut impl Rays) {
         let Some(bvh) = self.bvh.as_ref() else {
             return;
         };
@@ -120,7 +154,10 @@ impl TriangleBvh {
         };
         let deepest = |limits: &[f64]| limits.iter().fold(f64::NEG_INFINITY, |m, &l| m.max(l));
         let mut farthest = deepest(rays.limits());
-        TRAVERSAL.with_borrow_mut(|state| {
+        // Taken out of its cell, so that the walk is compiled into the caller.
+        let mut owned = TRAVERSAL.take();
+        let state = &mut owned;
+        {
             state.reinit(cone.axis.as_vec3a());
             let mut node;
             obvhs::traverse!(
@@ -147,7 +184,8 @@ impl TriangleBvh {
                     }
                 }
             );
-        });
+        }
+        TRAVERSAL.set(owned);
     }
 
     /// The closest hit, t > 0, of each ray from the cone's apex along
@@ -164,7 +202,7 @@ impl TriangleBvh {
             packet.limits.push(f64::INFINITY);
             packet.hits.push(None);
         }
-        packet.groups.fill(&packet.rays);
+        packet.lines.fill(directions.iter().copied(), 0.0);
         self.walk_cone(cone, packet);
     }
 
@@ -175,14 +213,25 @@ impl TriangleBvh {
         packet.rays.clear();
         packet.limits.clear();
         packet.t_max = t_max;
+        let mut spread = 0.0_f64;
         for &o in origins {
             packet.rays.push(ShearedRay::new(o, cone.apex - o));
             let depth = (o - cone.apex).dot(cone.axis);
             packet
                 .limits
                 .push(depth + ROUNDING * (o - cone.apex).abs().element_sum());
+            spread = spread.max((o - cone.apex).abs().max_element());
         }
-        packet.groups.fill(&packet.rays);
+        packet.lines.fill(packet.rays.iter().map(|r| r.direction), spread);
+        // The triangle that blocked a ray of the previous packet first: it
+        // often blocks these too, and a blocked ray is done (any hit will do).
+        if let Some(slot) = packet.last_blocker {
+            let relative = self.corners[slot].map(|p| p - cone.apex);
+            packet.test(self, slot, &relative, f64::MIN);
+            if packet.limits.iter().all(|&l| l < 0.0) {
+                return;
+            }
+        }
         self.walk_cone(cone, packet);
     }
 }
@@ -195,15 +244,15 @@ pub struct PrimaryPacket {
     along: Vec<f64>,
     limits: Vec<f64>,
     pub hits: Vec<Option<Hit>>,
-    /// The rays in groups for the four-lane miss test.
-    groups: Groups,
+    /// The rays in blocks for the eight-lane miss test.
+    lines: Lines,
 }
 
 impl PrimaryPacket {
     /// Ray k's test against the triangle (`relative` to the apex, the
     /// rays' common origin), kept when it is the closest hit so far.
     #[inline(always)]
-    fn test_ray<const KZ: usize, const SWAP: bool>(
+    fn test_axes<const KZ: usize, const SWAP: bool>(
         &mut self,
         k: usize,
         triangle: usize,
@@ -225,31 +274,18 @@ impl Rays for PrimaryPacket {
         &self.limits
     }
 
+    fn lines(&self) -> &Lines {
+        &self.lines
+    }
+
+    fn takes(&self, _: &TriangleBvh, _: usize) -> bool {
+        true
+    }
+
     #[inline(always)]
-    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64) {
+    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize) {
         let triangle = bvh.original[slot];
-        if let Some(axes) = self.groups.axes {
-            with_axes!(axes, KZ, SWAP => {
-                for g in 0..self.groups.groups.len() {
-                    let live = reaching(&self.limits, g, nearest);
-                    if live == 0 {
-                        continue;
-                    }
-                    let mut lanes = live & self.groups.groups[g].may_hit::<KZ, SWAP, true>(relative);
-                    while lanes != 0 {
-                        let k = g * LANES + lanes.trailing_zeros() as usize;
-                        lanes &= lanes - 1;
-                        self.test_ray::<KZ, SWAP>(k, triangle, relative);
-                    }
-                }
-            });
-            return;
-        }
-        for k in 0..self.rays.len() {
-            if nearest <= self.limits[k] {
-                with_axes!(self.rays[k].axes(), KZ, SWAP => self.test_ray::<KZ, SWAP>(k, triangle, relative));
-            }
-        }
+        with_axes!(self.rays[k].axes(), KZ, SWAP => self.test_axes::<KZ, SWAP>(k, triangle, relative));
     }
 }
 
@@ -259,8 +295,10 @@ pub struct ShadowPacket {
     rays: Vec<ShearedRay>,
     limits: Vec<f64>,
     t_max: f64,
-    /// The rays in groups for the four-lane miss test.
-    groups: Groups,
+    /// The slot of the last triangle found blocking a ray.
+    last_blocker: Option<usize>,
+    /// The rays in blocks for the eight-lane miss test.
+    lines: Lines,
 }
 
 impl ShadowPacket {
@@ -275,45 +313,27 @@ impl Rays for ShadowPacket {
         &self.limits
     }
 
+    fn lines(&self) -> &Lines {
+        &self.lines
+    }
+
+    fn takes(&self, bvh: &TriangleBvh, slot: usize) -> bool {
+        bvh.occludes[slot]
+    }
+
     #[inline(always)]
-    fn test(&mut self, bvh: &TriangleBvh, slot: usize, _: &[DVec3; 3], nearest: f64) {
-        if !bvh.occludes[slot] {
-            return;
-        }
-        let corners = &bvh.corners[slot];
-        if let Some(axes) = self.groups.axes {
-            with_axes!(axes, KZ, SWAP => {
-                for (g, group) in self.groups.groups.iter().enumerate() {
-                    let live = reaching(&self.limits, g, nearest);
-                    if live == 0 {
-                        continue;
-                    }
-                    let mut lanes = live & group.may_hit::<KZ, SWAP, false>(corners);
-                    while lanes != 0 {
-                        let k = g * LANES + lanes.trailing_zeros() as usize;
-                        lanes &= lanes - 1;
-                        let ray = &self.rays[k];
-                        if ray.hits_in::<KZ, SWAP>(&ray.relative(corners), 0.0, self.t_max)
-                        {
-                            self.limits[k] = f64::NEG_INFINITY;
-                        }
-                    }
-                }
-            });
-            return;
-        }
-        for (ray, limit) in self.rays.iter().zip(self.limits.iter_mut()) {
-            if nearest <= *limit && ray.hits(corners, 0.0, self.t_max) {
-                *limit = f64::NEG_INFINITY;
-            }
+    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, _: &[DVec3; 3], k: usize) {
+        if self.rays[k].hits(&bvh.corners[slot], 0.0, self.t_max) {
+            self.limits[k] = f64::NEG_INFINITY;
+            self.last_blocker = Some(slot);
         }
     }
 }
 
-/// Bit l set when ray `LANES · group + l` can still reach depth `nearest`.
+/// Bit l set when ray `LANES · block + l` can still reach depth `nearest`.
 #[inline(always)]
-fn reaching(limits: &[f64], group: usize, nearest: f64) -> u32 {
-    limits[group * LANES..]
+fn reaching(limits: &[f64], block: usize, nearest: f64) -> u32 {
+    limits[block * LANES..]
         .iter()
         .take(LANES)
         .enumerate()
