@@ -164,7 +164,7 @@ impl RayTracePass {
         self.frame_seed = self.frame_seed.wrapping_add(1);
         let sphere = settings.light.radius_m > 0.0;
         let (strata_x, strata_y) = strata(s.rt_light_samples);
-        let rays_per_frame = if sphere { strata_x * strata_y } else { 1 };
+        let rays_per_frame = settings.ray_traced_rays_per_frame();
         self.status = traced.then(|| Accumulation {
             frames: self.frames,
             max_frames,

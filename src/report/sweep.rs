@@ -229,7 +229,7 @@ fn point(table: &toml::Table, base: &Settings) -> Result<SweepPoint, SweepError>
             .parse_onto(&text)
             .map_err(|e| SweepError::Invalid(format!("bias: {e}")))?;
     }
-    let shadow = effective(shadow, base.light.radius_m > 0.0);
+    let shadow = effective(shadow, base);
     Ok(SweepPoint {
         label: label(&shadow),
         shadow,
@@ -237,22 +237,22 @@ fn point(table: &toml::Table, base: &Settings) -> Result<SweepPoint, SweepError>
 }
 
 /// The settings with every value the filter and the bias mode do not read
-/// set to its default, so that two points that render alike are equal.
-fn effective(mut s: ShadowSettings, sphere_light: bool) -> ShadowSettings {
+/// set to its default, so that two points that render alike are equal;
+/// `base` gives the light.
+fn effective(mut s: ShadowSettings, base: &Settings) -> ShadowSettings {
     let d = ShadowSettings::default();
     if s.visibility == Visibility::RayTraced {
-        // No shadow map: only the rays and frames matter, and under a point
-        // light not even those (one exact ray, one frame).
-        let (rt_light_samples, rt_max_frames) = if sphere_light {
-            (s.rt_light_samples, s.rt_max_frames)
-        } else {
-            (1, 1)
+        // No shadow map: only the rays and frames the tracer uses matter
+        // (under a point light one of each).
+        let traced = Settings {
+            shadow: s,
+            ..base.clone()
         };
         return ShadowSettings {
             enabled: s.enabled,
             visibility: s.visibility,
-            rt_light_samples,
-            rt_max_frames,
+            rt_light_samples: traced.ray_traced_rays_per_frame(),
+            rt_max_frames: traced.ray_traced_frames(),
             ..d
         };
     }

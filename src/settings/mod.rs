@@ -424,6 +424,17 @@ impl Settings {
         s
     }
 
+    /// Shadow rays per pixel and frame of ray-traced visibility:
+    /// `rt_light_samples` strata of a sphere light's solid angle; one ray
+    /// to a point light, which is exact.
+    pub fn ray_traced_rays_per_frame(&self) -> u32 {
+        if self.light.radius_m > 0.0 {
+            self.shadow.rt_light_samples.max(1)
+        } else {
+            1
+        }
+    }
+
     /// Frames that ray-traced visibility accumulates before its image
     /// holds: `rt_max_frames` under a sphere light; one under a point
     /// light, whose single shadow ray per pixel is exact, so further
