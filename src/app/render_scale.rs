@@ -103,16 +103,25 @@ impl RenderScale {
         }
         let room_ms = (Self::budget_ms() - fixed_ms).max(0.0);
         let ideal = scale * (room_ms / pixels_ms).sqrt();
-        // The largest step that fits (a rounding's worth of slack).
-        let fits = |step: f64| step <= ideal * (1.0 + 1e-9);
-        let step = STEPS.into_iter().rev().find(|&s| fits(s)).unwrap_or(MIN_SCALE);
-        if step < self.interactive || fits(step * STEP_UP_MARGIN) {
-            self.interactive = step;
-        } else if step > self.interactive {
-            // Not clearly room for the step above: one step below it.
-            self.interactive = STEPS.into_iter().rev().find(|&s| s < step).unwrap_or(MIN_SCALE);
-        }
+        // Down to the largest step that fits at once; up only as far as the
+        // largest step with room to spare.
+        let fitting = largest_step(ideal);
+        self.interactive = if fitting < self.interactive {
+            fitting
+        } else {
+            largest_step(ideal / STEP_UP_MARGIN).max(self.interactive)
+        };
     }
+}
+
+/// The largest of [`STEPS`] at most `limit` (a rounding's worth of slack),
+/// or the smallest.
+fn largest_step(limit: f64) -> f64 {
+    STEPS
+        .into_iter()
+        .rev()
+        .find(|&s| s <= limit * (1.0 + 1e-9))
+        .unwrap_or(MIN_SCALE)
 }
 
 #[cfg(test)]
