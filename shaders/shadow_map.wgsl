@@ -205,7 +205,8 @@ fn tap(r: Receiver, texel: vec2<i32>) -> Tap {
     return Tap(q, clamp(t, vec2<i32>(0), last), drawn);
 }
 
-// depth_test for a texel on the receiver's own face (in_map(texel)).
+// 1 when the stored depth of a texel on the receiver's own layer
+// (in_map(texel)) does not hide the receiver.
 fn own_face_test(r: Receiver, texel: vec2<i32>) -> f32 {
     return select(0.0, 1.0, compared_depth(r, texel) <= stored_depth(r.layer, texel));
 }
@@ -216,7 +217,7 @@ fn depth_test(r: Receiver, texel: vec2<i32>) -> f32 {
     if !t.drawn {
         return 1.0;
     }
-    return select(0.0, 1.0, compared_depth(t.r, t.texel) <= stored_depth(t.r.layer, t.texel));
+    return own_face_test(t.r, t.texel);
 }
 
 // Bilinearly weighted tests of the 2×2 texels around the continuous position tc.
@@ -251,6 +252,12 @@ fn filter_hw2x2(r: Receiver) -> f32 {
     return textureSampleCompareLevel(shadow_depth, shadow_compare, r.tc / resolution(), i32(r.layer), d_ref);
 }
 
+// The separable weight of texel i of the n + 1 a row of n bilinear tests
+// touches, at fraction f: the first and last are partly covered.
+fn pcf_weight(i: i32, n: i32, f: f32) -> f32 {
+    return select(select(1.0, f, i == n), 1.0 - f, i == 0);
+}
+
 // n×n bilinear PCF: the average of n×n bilinear tests one texel apart,
 // summed as separable weights over the (n + 1)² texels they touch.
 fn filter_pcf(r: Receiver) -> f32 {
@@ -266,21 +273,18 @@ fn filter_pcf(r: Receiver) -> f32 {
     // active: kernels inside their face pay for one tap's addressing, not
     // (n + 1)² of them. The same taps and weights as one loop over depth_test.
     for (var j = 0; j <= n; j++) {
-        let wy = select(select(1.0, f.y, j == n), 1.0 - f.y, j == 0);
         for (var i = 0; i <= n; i++) {
-            let wx = select(select(1.0, f.x, i == n), 1.0 - f.x, i == 0);
             let texel = base + vec2<i32>(i, j);
-            sum += select(0.0, wx * wy * own_face_test(r, texel), in_map(texel));
+            let w = pcf_weight(i, n, f.x) * pcf_weight(j, n, f.y);
+            sum += select(0.0, w * own_face_test(r, texel), in_map(texel));
         }
     }
     if !(in_map(base) && in_map(base + vec2<i32>(n))) {
         for (var j = 0; j <= n; j++) {
-            let wy = select(select(1.0, f.y, j == n), 1.0 - f.y, j == 0);
             for (var i = 0; i <= n; i++) {
-                let wx = select(select(1.0, f.x, i == n), 1.0 - f.x, i == 0);
                 let texel = base + vec2<i32>(i, j);
                 if !in_map(texel) {
-                    sum += wx * wy * depth_test(r, texel);
+                    sum += pcf_weight(i, n, f.x) * pcf_weight(j, n, f.y) * depth_test(r, texel);
                 }
             }
         }
