@@ -44,7 +44,7 @@ pub fn reference(settings: &Settings, options: &ReferenceOptions, triangles: usi
     let pixels = settings.image.width as f64 * settings.image.height as f64;
     let shadow_rays = if !settings.shadow.enabled {
         0.0
-    } else if settings.light.radius_m > 0.0 {
+    } else if settings.light.is_sphere() {
         options.light_samples as f64
     } else {
         1.0

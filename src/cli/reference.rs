@@ -142,7 +142,7 @@ pub(super) fn watch<T: Send>(
 fn summary(settings: &Settings, reference: &Reference, image: &ReferenceImage, build: Duration) -> String {
     let stats = &image.stats;
     let seconds = stats.elapsed.as_secs_f64();
-    let light = if settings.light.radius_m > 0.0 {
+    let light = if settings.light.is_sphere() {
         format!(
             "sphere light R = {} m, {} light samples",
             settings.light.radius_m, stats.light_samples

@@ -162,7 +162,7 @@ impl RayTracePass {
             1.0 / self.frames as f32
         };
         self.frame_seed = self.frame_seed.wrapping_add(1);
-        let sphere = settings.light.radius_m > 0.0;
+        let sphere = settings.light.is_sphere();
         let (strata_x, strata_y) = strata(s.rt_light_samples);
         let rays_per_frame = settings.ray_traced_rays_per_frame();
         self.status = traced.then(|| Accumulation {

@@ -353,7 +353,7 @@ pub fn html(report: &Report) -> String {
         "<!doctype html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>lumlab report</title>\
          <style>{STYLE}</style></head><body><h1>lumlab report: shadow maps, speed against error</h1>"
     );
-    let light = if s.light.radius_m > 0.0 {
+    let light = if s.light.is_sphere() {
         format!("sphere light R = {} m", s.light.radius_m)
     } else {
         "point light".to_string()

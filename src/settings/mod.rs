@@ -84,6 +84,11 @@ pub struct LightSettings {
 impl LightSettings {
     pub const DEFAULT_POSITION: Vec3 = Vec3::new(2.5, 6.0, 2.0);
     pub const DEFAULT_POWER_W: f32 = 1000.0;
+
+    /// Whether the light is a sphere (R > 0) rather than a point.
+    pub fn is_sphere(&self) -> bool {
+        self.radius_m > 0.0
+    }
 }
 
 impl Default for LightSettings {
@@ -428,7 +433,7 @@ impl Settings {
     /// `rt_light_samples` strata of a sphere light's solid angle; one ray
     /// to a point light, which is exact.
     pub fn ray_traced_rays_per_frame(&self) -> u32 {
-        if self.light.radius_m > 0.0 {
+        if self.light.is_sphere() {
             self.shadow.rt_light_samples.max(1)
         } else {
             1
@@ -440,7 +445,7 @@ impl Settings {
     /// light, whose single shadow ray per pixel is exact, so further
     /// frames would only repeat it.
     pub fn ray_traced_frames(&self) -> u32 {
-        if self.light.radius_m > 0.0 {
+        if self.light.is_sphere() {
             self.shadow.rt_max_frames.max(1)
         } else {
             1
