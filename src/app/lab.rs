@@ -103,7 +103,7 @@ pub struct LabApp {
     drag_bench: Option<drag_bench::DragBench>,
     /// The host clears the window to the panels' colour (eframe, through
     /// `clear_color`): the panels then paint no fill of their own.
-    pub(super) window_cleared_to_panel_fill: bool,
+    window_cleared_to_panel_fill: bool,
     outcome: Arc<Mutex<Option<String>>>,
     frames: u64,
     viewport_size: (u32, u32),
@@ -143,6 +143,13 @@ fn set_style(ctx: &egui::Context) {
 }
 
 impl LabApp {
+    /// For a host that clears the window to [`eframe::App::clear_color`],
+    /// the panels' fill (eframe does): the panels then paint none.
+    pub(super) fn on_window_cleared_to_panel_fill(mut self) -> Self {
+        self.window_cleared_to_panel_fill = true;
+        self
+    }
+
     /// Commands kept in [`LabApp::applied_commands`].
     const APPLIED_KEPT: usize = 64;
 

@@ -201,7 +201,7 @@ pub fn run(options: LaunchOptions) -> anyhow::Result<()> {
         "lumlab",
         native,
         Box::new(move |cc| {
-            let mut app = LabApp::new(
+            let app = LabApp::new(
                 cc.wgpu_render_state.clone(),
                 cc.storage,
                 &options,
@@ -209,9 +209,7 @@ pub fn run(options: LaunchOptions) -> anyhow::Result<()> {
                 app_outcome,
             )
             .map_err(|e| -> Box<dyn std::error::Error + Send + Sync> { e.into() })?;
-            // eframe clears the window to `LabApp::clear_color`, the panels' fill.
-            app.window_cleared_to_panel_fill = true;
-            Ok(Box::new(app))
+            Ok(Box::new(app.on_window_cleared_to_panel_fill()))
         }),
     )
     .map_err(|e| {
