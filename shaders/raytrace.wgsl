@@ -120,8 +120,10 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
 }
 
 // This frame's targets folded into the running mean of the frames before.
+// (visibility_mode(): a pipeline specialised to the shadow map compiles
+// none of it; a software rasterizer would load the history texels anyway.)
 fn accumulated(quantity: vec4<f32>, aux: vec4<f32>, pixel: vec2<f32>) -> array<vec4<f32>, 2> {
-    if globals.visibility != VISIBILITY_RAY_TRACED || rt.frames_before == 0u {
+    if visibility_mode() != VISIBILITY_RAY_TRACED || rt.frames_before == 0u {
         return array<vec4<f32>, 2>(quantity, aux);
     }
     let texel = vec2<i32>(pixel);

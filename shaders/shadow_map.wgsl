@@ -10,6 +10,8 @@
 // The same depth texture read as plain floats: GLSL cannot textureLoad a
 // depth texture, so the software filters read it through this binding.
 @group(1) @binding(4) var shadow_depth_values: texture_2d_array<f32>;
+// Nearest, clamped to the edge: PCF gathers four stored values at a time.
+@group(1) @binding(5) var shadow_depth_gather: sampler;
 
 // The filter a specialised pipeline is compiled for (FILTER_*), or
 // SPECIALISE_ANY to read shadow.filter_mode (see shade.wgsl).
@@ -126,15 +128,20 @@ fn auto_bias_slack(r: Receiver) -> f32 {
 
 // The depth the receiver is compared with at a texel, per bias mode.
 fn compared_depth(r: Receiver, texel: vec2<i32>) -> f32 {
+    if bias_mode() == BIAS_AUTO {
+        // The facet's plane predicts its own depth at texels nearer the
+        // light (where acne comes from); further texels compare with the
+        // receiver's depth so that neighbouring geometry there (a concave
+        // corner) is not taken for an occluder. A small slack covers float
+        // rounding and curvature.
+        return min(plane_depth(r, texel), r.z) - auto_bias_slack(r);
+    }
+    return fixed_compared_depth(r);
+}
+
+// The depth compared at every texel by the bias modes other than auto.
+fn fixed_compared_depth(r: Receiver) -> f32 {
     switch bias_mode() {
-        case BIAS_AUTO: {
-            // The facet's plane predicts its own depth at texels nearer the
-            // light (where acne comes from); further texels compare with the
-            // receiver's depth so that neighbouring geometry there (a concave
-            // corner) is not taken for an occluder. A small slack covers float
-            // rounding and curvature.
-            return min(plane_depth(r, texel), r.z) - auto_bias_slack(r);
-        }
         case BIAS_CONSTANT: {
             return r.z - shadow.bias_depth_m;
         }
@@ -258,6 +265,67 @@ fn pcf_weight(i: i32, n: i32, f: f32) -> f32 {
     return select(select(1.0, f, i == n), 1.0 - f, i == 0);
 }
 
+// What the taps of a PCF kernel on the receiver's own face share, computed
+// once per receiver instead of once per tap: the layer's depth conversion,
+// and compared_depth's terms as functions of the offset k (texels) from
+// the kernel's first texel `base`. tangent_of_texel is affine on a face, so
+// plane_depth's denominator dot(n_v, (t, −1)) is affine in k; its reach
+// grows with the distance from base's centre + k to tc.
+struct OwnFace {
+    depth_a: f32,
+    depth_b: f32,
+    // Bias modes other than auto: the one compared depth.
+    fixed: f32,
+    // Auto: dot(n_v, v), the denominator at base's centre and its steps per
+    // texel in x and y, base's centre − tc, and MAX_SLOPE × texel_m.
+    numerator: f32,
+    denominator: f32,
+    step: vec2<f32>,
+    offset: vec2<f32>,
+    reach: f32,
+    slack: f32,
+}
+
+fn own_face(r: Receiver, base: vec2<i32>) -> OwnFace {
+    let f = shadow.layers[r.layer];
+    let centre = vec2<f32>(base) + 0.5;
+    let t = tangent_of_texel(centre, r.layer);
+    let per_texel = vec2<f32>(f.tan_right - f.tan_left, f.tan_bottom - f.tan_top) / resolution();
+    return OwnFace(
+        f.depth_a,
+        f.depth_b,
+        fixed_compared_depth(r),
+        dot(r.n_v, r.v),
+        dot(r.n_v, vec3<f32>(t, -1.0)),
+        r.n_v.xy * per_texel,
+        centre - r.tc,
+        MAX_SLOPE * r.texel_m,
+        auto_bias_slack(r),
+    );
+}
+
+// own_face_test for the texel base + k holding the stored value d (the
+// same formulas; plane_depth's terms from o).
+fn own_face_tap(o: OwnFace, r: Receiver, k: vec2<f32>, d: f32) -> f32 {
+    let stored = select(linear_depth(d, o.depth_a, o.depth_b), 3.0e38, d <= 0.0);
+    var compared = o.fixed;
+    if bias_mode() == BIAS_AUTO {
+        let denom = o.denominator + dot(o.step, k);
+        let reach = o.reach * max(length(o.offset + k), 0.5);
+        let plane = select(clamp(o.numerator / denom, r.z - reach, r.z + reach), r.z, denom > -1e-6);
+        compared = min(plane, r.z) - o.slack;
+    }
+    return select(0.0, 1.0, compared <= stored);
+}
+
+// The weighted test of texel base + k of an n×n kernel at fraction f: 0 off
+// the kernel (k > n) and off the face (the second loop of filter_pcf).
+fn own_face_texel(o: OwnFace, r: Receiver, base: vec2<i32>, k: vec2<i32>, n: i32, f: vec2<f32>, d: f32) -> f32 {
+    let w = pcf_weight(k.x, n, f.x) * pcf_weight(k.y, n, f.y);
+    let counted = in_map(base + k) && all(k <= vec2<i32>(n));
+    return select(0.0, w * own_face_tap(o, r, vec2<f32>(k), d), counted);
+}
+
 // n×n bilinear PCF: the average of n×n bilinear tests one texel apart,
 // summed as separable weights over the (n + 1)² texels they touch.
 fn filter_pcf(r: Receiver) -> f32 {
@@ -265,18 +333,24 @@ fn filter_pcf(r: Receiver) -> f32 {
     let c = r.tc - 0.5;
     let base = vec2<i32>(floor(c)) - vec2<i32>((n - 1) / 2);
     let f = fract(c);
+    let o = own_face(r, base);
     var sum = 0.0;
-    // The taps on the receiver's own face first, then, only where the
-    // kernel reaches past the face's edge, those beyond it (depth_test's
-    // cube addressing). A software rasterizer runs both sides of a branch for
-    // a block of pixels, but a loop stops once no pixel in the block is
-    // active: kernels inside their face pay for one tap's addressing, not
-    // (n + 1)² of them. The same taps and weights as one loop over depth_test.
-    for (var j = 0; j <= n; j++) {
-        for (var i = 0; i <= n; i++) {
-            let texel = base + vec2<i32>(i, j);
-            let w = pcf_weight(i, n, f.x) * pcf_weight(j, n, f.y);
-            sum += select(0.0, w * own_face_test(r, texel), in_map(texel));
+    // The taps on the receiver's own face first, 2×2 texels a gather, then,
+    // only where the kernel reaches past the face's edge, those beyond it
+    // (depth_test's cube addressing). A software rasterizer runs both sides
+    // of a branch for a block of pixels, but a loop stops once no pixel in
+    // the block is active: kernels inside their face pay for one tap's
+    // addressing, not (n + 1)² of them. The same taps and weights as one
+    // loop over depth_test.
+    for (var j = 0; j <= n; j += 2) {
+        for (var i = 0; i <= n; i += 2) {
+            let k = vec2<i32>(i, j);
+            // Texels k + (0, 1), (1, 1), (1, 0), k (textureGather's order).
+            let d = gather_depths(r.layer, base + k);
+            sum += own_face_texel(o, r, base, k + vec2<i32>(0, 1), n, f, d.x)
+                + own_face_texel(o, r, base, k + vec2<i32>(1, 1), n, f, d.y)
+                + own_face_texel(o, r, base, k + vec2<i32>(1, 0), n, f, d.z)
+                + own_face_texel(o, r, base, k, n, f, d.w);
         }
     }
     if !(in_map(base) && in_map(base + vec2<i32>(n))) {
@@ -290,6 +364,14 @@ fn filter_pcf(r: Receiver) -> f32 {
         }
     }
     return sum / f32(n * n);
+}
+
+// The stored values of texels t + (0, 1), (1, 1), (1, 0) and t of a layer
+// (textureGather's order), clamped to the map's edge: one fetch for four.
+// The sample point is the corner the four share.
+fn gather_depths(layer: u32, t: vec2<i32>) -> vec4<f32> {
+    let corner = vec2<f32>(t + 1) / resolution();
+    return textureGather(0, shadow_depth_values, shadow_depth_gather, corner, i32(layer));
 }
 
 // Interleaved gradient noise: a per-pixel rotation that tiles without pattern.

@@ -24,6 +24,8 @@ pub struct ShadePass {
     texture_sampler: wgpu::Sampler,
     compare_sampler: wgpu::Sampler,
     moments_sampler: wgpu::Sampler,
+    /// Gathers four stored depths at a time for PCF (shadow_map.wgsl).
+    depth_gather_sampler: wgpu::Sampler,
     scene_group: Option<wgpu::BindGroup>,
 }
 
@@ -70,6 +72,7 @@ impl ShadePass {
                     wgpu::TextureSampleType::Float { filterable: false },
                     wgpu::TextureViewDimension::D2Array,
                 ),
+                binding::sampler(5, fragment, wgpu::SamplerBindingType::NonFiltering),
             ],
         );
         let raytrace_layout = super::raytrace::layout(device);
@@ -101,6 +104,12 @@ impl ShadePass {
                 Some(wgpu::CompareFunction::GreaterEqual),
             ),
             moments_sampler: sampler("shadow moments", linear, wgpu::AddressMode::ClampToEdge, None),
+            depth_gather_sampler: sampler(
+                "shadow depth gather",
+                wgpu::FilterMode::Nearest,
+                wgpu::AddressMode::ClampToEdge,
+                None,
+            ),
             scene_layout,
             shadow_layout,
             pipeline_layout,
@@ -146,6 +155,7 @@ impl ShadePass {
                 wgpu::BindingResource::TextureView(moments),
                 wgpu::BindingResource::Sampler(&self.moments_sampler),
                 wgpu::BindingResource::TextureView(&shadow.depth_array),
+                wgpu::BindingResource::Sampler(&self.depth_gather_sampler),
             ],
         )
     }
