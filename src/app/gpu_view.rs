@@ -7,6 +7,7 @@
 
 use super::probe::{GpuSample, quantity_is_radiance};
 use super::render_scale::RenderScale;
+use super::viewport_image::{ImageBinding, ImagePipeline};
 use crate::gpu::readback::ReadState;
 use crate::gpu::timing::PassTimes;
 use crate::gpu::{Capabilities, ShadeOptions};
@@ -26,14 +27,14 @@ struct RenderKey {
     comparison_generation: u64,
 }
 
-/// One half of the viewport: a renderer and the texture egui shows.
+/// One half of the viewport: a renderer and the texture the window shows.
 pub struct HalfView {
     renderer: Renderer,
-    /// egui samples user textures as sRGB-encoded values (Rgba8Unorm), the
+    /// The window shows the sRGB-encoded bytes as they are (Rgba8Unorm), the
     /// renderer writes Rgba8UnormSrgb: the bytes are copied on the GPU into
     /// this texture so that they reach the screen unchanged.
     shown: Option<wgpu::Texture>,
-    texture: Option<egui::TextureId>,
+    image: Option<ImageBinding>,
     rendered: Option<RenderKey>,
     scene_generation: u64,
     comparison_generation: u64,
@@ -85,6 +86,7 @@ pub struct GpuViews {
     pub render_scale: RenderScale,
     /// This frame's render scale (see [`Self::begin_frame`]).
     frame_scale: f64,
+    image_pipeline: ImagePipeline,
 }
 
 impl GpuViews {
@@ -97,6 +99,7 @@ impl GpuViews {
         );
         let a = HalfView::new(renderer, 0);
         let caps = a.renderer.capabilities().clone();
+        let image_pipeline = ImagePipeline::new(&render_state.device, render_state.target_format);
         Self {
             render_state,
             halves: [Some(a), None],
@@ -104,6 +107,7 @@ impl GpuViews {
             caps,
             render_scale: RenderScale::default(),
             frame_scale: 1.0,
+            image_pipeline,
         }
     }
 
@@ -140,13 +144,7 @@ impl GpuViews {
                     *b = Some(HalfView::new(a.renderer.sharing(), self.scene_generation));
                 }
             }
-            (false, true) => {
-                if let Some(view) = b.take()
-                    && let Some(id) = view.texture
-                {
-                    self.render_state.renderer.write().free_texture(&id);
-                }
-            }
+            (false, true) => *b = None,
             _ => {}
         }
     }
@@ -208,7 +206,7 @@ impl GpuViews {
         if super::legend::for_view(settings.view.mode, Some(1.0)).is_some() {
             h.pending_scale = Some(h.renderer.request_scale());
         }
-        h.show_texture(&self.render_state);
+        h.show_texture(&self.render_state, &self.image_pipeline);
         true
     }
 
@@ -222,9 +220,10 @@ impl GpuViews {
         self.half(half)?.renderer.accumulation()
     }
 
-    /// The texture showing a half's last frame.
-    pub fn texture(&self, half: Half) -> Option<egui::TextureId> {
-        self.halves[half as usize].as_ref().and_then(|h| h.texture)
+    /// The shape that shows the part `uv` (0..1) of a half's last frame over `area`.
+    pub fn image(&self, half: Half, area: egui::Rect, uv: egui::Rect) -> Option<egui::Shape> {
+        let image = self.half(half)?.image.as_ref()?;
+        Some(self.image_pipeline.shape(image, area, uv))
     }
 
     /// Collects timings and scales without blocking; true while some are still on their way.
@@ -306,7 +305,7 @@ impl HalfView {
         Self {
             renderer,
             shown: None,
-            texture: None,
+            image: None,
             rendered: None,
             scene_generation,
             comparison_generation: 0,
@@ -323,9 +322,9 @@ impl HalfView {
         }
     }
 
-    /// Copies the renderer's display texture into the one egui shows, and
-    /// points egui at it (a new texture whenever the size changed).
-    fn show_texture(&mut self, render_state: &egui_wgpu::RenderState) {
+    /// Copies the renderer's display texture into the one the window shows,
+    /// and binds it (a new texture whenever the size changed).
+    fn show_texture(&mut self, render_state: &egui_wgpu::RenderState, pipeline: &ImagePipeline) {
         let Some(display) = self.renderer.display_texture() else {
             return;
         };
@@ -351,22 +350,13 @@ impl HalfView {
         // Same bytes, formats that differ only in their sRGB flag: a plain copy.
         encoder.copy_texture_to_texture(display.as_image_copy(), shown.as_image_copy(), size);
         render_state.queue.submit([encoder.finish()]);
-        if !recreate && self.texture.is_some() {
+        if !recreate && self.image.is_some() {
             return;
         }
         let view = shown.create_view(&wgpu::TextureViewDescriptor::default());
-        let mut renderer = render_state.renderer.write();
         // Nearest at full scale: one texel per pixel. Linear for the
         // reduced images of interaction frames.
-        let filter = if self.rendered_scale < 1.0 {
-            wgpu::FilterMode::Linear
-        } else {
-            wgpu::FilterMode::Nearest
-        };
-        match self.texture {
-            Some(id) => renderer.update_egui_texture_from_wgpu_texture(device, &view, filter, id),
-            None => self.texture = Some(renderer.register_native_texture(device, &view, filter)),
-        }
+        self.image = Some(pipeline.bind(device, &view, self.rendered_scale < 1.0));
     }
 }
 

@@ -42,6 +42,7 @@ mod toast;
 mod undo;
 mod view;
 mod viewport;
+mod viewport_image;
 mod visibility;
 mod widgets;
 

@@ -316,9 +316,9 @@ impl Viewport<'_> {
             }
         };
         for &half in halves {
-            if let Some(texture) = gpu.texture(half) {
-                let (area, uv) = part(half);
-                painter.image(texture, area, uv, Color32::WHITE);
+            let (area, uv) = part(half);
+            if let Some(image) = gpu.image(half, area, uv) {
+                painter.add(image);
             }
         }
 

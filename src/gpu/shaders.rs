@@ -49,10 +49,12 @@ pub enum Shader {
     Lines,
     /// The hard-case grid of `lumlab stability` (a compute pass).
     Stability,
+    /// The lab's viewport image in the window's render pass (app::viewport_image).
+    ViewportImage,
 }
 
 impl Shader {
-    pub const ALL: [Shader; 7] = [
+    pub const ALL: [Shader; 8] = [
         Self::Shadow,
         Self::Blur,
         Self::Shade,
@@ -60,6 +62,7 @@ impl Shader {
         Self::Display,
         Self::Lines,
         Self::Stability,
+        Self::ViewportImage,
     ];
 
     pub fn name(self) -> &'static str {
@@ -71,6 +74,7 @@ impl Shader {
             Self::Display => "display.wgsl",
             Self::Lines => "lines.wgsl",
             Self::Stability => "stability.wgsl",
+            Self::ViewportImage => "viewport_image.wgsl",
         }
     }
 
@@ -89,6 +93,7 @@ impl Shader {
             Self::Display => include_str!("../../shaders/display.wgsl"),
             Self::Lines => include_str!("../../shaders/lines.wgsl"),
             Self::Stability => include_str!("../../shaders/stability.wgsl"),
+            Self::ViewportImage => include_str!("../../shaders/viewport_image.wgsl"),
         }
     }
 
