@@ -112,13 +112,19 @@ fn stored_depth(layer: u32, texel: vec2<i32>) -> f32 {
 fn plane_depth(r: Receiver, texel: vec2<i32>) -> f32 {
     let centre = vec2<f32>(texel) + 0.5;
     let t = tangent_of_texel(centre, r.layer);
-    let dir = vec3<f32>(t, -1.0);
-    let denom = dot(r.n_v, dir);
     let reach = MAX_SLOPE * r.texel_m * max(length(centre - r.tc), 0.5);
+    return plane_along(r, dot(r.n_v, r.v), dot(r.n_v, vec3<f32>(t, -1.0)), reach);
+}
+
+// The tangent plane's depth along a light ray: numerator dot(n_v, v),
+// denominator dot(n_v, dir) for the ray's direction dir = (t, −1), the
+// answer kept within `reach` of the receiver's depth (and the receiver's
+// depth where the plane does not face the ray).
+fn plane_along(r: Receiver, numerator: f32, denom: f32, reach: f32) -> f32 {
     if denom > -1e-6 {
         return r.z;
     }
-    return clamp(dot(r.n_v, r.v) / denom, r.z - reach, r.z + reach);
+    return clamp(numerator / denom, r.z - reach, r.z + reach);
 }
 
 // The automatic bias's slack for float rounding and curvature (m).
@@ -132,11 +138,16 @@ fn compared_depth(r: Receiver, texel: vec2<i32>) -> f32 {
         // The facet's plane predicts its own depth at texels nearer the
         // light (where acne comes from); further texels compare with the
         // receiver's depth so that neighbouring geometry there (a concave
-        // corner) is not taken for an occluder. A small slack covers float
-        // rounding and curvature.
-        return min(plane_depth(r, texel), r.z) - auto_bias_slack(r);
+        // corner) is not taken for an occluder.
+        return auto_compared_depth(r, plane_depth(r, texel));
     }
     return fixed_compared_depth(r);
+}
+
+// The auto bias's compared depth given the plane's depth at the texel: a
+// small slack covers float rounding and curvature.
+fn auto_compared_depth(r: Receiver, plane: f32) -> f32 {
+    return min(plane, r.z) - auto_bias_slack(r);
 }
 
 // The depth compared at every texel by the bias modes other than auto.
@@ -283,7 +294,6 @@ struct OwnFace {
     step: vec2<f32>,
     offset: vec2<f32>,
     reach: f32,
-    slack: f32,
 }
 
 fn own_face(r: Receiver, base: vec2<i32>) -> OwnFace {
@@ -300,20 +310,18 @@ fn own_face(r: Receiver, base: vec2<i32>) -> OwnFace {
         r.n_v.xy * per_texel,
         centre - r.tc,
         MAX_SLOPE * r.texel_m,
-        auto_bias_slack(r),
     );
 }
 
 // own_face_test for the texel base + k holding the stored value d (the
-// same formulas; plane_depth's terms from o).
+// same formulas; plane_depth's terms stepped from o's).
 fn own_face_tap(o: OwnFace, r: Receiver, k: vec2<f32>, d: f32) -> f32 {
     let stored = select(linear_depth(d, o.depth_a, o.depth_b), 3.0e38, d <= 0.0);
     var compared = o.fixed;
     if bias_mode() == BIAS_AUTO {
         let denom = o.denominator + dot(o.step, k);
         let reach = o.reach * max(length(o.offset + k), 0.5);
-        let plane = select(clamp(o.numerator / denom, r.z - reach, r.z + reach), r.z, denom > -1e-6);
-        compared = min(plane, r.z) - o.slack;
+        compared = auto_compared_depth(r, plane_along(r, o.numerator, denom, reach));
     }
     return select(0.0, 1.0, compared <= stored);
 }
