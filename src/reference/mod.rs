@@ -39,7 +39,7 @@ pub use shading::{SHADOW_OFFSET_REL, STOP_SHORT_REL, ShadingSample};
 use crate::scene::{Material, Scene};
 use crate::settings::{Settings, SettingsError};
 use bvh::{BvhTriangle, TriangleBvh};
-use glam::{DVec2, DVec3};
+use glam::{DVec3, Vec2, Vec3};
 use sampling::Rng;
 use shading::Setup;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -106,7 +106,9 @@ struct TriangleInfo {
     object: usize,
     /// Index within the object's mesh.
     index: usize,
-    corners: [DVec3; 3],
+    /// Corners, vertex normals and uvs as the mesh stores them (f32, exact
+    /// in f64): half the memory of f64 copies.
+    corners: [Vec3; 3],
     /// The unit normal of the face (counter-clockwise winding).
     face_normal: DVec3,
     /// The normalized vertex normal when all three are equal (a flat
@@ -115,8 +117,8 @@ struct TriangleInfo {
     /// How far shadow rays start off this triangle (m): SHADOW_OFFSET_REL ×
     /// its largest |coordinate|.
     shadow_offset_m: f64,
-    normals: [DVec3; 3],
-    uvs: [DVec2; 3],
+    normals: [Vec3; 3],
+    uvs: [Vec2; 3],
 }
 
 #[derive(Clone, Debug)]
@@ -164,7 +166,7 @@ impl Reference {
             .collect();
         let bvh_triangles: Vec<BvhTriangle> = mesh_triangles(scene)
             .map(|t| BvhTriangle {
-                corners: t.corners,
+                corners: t.corners.map(|p| p.as_dvec3()),
                 occludes: scene.objects[t.object].casts_shadows,
             })
             .collect();
@@ -218,7 +220,7 @@ struct MeshTriangle {
     /// Index within the object's mesh.
     index: usize,
     ids: [usize; 3],
-    corners: [DVec3; 3],
+    corners: [Vec3; 3],
 }
 
 /// Every triangle of the scene whose indices lie inside its mesh, in order.
@@ -230,7 +232,7 @@ fn mesh_triangles(scene: &Scene) -> impl Iterator<Item = MeshTriangle> + '_ {
             .enumerate()
             .filter_map(move |(index, ids)| {
                 let ids = [ids[0] as usize, ids[1] as usize, ids[2] as usize];
-                let corners = corner_values(&mesh.positions, ids)?.map(|p| p.as_dvec3());
+                let corners = corner_values(&mesh.positions, ids)?;
                 Some(MeshTriangle {
                     object,
                     index,
@@ -245,21 +247,23 @@ impl MeshTriangle {
     /// Its shading data.
     fn info(self, scene: &Scene) -> TriangleInfo {
         let mesh = &scene.objects[self.object].mesh;
-        let (ids, corners) = (self.ids, self.corners);
+        let ids = self.ids;
+        let corners = self.corners.map(|p| p.as_dvec3());
         let face = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
         // A missing vertex normal counts as zero: where the interpolated
         // normal vanishes, `surface` uses the face's own (so does the GPU,
         // shade.wgsl's surface_at). Missing uvs: zero.
-        let normals = ids.map(|i| mesh.normals.get(i).map_or(DVec3::ZERO, |n| n.as_dvec3()));
-        let uvs = corner_values(&mesh.uvs, ids).map_or([DVec2::ZERO; 3], |t| t.map(|t| t.as_dvec2()));
+        let normals = ids.map(|i| mesh.normals.get(i).copied().unwrap_or(Vec3::ZERO));
+        let uvs = corner_values(&mesh.uvs, ids).unwrap_or([Vec2::ZERO; 3]);
         let largest = corners.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+        let first = normals[0].as_dvec3();
         TriangleInfo {
             object: self.object,
             index: self.index,
-            corners,
+            corners: self.corners,
             face_normal: face.normalize_or_zero(),
             flat_normal: (normals[0] == normals[1] && normals[0] == normals[2])
-                .then(|| normals[0].normalize_or(face.normalize_or_zero())),
+                .then(|| first.normalize_or(face.normalize_or_zero())),
             shadow_offset_m: SHADOW_OFFSET_REL * largest,
             normals,
             uvs,
