@@ -129,7 +129,10 @@ impl TriangleBvh {
             .collect();
         let bvh = obvhs::cwbvh::builder::build_cwbvh(
             &boxes,
-            BvhBuildParams::medium_build(),
+            // Against medium_build: 8 % less build time on 1 M triangles,
+            // no slower traversal (rendering within the runs' spread on
+            // 110 k and 1 M triangles); very_fast_build renders 5 % slower.
+            BvhBuildParams::fast_build(),
             &mut std::time::Duration::default(),
         );
         let original: Vec<usize> = bvh

@@ -39,7 +39,7 @@ pub use shading::{SHADOW_OFFSET_REL, STOP_SHORT_REL, ShadingSample};
 use crate::scene::{Material, Scene};
 use crate::settings::{Settings, SettingsError};
 use bvh::{BvhTriangle, TriangleBvh};
-use glam::{DVec2, DVec3};
+use glam::{DVec3, Vec2, Vec3};
 use sampling::Rng;
 use shading::Setup;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -106,7 +106,9 @@ struct TriangleInfo {
     object: usize,
     /// Index within the object's mesh.
     index: usize,
-    corners: [DVec3; 3],
+    /// Corners, vertex normals and uvs as the mesh stores them (f32, exact
+    /// in f64): half the memory of f64 copies.
+    corners: [Vec3; 3],
     /// The unit normal of the face (counter-clockwise winding).
     face_normal: DVec3,
     /// The normalized vertex normal when all three are equal (a flat
@@ -115,8 +117,8 @@ struct TriangleInfo {
     /// How far shadow rays start off this triangle (m): SHADOW_OFFSET_REL ×
     /// its largest |coordinate|.
     shadow_offset_m: f64,
-    normals: [DVec3; 3],
-    uvs: [DVec2; 3],
+    normals: [Vec3; 3],
+    uvs: [Vec2; 3],
 }
 
 #[derive(Clone, Debug)]
@@ -150,57 +152,37 @@ impl Reference {
         let mut materials = scene.materials.clone();
         let fallback = materials.len();
         materials.push(Material::default());
-        let mut objects = Vec::with_capacity(scene.objects.len());
-        let mut triangles = Vec::with_capacity(scene.triangle_count());
-        let mut bvh_triangles = Vec::with_capacity(scene.triangle_count());
-        let mut skipped_triangles = 0;
-        for (object_id, object) in scene.objects.iter().enumerate() {
-            let material_index = (object.material < fallback).then_some(object.material);
-            objects.push(ObjectInfo {
-                material: material_index.unwrap_or(fallback),
-                material_index,
-                receives_shadows: object.receives_shadows,
-            });
-            let mesh = &object.mesh;
-            for (index, ids) in mesh.indices.chunks_exact(3).enumerate() {
-                let ids = [ids[0] as usize, ids[1] as usize, ids[2] as usize];
-                let Some(corners) = corner_values(&mesh.positions, ids) else {
-                    skipped_triangles += 1;
-                    continue;
-                };
-                let corners = corners.map(|p| p.as_dvec3());
-                let face = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
-                // A missing vertex normal counts as zero: where the
-                // interpolated normal vanishes, `surface` uses the face's
-                // own (so does the GPU, shade.wgsl's surface_at). Missing uvs: zero.
-                let normals = ids.map(|i| mesh.normals.get(i).map_or(DVec3::ZERO, |n| n.as_dvec3()));
-                let uvs = corner_values(&mesh.uvs, ids).map_or([DVec2::ZERO; 3], |t| t.map(|t| t.as_dvec2()));
-                bvh_triangles.push(BvhTriangle {
-                    corners,
-                    occludes: object.casts_shadows,
-                });
-                let largest = corners.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
-                triangles.push(TriangleInfo {
-                    object: object_id,
-                    index,
-                    corners,
-                    face_normal: face.normalize_or_zero(),
-                    flat_normal: (normals[0] == normals[1] && normals[0] == normals[2])
-                        .then(|| normals[0].normalize_or(face.normalize_or_zero())),
-                    shadow_offset_m: SHADOW_OFFSET_REL * largest,
-                    normals,
-                    uvs,
-                });
-            }
-        }
+        let objects = scene
+            .objects
+            .iter()
+            .map(|object| {
+                let material_index = (object.material < fallback).then_some(object.material);
+                ObjectInfo {
+                    material: material_index.unwrap_or(fallback),
+                    material_index,
+                    receives_shadows: object.receives_shadows,
+                }
+            })
+            .collect();
+        let bvh_triangles: Vec<BvhTriangle> = mesh_triangles(scene)
+            .map(|t| BvhTriangle {
+                corners: t.corners.map(|p| p.as_dvec3()),
+                occludes: scene.objects[t.object].casts_shadows,
+            })
+            .collect();
+        // The BVH (built on one thread) beside the shading data.
+        let (bvh, triangles) = rayon::join(
+            || TriangleBvh::new(&bvh_triangles),
+            || mesh_triangles(scene).map(|t| t.info(scene)).collect(),
+        );
         Self {
-            bvh: TriangleBvh::new(&bvh_triangles),
+            bvh,
+            skipped_triangles: scene.triangle_count() - bvh_triangles.len(),
             bvh_triangles,
             triangles,
             objects,
             materials,
             textures: scene.textures.iter().map(LinearTexture::new).collect(),
-            skipped_triangles,
         }
     }
 
@@ -229,6 +211,63 @@ impl Reference {
         let pixel = pixel_index(&setup, x.floor(), y.floor());
         let mut rng = Rng::new(options.seed, pixel, 0);
         self.probe(&setup, x, y, &mut rng)
+    }
+}
+
+/// A triangle of the scene whose indices lie inside its mesh.
+struct MeshTriangle {
+    object: usize,
+    /// Index within the object's mesh.
+    index: usize,
+    ids: [usize; 3],
+    corners: [Vec3; 3],
+}
+
+/// Every triangle of the scene whose indices lie inside its mesh, in order.
+fn mesh_triangles(scene: &Scene) -> impl Iterator<Item = MeshTriangle> + '_ {
+    scene.objects.iter().enumerate().flat_map(|(object, o)| {
+        let mesh = &o.mesh;
+        mesh.indices
+            .chunks_exact(3)
+            .enumerate()
+            .filter_map(move |(index, ids)| {
+                let ids = [ids[0] as usize, ids[1] as usize, ids[2] as usize];
+                let corners = corner_values(&mesh.positions, ids)?;
+                Some(MeshTriangle {
+                    object,
+                    index,
+                    ids,
+                    corners,
+                })
+            })
+    })
+}
+
+impl MeshTriangle {
+    /// Its shading data.
+    fn info(self, scene: &Scene) -> TriangleInfo {
+        let mesh = &scene.objects[self.object].mesh;
+        let ids = self.ids;
+        let corners = self.corners.map(|p| p.as_dvec3());
+        let face = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+        // A missing vertex normal counts as zero: where the interpolated
+        // normal vanishes, `surface` uses the face's own (so does the GPU,
+        // shade.wgsl's surface_at). Missing uvs: zero.
+        let normals = ids.map(|i| mesh.normals.get(i).copied().unwrap_or(Vec3::ZERO));
+        let uvs = corner_values(&mesh.uvs, ids).unwrap_or([Vec2::ZERO; 3]);
+        let largest = corners.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+        let first = normals[0].as_dvec3();
+        TriangleInfo {
+            object: self.object,
+            index: self.index,
+            corners: self.corners,
+            face_normal: face.normalize_or_zero(),
+            flat_normal: (normals[0] == normals[1] && normals[0] == normals[2])
+                .then(|| first.normalize_or(face.normalize_or_zero())),
+            shadow_offset_m: SHADOW_OFFSET_REL * largest,
+            normals,
+            uvs,
+        }
     }
 }
 
@@ -274,6 +313,41 @@ mod tests {
 
     fn centre(reference: &Reference, s: &Settings) -> Option<ShadingSample> {
         reference.trace_pixel(s, &ReferenceOptions::default(), 8.0, 6.0)
+    }
+
+    /// A triangle with an index out of range is skipped and counted; the
+    /// triangles after it, in its object and the next, keep their own
+    /// object, index and material.
+    #[test]
+    fn skipped_triangles_leave_the_others_in_place() {
+        let mut lower = shapes::ground(Vec3::ZERO, 4.0);
+        let out_of_range = lower.positions.len() as u32;
+        lower.indices.splice(0..0, [0, 1, out_of_range]);
+        let upper = shapes::ground(Vec3::new(0.0, 1.0, 0.0), 2.0);
+        let scene = Scene {
+            objects: vec![Object::new("lower", lower, 0), Object::new("upper", upper, 1)],
+            materials: vec![Material::default(); 2],
+            ..Scene::default()
+        };
+        let reference = Reference::new(&scene);
+        assert_eq!(reference.skipped_triangles(), 1);
+        assert_eq!(reference.triangle_count(), 4);
+        let s = settings(3.0);
+        let hit = centre(&reference, &s).expect("the upper ground");
+        assert_eq!((hit.object, hit.material), (1, Some(1)));
+        assert!((hit.position.y - 1.0).abs() < 1e-12);
+        // Beside the upper ground: the lower one, its triangles numbered from
+        // 1 (triangle 0 is the skipped one).
+        let hit = reference
+            .trace_pixel(&s, &ReferenceOptions::default(), 1.0, 1.0)
+            .expect("the lower ground");
+        assert_eq!((hit.object, hit.material), (0, Some(0)));
+        assert!(hit.position.y.abs() < 1e-12);
+        assert!(
+            hit.triangle == 1 || hit.triangle == 2,
+            "triangle {}",
+            hit.triangle
+        );
     }
 
     #[test]

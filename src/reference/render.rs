@@ -20,6 +20,12 @@ const TILE: u32 = 16;
 /// the packets of a pixel's rays go through the BVH faster than building
 /// the grids takes.
 const GRID_MAX_TRIANGLES: usize = 16_384;
+/// Pixels whose primary rays walk the BVH as one packet where there is no
+/// eye grid (several samples a pixel), in blocks of two rows by RUN / 2
+/// columns: against one pixel a packet, 2 × 2 renders the 110 k-triangle
+/// engine 14 % faster and 1 M triangles 9 % (4 × 1: 13 % and 7 %; 4 × 2
+/// and runs of 8 or 16 in a row: slower on 1 M triangles).
+const RUN: u32 = 4;
 
 impl Reference {
     /// Renders the image, in parallel over tiles, reporting progress and
@@ -29,6 +35,18 @@ impl Reference {
         settings: &Settings,
         options: &ReferenceOptions,
         control: &RenderControl,
+    ) -> Result<ReferenceImage, ReferenceError> {
+        self.render_in_runs(settings, options, control, RUN)
+    }
+
+    /// [`Self::render`] with primary packets of `run` pixels where there is
+    /// no eye grid.
+    fn render_in_runs(
+        &self,
+        settings: &Settings,
+        options: &ReferenceOptions,
+        control: &RenderControl,
+        run: u32,
     ) -> Result<ReferenceImage, ReferenceError> {
         settings.validate()?;
         let start = Instant::now();
@@ -54,7 +72,7 @@ impl Reference {
         let spp = Strata::new(options.spp);
         let rendered: Vec<Option<Tile>> = tiles
             .par_iter()
-            .map(|&(x0, y0)| self.render_tile(&setup, spp, x0, y0, control))
+            .map(|&(x0, y0)| self.render_tile(&setup, spp, (x0, y0), run, control))
             .collect();
         if control.cancelled() {
             return Err(ReferenceError::Cancelled);
@@ -95,15 +113,21 @@ impl Reference {
         Ok(image)
     }
 
-    /// One tile, or None when cancelled.
+    /// One tile from (x0, y0), with primary packets of `run` pixels (2 rows
+    /// by run / 2 columns) where there is no eye grid, or None when cancelled.
     fn render_tile(
         &self,
         setup: &Setup,
         spp: Strata,
-        x0: u32,
-        y0: u32,
+        (x0, y0): (u32, u32),
+        run: u32,
         control: &RenderControl,
     ) -> Option<Tile> {
+        let run = if setup.eye_grid.is_none() && spp.count() > 1 {
+            run
+        } else {
+            1
+        };
         let (x1, y1) = ((x0 + TILE).min(setup.width), (y0 + TILE).min(setup.height));
         let mut tile = Tile {
             x0,
@@ -115,32 +139,97 @@ impl Reference {
             noise_known: true,
         };
         let mut buffers = PixelBuffers::default();
-        for j in y0..y1 {
+        // Blocks of `run` pixels, two rows by run / 2 columns (or one row).
+        let (cols, rows) = if run > 1 { (run / 2, 2) } else { (1, 1) };
+        let mut below = Vec::new();
+        for j in (y0..y1).step_by(rows as usize) {
             if control.cancelled() {
                 return None;
             }
-            for i in x0..x1 {
-                let pixel = self.render_pixel(setup, spp, i, j, &mut buffers);
-                tile.primary_rays += spp.count() as u64;
-                tile.shadow_rays += pixel.shadow_rays;
-                tile.noise_known &= pixel.noise_known;
-                tile.pixels.push(pixel);
+            let band = rows.min(y1 - j);
+            for i in (x0..x1).step_by(cols as usize) {
+                let width = cols.min(x1 - i);
+                if width * band == 1 {
+                    self.trace_pixel_samples(setup, spp, i, j, &mut buffers);
+                    tile.add(self.shade_pixel(setup, spp.count(), &mut buffers));
+                    continue;
+                }
+                self.trace_run(setup, spp, (i, j), (width, band), &mut buffers);
+                for k in 0..(width * band) as usize {
+                    self.run_pixel_samples(setup, k, spp.count() as usize, &mut buffers);
+                    let pixel = self.shade_pixel(setup, spp.count(), &mut buffers);
+                    if k < width as usize {
+                        tile.add(pixel);
+                    } else {
+                        below.push(pixel);
+                    }
+                }
+            }
+            for pixel in below.drain(..) {
+                tile.add(pixel);
             }
             control
                 .pixels_done
-                .fetch_add((x1 - x0) as usize, Ordering::Relaxed);
+                .fetch_add(((x1 - x0) * band) as usize, Ordering::Relaxed);
         }
         Some(tile)
     }
 
-    /// Pixel (i, j) with `spp` primary samples: first every primary ray,
-    /// then the light at every surface. Two short loops of independent
-    /// iterations let the CPU overlap the samples' long chains of
-    /// divisions and square roots better than one long loop does (8 %).
+    /// The primary samples of the block of width × height pixels from
+    /// (i, j), row by row (no eye grid): one packet in the cone of the
+    /// block's corner rays, each ray still decided by its own exact test (as
+    /// in `trace_pixel_samples`, the same samples and random streams, pixel
+    /// by pixel).
+    fn trace_run(
+        &self,
+        setup: &Setup,
+        spp: Strata,
+        (i, j): (u32, u32),
+        (width, height): (u32, u32),
+        buffers: &mut PixelBuffers,
+    ) {
+        let PixelBuffers {
+            run_samples,
+            directions,
+            packet,
+            ..
+        } = buffers;
+        run_samples.clear();
+        directions.clear();
+        let (x, y) = (i as f64, j as f64);
+        for r in 0..height {
+            for c in 0..width {
+                for (sx, sy, rng) in sample_points(setup, spp, i + c, j + r) {
+                    directions.push(setup.rays.towards(sx, sy));
+                    run_samples.push(rng);
+                }
+            }
+        }
+        let (far_x, far_y) = (x + width as f64, y + height as f64);
+        let corners = [(x, y), (far_x, y), (far_x, far_y), (x, far_y)];
+        let cone = Cone::spanned(setup.rays.eye, corners.map(|(cx, cy)| setup.rays.towards(cx, cy)));
+        self.bvh.closest_hits_in_cone(&cone, directions, packet);
+    }
+
+    /// Pixel k (row by row) of a traced block (`n` samples each) into `buffers.samples`.
     #[inline(always)]
-    fn render_pixel(&self, setup: &Setup, spp: Strata, i: u32, j: u32, buffers: &mut PixelBuffers) -> Pixel {
+    fn run_pixel_samples(&self, setup: &Setup, k: usize, n: usize, buffers: &mut PixelBuffers) {
+        buffers.samples.clear();
+        for s in k * n..(k + 1) * n {
+            let surface =
+                buffers.packet.hits[s].map(|hit| self.surface_at(setup, buffers.directions[s], hit));
+            buffers.samples.push((surface, buffers.run_samples[s].clone()));
+        }
+    }
+
+    /// Pixel (i, j)'s primary samples into `buffers.samples`: first every
+    /// primary ray, then (in `shade_pixel`) the light at every surface. Two
+    /// short loops of independent iterations let the CPU overlap the
+    /// samples' long chains of divisions and square roots better than one
+    /// long loop does (8 %).
+    #[inline(always)]
+    fn trace_pixel_samples(&self, setup: &Setup, spp: Strata, i: u32, j: u32, buffers: &mut PixelBuffers) {
         let n = spp.count();
-        let pixel = pixel_index(setup, i as f64, j as f64);
         let (x, y) = (i as f64, j as f64);
         // Several samples: find their cell once when it is the same for all.
         let cell = setup
@@ -157,23 +246,13 @@ impl Reference {
             });
         let PixelBuffers {
             samples,
-            luminance: sample_luminance,
-            scratch,
             directions,
             packet: primary,
+            ..
         } = buffers;
         samples.clear();
         directions.clear();
-        let mut rngs = spp.cells().enumerate().map(|(s, stratum)| {
-            let mut rng = Rng::new(setup.seed, pixel, s as u64);
-            // DESIGN.md: one sample per pixel is the pixel centre.
-            let (dx, dy) = if n == 1 {
-                (0.5, 0.5)
-            } else {
-                spp.jittered(stratum, &mut rng)
-            };
-            (x + dx, y + dy, rng)
-        });
+        let mut rngs = sample_points(setup, spp, i, j);
         if packet {
             for (sx, sy, rng) in rngs {
                 directions.push(setup.rays.towards(sx, sy));
@@ -192,6 +271,17 @@ impl Reference {
                 samples.push((self.surface(setup, sx, sy, cell), rng));
             }
         }
+    }
+
+    /// The pixel from its samples in `buffers.samples` (`n` of them).
+    #[inline(always)]
+    fn shade_pixel(&self, setup: &Setup, n: u32, buffers: &mut PixelBuffers) -> Pixel {
+        let PixelBuffers {
+            samples,
+            luminance: sample_luminance,
+            scratch,
+            ..
+        } = buffers;
         let mut sum = [0.0; 3];
         let (mut hits, mut visibility, mut variance) = (0u32, 0.0, 0.0);
         let (mut shadow_rays, mut noise_known) = (0, true);
@@ -238,6 +328,7 @@ impl Reference {
             },
             coverage: hits as f32 / n as f32,
             noise: noise as f32,
+            primary_rays: n as u64,
             shadow_rays,
             noise_known,
         }
@@ -255,6 +346,26 @@ struct PixelBuffers {
     /// A packet's directions and closest hits.
     directions: Vec<DVec3>,
     packet: PrimaryPacket,
+    /// A block of pixels' random streams, in the order of `directions`.
+    run_samples: Vec<Rng>,
+}
+
+/// Pixel (i, j)'s primary sample points (image coordinates) and their
+/// random streams, stratum by stratum.
+fn sample_points(setup: &Setup, spp: Strata, i: u32, j: u32) -> impl Iterator<Item = (f64, f64, Rng)> + '_ {
+    let n = spp.count();
+    let pixel = pixel_index(setup, i as f64, j as f64);
+    let (x, y) = (i as f64, j as f64);
+    spp.cells().enumerate().map(move |(s, stratum)| {
+        let mut rng = Rng::new(setup.seed, pixel, s as u64);
+        // DESIGN.md: one sample per pixel is the pixel centre.
+        let (dx, dy) = if n == 1 {
+            (0.5, 0.5)
+        } else {
+            spp.jittered(stratum, &mut rng)
+        };
+        (x + dx, y + dy, rng)
+    })
 }
 
 struct Pixel {
@@ -262,6 +373,7 @@ struct Pixel {
     visibility: f32,
     coverage: f32,
     noise: f32,
+    primary_rays: u64,
     shadow_rays: u64,
     noise_known: bool,
 }
@@ -274,4 +386,59 @@ struct Tile {
     primary_rays: u64,
     shadow_rays: u64,
     noise_known: bool,
+}
+
+impl Tile {
+    /// The next pixel, in row order, and its rays.
+    #[inline(always)]
+    fn add(&mut self, pixel: Pixel) {
+        self.primary_rays += pixel.primary_rays;
+        self.shadow_rays += pixel.shadow_rays;
+        self.noise_known &= pixel.noise_known;
+        self.pixels.push(pixel);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{Object, Scene, shapes};
+    use glam::Vec3;
+
+    /// Above the grids' limit, blocks of pixels sharing a packet give every
+    /// pixel exactly what one packet a pixel gives (partial blocks at the
+    /// image's bottom row and the tiles' right edges included).
+    #[test]
+    fn runs_of_pixels_render_what_single_pixels_render() {
+        let mut ground = shapes::ground_grid(Vec3::ZERO, 6.0, 100);
+        ground.append(&shapes::ground_grid(Vec3::new(0.3, 0.7, -0.2), 1.5, 20));
+        let scene = Scene {
+            objects: vec![Object::new("ground", ground, 0)],
+            materials: vec![crate::scene::Material::default()],
+            ..Scene::default()
+        };
+        let reference = Reference::new(&scene);
+        assert!(reference.bvh_triangles.len() > GRID_MAX_TRIANGLES);
+        let mut settings = Settings::default();
+        settings.camera.eye = Vec3::new(1.0, 3.0, 4.0);
+        settings.camera.target = Vec3::ZERO;
+        settings.light.position = Vec3::new(-1.0, 4.0, 1.0);
+        (settings.image.width, settings.image.height) = (23, 7);
+        let options = ReferenceOptions {
+            spp: 4,
+            ..ReferenceOptions::default()
+        };
+        let control = RenderControl::default();
+        let single = reference
+            .render_in_runs(&settings, &options, &control, 1)
+            .unwrap();
+        let runs = reference
+            .render_in_runs(&settings, &options, &control, RUN)
+            .unwrap();
+        assert!(single.coverage.iter().any(|&c| c > 0.0) && single.visibility.iter().any(|&v| v < 1.0));
+        assert_eq!(single.radiance, runs.radiance);
+        assert_eq!(single.visibility, runs.visibility);
+        assert_eq!(single.coverage, runs.coverage);
+        assert_eq!(single.noise, runs.noise);
+    }
 }

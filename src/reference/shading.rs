@@ -257,7 +257,7 @@ impl Reference {
         // reference was built; the GPU's materials buffer does the same.
         let material = &self.materials[object.material];
         let [b0, b1, b2] = hit.at.barycentric;
-        let [a, b, c] = tri.corners;
+        let [a, b, c] = tri.corners.map(|p| p.as_dvec3());
         let p = a * b0 + b * b1 + c * b2;
         let o = -towards / length;
         let face = tri.face_normal;
@@ -266,12 +266,14 @@ impl Reference {
         // vanishes, the face's own (winding) normal is used, as on the GPU
         // (shade.wgsl's surface_at); tests/wgsl_parity.rs holds both to it.
         let mut n = tri.flat_normal.unwrap_or_else(|| {
-            (tri.normals[0] * b0 + tri.normals[1] * b1 + tri.normals[2] * b2).normalize_or(face)
+            let [n0, n1, n2] = tri.normals.map(|n| n.as_dvec3());
+            (n0 * b0 + n1 * b1 + n2 * b2).normalize_or(face)
         });
         if material.double_sided && n.dot(o) < 0.0 {
             n = -n;
         }
-        let uv = tri.uvs[0] * b0 + tri.uvs[1] * b1 + tri.uvs[2] * b2;
+        let [t0, t1, t2] = tri.uvs.map(|t| t.as_dvec2());
+        let uv = t0 * b0 + t1 * b1 + t2 * b2;
         let texture = material
             .base_color_texture
             .and_then(|t| self.textures.get(t)?.as_ref())
