@@ -177,9 +177,9 @@ impl Reference {
 
     /// The primary samples of the block of width × height pixels from
     /// (i, j), row by row (no eye grid): one packet in the cone of the
-    /// block's corner rays, each ray still decided by its own exact test (as
-    /// in `trace_pixel_samples`, the same samples and random streams, pixel
-    /// by pixel).
+    /// block's corner rays (a single pixel's for `trace_pixel_samples`), each
+    /// ray still decided by its own exact test, with each pixel's own samples
+    /// and random streams.
     fn trace_run(
         &self,
         setup: &Setup,
@@ -244,31 +244,13 @@ impl Reference {
                 let centre = cell.or_else(|| grid.cell_of(setup.rays.towards(x + 0.5, y + 0.5)));
                 centre.is_none_or(|c| grid.is_crowded(c))
             });
-        let PixelBuffers {
-            samples,
-            directions,
-            packet: primary,
-            ..
-        } = buffers;
-        samples.clear();
-        directions.clear();
-        let mut rngs = sample_points(setup, spp, i, j);
         if packet {
-            for (sx, sy, rng) in rngs {
-                directions.push(setup.rays.towards(sx, sy));
-                samples.push((None, rng));
-            }
-            let corners = [(x, y), (x + 1.0, y), (x + 1.0, y + 1.0), (x, y + 1.0)];
-            let cone = Cone::spanned(setup.rays.eye, corners.map(|(cx, cy)| setup.rays.towards(cx, cy)));
-            self.bvh.closest_hits_in_cone(&cone, directions, primary);
-            for ((surface, _), (&towards, hit)) in
-                samples.iter_mut().zip(directions.iter().zip(primary.hits.iter()))
-            {
-                *surface = hit.map(|hit| self.surface_at(setup, towards, hit));
-            }
+            self.trace_run(setup, spp, (i, j), (1, 1), buffers);
+            self.run_pixel_samples(setup, 0, n as usize, buffers);
         } else {
-            for (sx, sy, rng) in &mut rngs {
-                samples.push((self.surface(setup, sx, sy, cell), rng));
+            buffers.samples.clear();
+            for (sx, sy, rng) in sample_points(setup, spp, i, j) {
+                buffers.samples.push((self.surface(setup, sx, sy, cell), rng));
             }
         }
     }
