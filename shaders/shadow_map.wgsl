@@ -103,8 +103,13 @@ fn make_receiver(p_l: vec3<f32>, n: vec3<f32>, cos_theta: f32) -> Receiver {
 fn stored_depth(layer: u32, texel: vec2<i32>) -> f32 {
     let d = textureLoad(shadow_depth_values, texel, i32(layer), 0).x;
     let f = shadow.layers[layer];
-    // d = 0 is the cleared far plane: nothing drawn there.
-    return select(linear_depth(d, f.depth_a, f.depth_b), 3.0e38, d <= 0.0);
+    return stored_linear(d, f.depth_a, f.depth_b);
+}
+
+// A stored value d as a depth (m) with the layer's conversion a, b; d = 0
+// is the cleared far plane: nothing drawn there.
+fn stored_linear(d: f32, depth_a: f32, depth_b: f32) -> f32 {
+    return select(linear_depth(d, depth_a, depth_b), 3.0e38, d <= 0.0);
 }
 
 // The receiver's depth predicted at a texel centre: its tangent plane
@@ -316,7 +321,7 @@ fn own_face(r: Receiver, base: vec2<i32>) -> OwnFace {
 // own_face_test for the texel base + k holding the stored value d (the
 // same formulas; plane_depth's terms stepped from o's).
 fn own_face_tap(o: OwnFace, r: Receiver, k: vec2<f32>, d: f32) -> f32 {
-    let stored = select(linear_depth(d, o.depth_a, o.depth_b), 3.0e38, d <= 0.0);
+    let stored = stored_linear(d, o.depth_a, o.depth_b);
     var compared = o.fixed;
     if bias_mode() == BIAS_AUTO {
         let denom = o.denominator + dot(o.step, k);
