@@ -16,6 +16,7 @@
 //! The f64 test decides every hit, so the BVH answers exactly what testing
 //! every triangle would (see `closest_hit_brute_force` and the tests).
 
+mod build;
 mod lanes;
 mod packet;
 
@@ -26,7 +27,7 @@ use glam::{DVec3, UVec2, Vec3A};
 use obvhs::cwbvh::Traversal;
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::ray::Ray;
-use obvhs::{Boundable, BvhBuildParams, aabb::Aabb, cwbvh::CwBvh};
+use obvhs::{aabb::Aabb, cwbvh::CwBvh};
 
 /// Padding of every triangle's box in the normalized frame (scene extent = 1).
 pub const PAD: f64 = 1e-5;
@@ -61,15 +62,6 @@ pub fn closer(a: TriangleHit, ta: usize, b: Hit) -> bool {
     a.t < b.at.t || (a.t == b.at.t && ta < b.triangle)
 }
 
-/// The padded box of one triangle in the normalized frame.
-struct PaddedBox(Aabb);
-
-impl Boundable for PaddedBox {
-    fn aabb(&self) -> Aabb {
-        self.0
-    }
-}
-
 pub struct TriangleBvh {
     /// None when there is nothing to hit.
     bvh: Option<CwBvh>,
@@ -90,6 +82,12 @@ impl TriangleBvh {
     /// Builds the BVH. Triangles with a non-finite corner or zero area can
     /// never be hit and are left out.
     pub fn new(triangles: &[BvhTriangle]) -> Self {
+        Self::in_groups(triangles, build::MIN_GROUP)
+    }
+
+    /// [`Self::new`] built in parallel in groups of `min_group` triangles
+    /// or more (see `bvh/build.rs`).
+    fn in_groups(triangles: &[BvhTriangle], min_group: usize) -> Self {
         let usable: Vec<usize> = (0..triangles.len())
             .filter(|&i| {
                 let [a, b, c] = triangles[i].corners;
@@ -118,23 +116,17 @@ impl TriangleBvh {
         let centre = 0.5 * (min + max);
         let scale = (max - min).max_element().max(f64::MIN_POSITIVE);
         let to_frame = |p: DVec3| (p - centre) / scale;
-        let boxes: Vec<PaddedBox> = usable
+        // Each triangle's padded box in the normalized frame.
+        let boxes: Vec<Aabb> = usable
             .iter()
             .map(|&i| {
                 let [a, b, c] = triangles[i].corners.map(to_frame);
                 let lo = a.min(b).min(c) - DVec3::splat(PAD);
                 let hi = a.max(b).max(c) + DVec3::splat(PAD);
-                PaddedBox(Aabb::new(lo.as_vec3a(), hi.as_vec3a()))
+                Aabb::new(lo.as_vec3a(), hi.as_vec3a())
             })
             .collect();
-        let bvh = obvhs::cwbvh::builder::build_cwbvh(
-            &boxes,
-            // Against medium_build: 8 % less build time on 1 M triangles,
-            // no slower traversal (rendering within the runs' spread on
-            // 110 k and 1 M triangles); very_fast_build renders 5 % slower.
-            BvhBuildParams::fast_build(),
-            &mut std::time::Duration::default(),
-        );
+        let bvh = build::build_cwbvh(&boxes, min_group);
         let original: Vec<usize> = bvh
             .primitive_indices
             .iter()
@@ -495,5 +487,73 @@ mod tests {
             );
             assert!(!bvh.occluded(DVec3::Y, DVec3::NEG_Y, 0.0, 2.0));
         }
+    }
+
+    /// Built in groups (a new root over eight BVHs), the BVH still finds
+    /// what brute force finds, ray by ray and in packets, on rays aimed at
+    /// corners and edges too.
+    #[test]
+    fn a_bvh_built_in_groups_equals_brute_force() {
+        use crate::reference::sampling::Rng;
+        let rng = &mut Rng::new(11, 0, 0);
+        let mut tris = quad(0.0, 6.0, true).to_vec();
+        for s in 0..12 {
+            let (x, y, z) = (rng.next_f64(), rng.next_f64(), rng.next_f64());
+            let centre = DVec3::new(4.0 * x - 2.0, y, 4.0 * z - 2.0).as_vec3();
+            let sphere = crate::scene::shapes::sphere(centre, 0.2 + rng.next_f64() as f32, 24, 12);
+            tris.extend((0..sphere.triangle_count()).map(|t| BvhTriangle {
+                corners: sphere.triangle(t).map(|p| p.as_dvec3()),
+                occludes: s % 3 != 0,
+            }));
+        }
+        let bvh = TriangleBvh::in_groups(&tris, 300);
+        let root = &bvh.bvh.as_ref().unwrap().nodes[0];
+        assert_eq!(root.imask.count_ones(), 8, "eight groups");
+        // A corner, a point on an edge or inside a random triangle.
+        let aim = |rng: &mut Rng| {
+            let [a, b, c] = tris[(rng.next_f64() * tris.len() as f64) as usize].corners;
+            match (rng.next_f64() * 3.0) as u32 {
+                0 => a,
+                1 => a.lerp(b, rng.next_f64()),
+                _ => a.lerp(b, rng.next_f64()).lerp(c, rng.next_f64()),
+            }
+        };
+        let mut packet = PrimaryPacket::default();
+        let (mut hits, mut blocked) = (0, 0);
+        for case in 0..300 {
+            let (x, y, z) = (rng.next_f64(), rng.next_f64(), rng.next_f64());
+            let apex = DVec3::new(12.0 * x - 6.0, 4.0 * y, 12.0 * z - 6.0);
+            let centre = aim(rng);
+            // Rays from one apex around a point on a triangle: a packet.
+            let directions: Vec<DVec3> = (0..12)
+                .map(|k| {
+                    let target = if k % 2 == 0 {
+                        aim(rng)
+                    } else {
+                        centre + DVec3::splat(0.1 * rng.next_f64() - 0.05)
+                    };
+                    target - apex
+                })
+                .collect();
+            let Some(cone) = Cone::around(apex, directions.iter().map(|&d| apex + d)) else {
+                continue;
+            };
+            bvh.closest_hits_in_cone(&cone, &directions, &mut packet);
+            for (k, &d) in directions.iter().enumerate() {
+                let expected = closest_hit_brute_force(&tris, apex, d, 0.0, f64::INFINITY);
+                let t = |h: Option<Hit>| h.map(|h| h.at.t);
+                assert_eq!(
+                    t(bvh.closest_hit(apex, d, 0.0, f64::INFINITY)),
+                    t(expected),
+                    "{case}/{k}"
+                );
+                assert_eq!(t(packet.hits[k]), t(expected), "{case}/{k}: packet");
+                let expected = occluded_brute_force(&tris, apex, d, 0.0, 1.0);
+                assert_eq!(bvh.occluded(apex, d, 0.0, 1.0), expected, "{case}/{k}: segment");
+                hits += usize::from(t(packet.hits[k]).is_some());
+                blocked += usize::from(expected);
+            }
+        }
+        assert!(hits > 1000 && blocked > 300, "{hits} hits, {blocked} blocked");
     }
 }

@@ -21,6 +21,11 @@
 //! So a sign found here is the sign of the scalar test's edge function, and
 //! a ray called a miss is one the scalar test misses. NaN and infinities
 //! fail both comparisons: such a ray goes on to the scalar test.
+//!
+//! The same pass drops the rays that cannot reach the triangle's least
+//! depth: each ray's deepest useful depth is kept here as an f32 rounded
+//! up and the triangle's least depth comes rounded down, so a ray dropped
+//! for depth is one whose f64 limit the triangle lies beyond.
 
 use glam::DVec3;
 
@@ -30,11 +35,23 @@ pub const LANES: usize = 8;
 /// Added to every margin: the rounding of f32 products that underflow.
 const FLOOR: f32 = 1e-30;
 
-/// Eight rays' directions (d, any nonzero multiple) and |d|∞, lane by lane.
-#[derive(Clone, Copy, Debug, Default)]
+/// Eight rays' directions (d, any nonzero multiple), |d|∞ and deepest
+/// useful depths (rounded up; −∞: done or unused), lane by lane.
+#[derive(Clone, Copy, Debug)]
 struct Block {
     d: [[f32; LANES]; 3],
     reach: [f32; LANES],
+    limit: [f32; LANES],
+}
+
+impl Default for Block {
+    fn default() -> Self {
+        Self {
+            d: [[0.0; LANES]; 3],
+            reach: [0.0; LANES],
+            limit: [f32::NEG_INFINITY; LANES],
+        }
+    }
 }
 
 /// The rays of a packet as lines through the apex, in blocks of [`LANES`].
@@ -43,6 +60,9 @@ pub struct Lines {
     blocks: Vec<Block>,
     /// R: the farthest ray origin from the apex (|·|∞, 0 for primary rays).
     spread: f64,
+    /// Whether the CPU runs AVX: eight lanes in one register.
+    #[cfg(target_arch = "x86_64")]
+    avx: bool,
 }
 
 /// A triangle's three edge planes through the apex, as [`Lines::may_hit`]
@@ -54,12 +74,17 @@ pub struct EdgePlanes {
 }
 
 impl Lines {
-    /// The rays along `directions` (one per ray, in order), each on a line
-    /// through the apex from an origin within `spread` (|·|∞) of it.
-    pub fn fill(&mut self, directions: impl Iterator<Item = DVec3>, spread: f64) {
+    /// The rays along `directions` (one per ray, in order) with their
+    /// deepest useful depths `limits`, each on a line through the apex from
+    /// an origin within `spread` (|·|∞) of it.
+    pub fn fill(&mut self, directions: impl Iterator<Item = DVec3>, limits: &[f64], spread: f64) {
         self.blocks.clear();
         self.spread = spread;
-        for (k, d) in directions.enumerate() {
+        #[cfg(target_arch = "x86_64")]
+        {
+            self.avx = std::arch::is_x86_feature_detected!("avx");
+        }
+        for ((k, d), &limit) in directions.enumerate().zip(limits) {
             let l = k % LANES;
             if l == 0 {
                 // Unused lanes stay zero: E = 0 is never a sure sign.
@@ -71,7 +96,14 @@ impl Lines {
                 block.d[i][l] = d[i];
             }
             block.reach[l] = d.abs().max_element();
+            block.limit[l] = up(limit);
         }
+    }
+
+    /// Ray k's deepest useful depth is now `limit` (−∞: done).
+    #[inline(always)]
+    pub fn set_limit(&mut self, k: usize, limit: f64) {
+        self.blocks[k / LANES].limit[k % LANES] = up(limit);
     }
 
     pub fn blocks(&self) -> usize {
@@ -101,56 +133,71 @@ impl Lines {
         }
     }
 
-    /// Bit l set unless ray `LANES · block + l` surely misses the triangle
-    /// of `planes` (see the module's note); unused lanes may be set.
+    /// Bit l set when ray `LANES · block + l` reaches depth `nearest` and
+    /// does not surely miss the triangle of `planes` (see the module's note).
     #[inline(always)]
-    pub fn may_hit(&self, block: usize, planes: &EdgePlanes) -> u32 {
+    pub fn may_hit(&self, block: usize, planes: &EdgePlanes, nearest: f64) -> u32 {
+        // Rounded down; no lower than f32::MIN, which −∞ (done) stays below.
+        let nearest = down(nearest).max(f32::MIN);
+        let b = &self.blocks[block];
         #[cfg(target_arch = "x86_64")]
-        let misses = sure_misses(&self.blocks[block], planes);
-        #[cfg(not(target_arch = "x86_64"))]
-        let misses = sure_misses_by_lane(&self.blocks[block], planes);
-        !misses & ((1 << LANES) - 1)
-    }
-}
-
-/// Bit l: lane l's edge values take both signs beyond their margins,
-/// E = (d_x n_x + d_y n_y) + d_z n_z against |d|∞ τ + floor. SSE (part of
-/// every x86-64 CPU), four lanes per register.
-#[cfg(target_arch = "x86_64")]
-#[inline(always)]
-fn sure_misses(b: &Block, planes: &EdgePlanes) -> u32 {
-    use std::arch::x86_64::*;
-    let mut bits = 0;
-    for half in 0..LANES / 4 {
-        // SAFETY: SSE is part of the x86-64 baseline; each load reads four
-        // in-bounds f32 (half < LANES / 4).
-        unsafe {
-            let load = |a: &[f32; LANES]| _mm_loadu_ps(a[4 * half..4 * half + 4].as_ptr());
-            let (dx, dy, dz, reach) = (load(&b.d[0]), load(&b.d[1]), load(&b.d[2]), load(&b.reach));
-            let (mut positive, mut negative) = (_mm_setzero_ps(), _mm_setzero_ps());
-            for e in 0..3 {
-                let [nx, ny, nz] = planes.n[e].map(|x| _mm_set1_ps(x));
-                let value = _mm_add_ps(
-                    _mm_add_ps(_mm_mul_ps(dx, nx), _mm_mul_ps(dy, ny)),
-                    _mm_mul_ps(dz, nz),
-                );
-                let margin = _mm_add_ps(_mm_mul_ps(reach, _mm_set1_ps(planes.tau[e])), _mm_set1_ps(FLOOR));
-                positive = _mm_or_ps(positive, _mm_cmpgt_ps(value, margin));
-                negative = _mm_or_ps(
-                    negative,
-                    _mm_cmplt_ps(value, _mm_sub_ps(_mm_setzero_ps(), margin)),
-                );
-            }
-            bits |= (_mm_movemask_ps(_mm_and_ps(positive, negative)) as u32) << (4 * half);
+        if self.avx {
+            // SAFETY: the CPU has AVX.
+            return unsafe { kept_avx(b, planes, nearest) };
         }
+        kept_by_lane(b, planes, nearest)
     }
-    bits
 }
 
-/// `sure_misses` lane by lane, where there is no SSE (and in the tests,
-/// against the SSE version).
-#[cfg(any(not(target_arch = "x86_64"), test))]
-fn sure_misses_by_lane(b: &Block, planes: &EdgePlanes) -> u32 {
+/// `x` rounded up to f32.
+fn up(x: f64) -> f32 {
+    let y = x as f32;
+    if (y as f64) < x { y.next_up() } else { y }
+}
+
+/// `x` rounded down to f32.
+fn down(x: f64) -> f32 {
+    let y = x as f32;
+    if (y as f64) > x { y.next_down() } else { y }
+}
+
+/// Bit l: lane l reaches `nearest` and its edge values do not take both
+/// signs beyond their margins, E = (d_x n_x + d_y n_y) + d_z n_z against
+/// |d|∞ τ + floor. AVX: the eight lanes in one register.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+fn kept_avx(b: &Block, planes: &EdgePlanes, nearest: f32) -> u32 {
+    use std::arch::x86_64::*;
+    // SAFETY: each load reads eight in-bounds f32.
+    let load = |a: &[f32; LANES]| unsafe { _mm256_loadu_ps(a.as_ptr()) };
+    let (dx, dy, dz, reach) = (load(&b.d[0]), load(&b.d[1]), load(&b.d[2]), load(&b.reach));
+    let (mut positive, mut negative) = (_mm256_setzero_ps(), _mm256_setzero_ps());
+    for e in 0..3 {
+        let [nx, ny, nz] = planes.n[e].map(|x| _mm256_set1_ps(x));
+        let value = _mm256_add_ps(
+            _mm256_add_ps(_mm256_mul_ps(dx, nx), _mm256_mul_ps(dy, ny)),
+            _mm256_mul_ps(dz, nz),
+        );
+        let margin = _mm256_add_ps(
+            _mm256_mul_ps(reach, _mm256_set1_ps(planes.tau[e])),
+            _mm256_set1_ps(FLOOR),
+        );
+        positive = _mm256_or_ps(positive, _mm256_cmp_ps::<_CMP_GT_OQ>(value, margin));
+        negative = _mm256_or_ps(
+            negative,
+            _mm256_cmp_ps::<_CMP_LT_OQ>(value, _mm256_sub_ps(_mm256_setzero_ps(), margin)),
+        );
+    }
+    let reaches = _mm256_cmp_ps::<_CMP_LE_OQ>(_mm256_set1_ps(nearest), load(&b.limit));
+    let misses = _mm256_and_ps(positive, negative);
+    _mm256_movemask_ps(_mm256_andnot_ps(misses, reaches)) as u32
+}
+
+/// [`kept_avx`] lane by lane, where there is no AVX (and in the tests,
+/// against it).
+#[inline(always)]
+fn kept_by_lane(b: &Block, planes: &EdgePlanes, nearest: f32) -> u32 {
     let mut bits = 0;
     for l in 0..LANES {
         let (mut positive, mut negative) = (false, false);
@@ -161,7 +208,7 @@ fn sure_misses_by_lane(b: &Block, planes: &EdgePlanes) -> u32 {
             positive |= value > margin;
             negative |= value < -margin;
         }
-        bits |= u32::from(positive && negative) << l;
+        bits |= u32::from(!(positive && negative) && nearest <= b.limit[l]) << l;
     }
     bits
 }
@@ -194,7 +241,8 @@ mod tests {
     /// primary rays): whenever the scalar test finds the triangle (at any
     /// distance), the lanes must not have ruled it out; and they do rule
     /// out most misses of rays aimed at random points (near-edge rays are
-    /// left to the scalar test by design).
+    /// left to the scalar test by design). Rays whose limit lies before the
+    /// depth asked about are dropped, and only they.
     #[test]
     fn a_lane_called_a_miss_is_a_miss_of_the_scalar_test() {
         let mut rng = Rng::new(31, 0, 0);
@@ -229,18 +277,32 @@ mod tests {
             let spread = rays
                 .iter()
                 .fold(0.0_f64, |m, r| m.max((r.origin - apex).abs().max_element()));
-            lines.fill(rays.iter().map(|r| r.direction), spread);
+            // Depths: the last ray is done, the others stop short of the
+            // depth asked, reach just to it (not an f32) or reach far.
+            let nearest = 1.0 + 1e-9;
+            let limits: Vec<f64> = (0..rays.len())
+                .map(|k| match (k + case) % 5 {
+                    _ if k + 1 == rays.len() => f64::NEG_INFINITY,
+                    0 => 0.5,
+                    1 => nearest,
+                    _ => f64::INFINITY,
+                })
+                .collect();
+            lines.fill(rays.iter().map(|r| r.direction), &limits, spread);
             let planes = lines.planes(&tri.map(|p| p - apex));
             #[cfg(target_arch = "x86_64")]
-            for block in &lines.blocks {
-                assert_eq!(
-                    sure_misses(block, &planes),
-                    sure_misses_by_lane(block, &planes),
-                    "case {case}: SSE and lane by lane differ"
-                );
+            for block in lines.blocks.iter().filter(|_| lines.avx) {
+                let at = down(nearest).max(f32::MIN);
+                // SAFETY: the CPU has AVX.
+                let avx = unsafe { kept_avx(block, &planes, at) };
+                assert_eq!(avx, kept_by_lane(block, &planes, at), "case {case}: AVX");
             }
             for (k, ray) in rays.iter().enumerate() {
-                let kept = lines.may_hit(k / LANES, &planes) & (1 << (k % LANES)) != 0;
+                let kept = lines.may_hit(k / LANES, &planes, nearest) & (1 << (k % LANES)) != 0;
+                if limits[k] < nearest {
+                    assert!(!kept, "case {case}, ray {k}: beyond its limit");
+                    continue;
+                }
                 let hit = ray.intersect(&tri, f64::NEG_INFINITY, f64::INFINITY).is_some();
                 assert!(kept || !hit, "case {case}, ray {k}: a hit ruled out");
                 found += usize::from(hit);

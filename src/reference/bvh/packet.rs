@@ -120,10 +120,7 @@ pub trait Rays {
         }
         let planes = self.lines().planes(relative);
         for b in 0..self.lines().blocks() {
-            let mut lanes = reaching(self.limits(), b, nearest);
-            if lanes != 0 {
-                lanes &= self.lines().may_hit(b, &planes);
-            }
+            let mut lanes = self.lines().may_hit(b, &planes, nearest);
             while lanes != 0 {
                 let k = b * LANES + lanes.trailing_zeros() as usize;
                 lanes &= lanes - 1;
@@ -202,7 +199,7 @@ impl TriangleBvh {
             packet.limits.push(f64::INFINITY);
             packet.hits.push(None);
         }
-        packet.lines.fill(directions.iter().copied(), 0.0);
+        packet.lines.fill(directions.iter().copied(), &packet.limits, 0.0);
         self.walk_cone(cone, packet);
     }
 
@@ -222,7 +219,9 @@ impl TriangleBvh {
                 .push(depth + ROUNDING * (o - cone.apex).abs().element_sum());
             spread = spread.max((o - cone.apex).abs().max_element());
         }
-        packet.lines.fill(packet.rays.iter().map(|r| r.direction), spread);
+        packet
+            .lines
+            .fill(packet.rays.iter().map(|r| r.direction), &packet.limits, spread);
         // The triangle that blocked a ray of the previous packet first: it
         // often blocks these too, and a blocked ray is done (any hit will do).
         if let Some(slot) = packet.last_blocker {
@@ -265,6 +264,7 @@ impl PrimaryPacket {
         {
             *best = Some(Hit { triangle, at });
             self.limits[k] = at.t * self.along[k] * (1.0 + ROUNDING);
+            self.lines.set_limit(k, self.limits[k]);
         }
     }
 }
@@ -325,19 +325,10 @@ impl Rays for ShadowPacket {
     fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, _: &[DVec3; 3], k: usize) {
         if self.rays[k].hits(&bvh.corners[slot], 0.0, self.t_max) {
             self.limits[k] = f64::NEG_INFINITY;
+            self.lines.set_limit(k, f64::NEG_INFINITY);
             self.last_blocker = Some(slot);
         }
     }
-}
-
-/// Bit l set when ray `LANES · block + l` can still reach depth `nearest`.
-#[inline(always)]
-fn reaching(limits: &[f64], block: usize, nearest: f64) -> u32 {
-    limits[block * LANES..]
-        .iter()
-        .take(LANES)
-        .enumerate()
-        .fold(0, |m, (l, &limit)| m | u32::from(nearest <= limit) << l)
 }
 
 /// The cone, for boxes of the BVH's normalized frame.
