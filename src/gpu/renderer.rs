@@ -352,10 +352,17 @@ impl Renderer {
             &shared.scene,
             shared.generation,
         );
+        // The pre-pass and the camera pass are timed as one span: the cost of shading.
         let writes = self
             .timer
             .as_mut()
-            .and_then(|t| t.writes(Pass::Shade, true, true));
+            .and_then(|t| t.writes(Pass::Shade, true, false));
+        self.shade
+            .encode_depth(encoder, &shared.scene, &targets.depth_view, visible, writes);
+        let writes = self
+            .timer
+            .as_mut()
+            .and_then(|t| t.writes(Pass::Shade, false, true));
         self.shade.encode(
             encoder,
             specialisation,

@@ -131,7 +131,7 @@ impl Specialisation {
             }),
             // No culling: back faces are shaded to 0 (n·o ≤ 0), as in the reference.
             primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(camera_depth_test()),
+            depth_stencil: Some(DEPTH_PREPASSED),
             multisample: Default::default(),
             multiview_mask: None,
             cache: None,
@@ -139,7 +139,30 @@ impl Specialisation {
     }
 }
 
-/// The camera's depth test: reversed Z, nearest wins (the flat pass shares it).
+/// The camera pass after the depth pre-pass: only the fragments at the
+/// nearest depth are shaded, each pixel once instead of once per surface
+/// drawn over it (on a software adapter every hidden fragment shaded is
+/// paid in full). Where coplanar surfaces tie exactly, the last one drawn
+/// is shown (the first one without the pre-pass).
+const DEPTH_PREPASSED: wgpu::DepthStencilState = wgpu::DepthStencilState {
+    format: DEPTH_FORMAT,
+    depth_write_enabled: Some(false),
+    depth_compare: Some(wgpu::CompareFunction::Equal),
+    stencil: wgpu::StencilState {
+        front: wgpu::StencilFaceState::IGNORE,
+        back: wgpu::StencilFaceState::IGNORE,
+        read_mask: 0,
+        write_mask: 0,
+    },
+    bias: wgpu::DepthBiasState {
+        constant: 0,
+        slope_scale: 0.0,
+        clamp: 0.0,
+    },
+};
+
+/// The camera's depth test: reversed Z, nearest wins (the depth pre-pass
+/// and the flat pass).
 pub(super) fn camera_depth_test() -> wgpu::DepthStencilState {
     wgpu::DepthStencilState {
         format: DEPTH_FORMAT,
