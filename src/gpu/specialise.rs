@@ -131,7 +131,7 @@ impl Specialisation {
             }),
             // No culling: back faces are shaded to 0 (n·o ≤ 0), as in the reference.
             primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(DEPTH_PREPASSED),
+            depth_stencil: Some(prepassed_depth_test()),
             multisample: Default::default(),
             multiview_mask: None,
             cache: None,
@@ -144,22 +144,13 @@ impl Specialisation {
 /// drawn over it (on a software adapter every hidden fragment shaded is
 /// paid in full). Where coplanar surfaces tie exactly, the last one drawn
 /// is shown (the first one without the pre-pass).
-const DEPTH_PREPASSED: wgpu::DepthStencilState = wgpu::DepthStencilState {
-    format: DEPTH_FORMAT,
-    depth_write_enabled: Some(false),
-    depth_compare: Some(wgpu::CompareFunction::Equal),
-    stencil: wgpu::StencilState {
-        front: wgpu::StencilFaceState::IGNORE,
-        back: wgpu::StencilFaceState::IGNORE,
-        read_mask: 0,
-        write_mask: 0,
-    },
-    bias: wgpu::DepthBiasState {
-        constant: 0,
-        slope_scale: 0.0,
-        clamp: 0.0,
-    },
-};
+fn prepassed_depth_test() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        depth_write_enabled: Some(false),
+        depth_compare: Some(wgpu::CompareFunction::Equal),
+        ..camera_depth_test()
+    }
+}
 
 /// The camera's depth test: reversed Z, nearest wins (the depth pre-pass
 /// and the flat pass).
