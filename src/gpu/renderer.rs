@@ -384,6 +384,7 @@ impl Renderer {
             shadow_uniform: &self.shadow_uniform,
             target: &targets.display_view,
             size: targets.size,
+            view: settings.view.mode,
         };
         let writes = self
             .timer
