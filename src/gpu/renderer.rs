@@ -353,16 +353,19 @@ impl Renderer {
             shared.generation,
         );
         // The pre-pass and the camera pass are timed as one span: the cost of shading.
+        let prepass = specialisation.prepassed;
+        if prepass {
+            let writes = self
+                .timer
+                .as_mut()
+                .and_then(|t| t.writes(Pass::Shade, true, false));
+            self.shade
+                .encode_depth(encoder, &shared.scene, &targets.depth_view, visible, writes);
+        }
         let writes = self
             .timer
             .as_mut()
-            .and_then(|t| t.writes(Pass::Shade, true, false));
-        self.shade
-            .encode_depth(encoder, &shared.scene, &targets.depth_view, visible, writes);
-        let writes = self
-            .timer
-            .as_mut()
-            .and_then(|t| t.writes(Pass::Shade, false, true));
+            .and_then(|t| t.writes(Pass::Shade, !prepass, true));
         self.shade.encode(
             encoder,
             specialisation,

@@ -224,9 +224,10 @@ impl ShadePass {
     }
 
     /// Shades the visible objects with the pipeline of `specialisation`
-    /// (compiled by [`Self::prepare`]) where they are nearest, after
-    /// [`Self::encode_depth`] filled `depth`; the aux target is written only
-    /// when the specialisation says so.
+    /// (compiled by [`Self::prepare`]): where they are nearest after
+    /// [`Self::encode_depth`] filled `depth` when the specialisation is
+    /// pre-passed, else with its own depth test from a cleared `depth`; the
+    /// aux target is written only when the specialisation says so.
     #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
@@ -249,7 +250,14 @@ impl ShadePass {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("camera pass"),
             color_attachments: if specialisation.aux { &both } else { &both[..1] },
-            depth_stencil_attachment: binding::depth_attachment(depth, wgpu::LoadOp::Load),
+            depth_stencil_attachment: binding::depth_attachment(
+                depth,
+                if specialisation.prepassed {
+                    wgpu::LoadOp::Load
+                } else {
+                    wgpu::LoadOp::Clear(0.0)
+                },
+            ),
             timestamp_writes,
             occlusion_query_set: None,
             multiview_mask: None,
