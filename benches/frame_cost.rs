@@ -118,7 +118,7 @@ fn interaction(renderer: &mut Renderer) {
             settings.shadow.filter = filter;
             renderer.set_shade_options(ShadeOptions {
                 specialised: false,
-                aux: true,
+                ..ShadeOptions::default()
             });
             let (generic, _, _) = orbit(renderer, &mut settings, VIEWPORT);
             renderer.set_shade_options(ShadeOptions::default());
@@ -130,10 +130,12 @@ fn interaction(renderer: &mut Renderer) {
             {
                 columns[column].push(value);
             }
-            // Interaction frames: specialised, without the aux target.
+            // Interaction frames, as the app draws them: specialised,
+            // without the aux target and the depth pre-pass.
             renderer.set_shade_options(ShadeOptions {
                 specialised: true,
                 aux: false,
+                depth_prepass: false,
             });
             for (k, scale) in SCALES.into_iter().enumerate() {
                 let (_, gpu_ms, wall_ms) = orbit(renderer, &mut settings, scaled(VIEWPORT, scale));
@@ -204,8 +206,8 @@ fn breakdown(renderer: &mut Renderer) {
             let mut settings = Settings::default();
             change(&mut settings);
             renderer.set_shade_options(ShadeOptions {
-                specialised: true,
                 aux: *aux,
+                ..ShadeOptions::default()
             });
             let (shade, _, _) = orbit(renderer, &mut settings, VIEWPORT);
             let f = median((0..FRAMES).filter_map(|_| renderer.minimal_pass_ms()).collect());

@@ -10,6 +10,14 @@
 @group(0) @binding(4) var<uniform> params: DisplayParams;
 @group(0) @binding(5) var<storage, read> scale: array<u32, 4>;
 
+// The view this pipeline is compiled for (gpu::display); SPECIALISE_ANY
+// reads the uniform instead.
+override SPECIALISED_VIEW: u32 = SPECIALISE_ANY;
+
+fn display_view() -> u32 {
+    return select(SPECIALISED_VIEW, params.view, SPECIALISED_VIEW == SPECIALISE_ANY);
+}
+
 @vertex
 fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
     let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
@@ -78,7 +86,7 @@ fn depth_view(position: vec2<f32>) -> vec3<f32> {
 
 @fragment
 fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let view = params.view;
+    let view = display_view();
     if view == VIEW_DEPTH {
         return vec4<f32>(depth_view(position.xy), 1.0);
     }

@@ -36,7 +36,8 @@ struct VsIn {
 }
 
 struct VsOut {
-    @builtin(position) clip: vec4<f32>,
+    // Invariant: the depth pre-pass (vs_depth) must give the same depth bit for bit.
+    @builtin(position) @invariant clip: vec4<f32>,
     // p − eye (m).
     @location(0) rel: vec3<f32>,
     @location(1) normal: vec3<f32>,
@@ -50,11 +51,23 @@ struct VsOut {
 // word on objects that receive no shadows.
 const NO_SHADOWS_RECEIVED: u32 = 0x80000000u;
 
+// The clip position of a vertex: shared by both vertex stages below.
+fn clip_position(position: vec3<f32>) -> vec4<f32> {
+    return globals.view_proj * vec4<f32>(position - globals.eye, 1.0);
+}
+
+// The depth pre-pass: only the nearest depth of each pixel, so that the
+// camera pass (depth test Equal, no writes) shades every pixel once.
+@vertex
+fn vs_depth(@location(0) position: vec3<f32>) -> @builtin(position) @invariant vec4<f32> {
+    return clip_position(position);
+}
+
 @vertex
 fn vs(in: VsIn) -> VsOut {
     var out: VsOut;
     out.rel = in.position - globals.eye;
-    out.clip = globals.view_proj * vec4<f32>(out.rel, 1.0);
+    out.clip = clip_position(in.position);
     out.normal = in.normal;
     out.uv = in.uv;
     out.material = in.material & ~NO_SHADOWS_RECEIVED;

@@ -31,7 +31,7 @@ fn generic_and_specialised() -> (Renderer, Renderer) {
     let mut generic = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
     generic.set_shade_options(ShadeOptions {
         specialised: false,
-        aux: true,
+        ..ShadeOptions::default()
     });
     let specialised = generic.sharing();
     (generic, specialised)
@@ -64,19 +64,21 @@ fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
             assert!(worst_difference(&q1, &q0) < 2e-3, "{what}: quantity");
             assert!(worst_difference(&a1, &a0) < 2e-3, "{what}: aux");
             let display = specialised.read_display();
-            // Without the aux target: the same quantity and the same image.
+            // As the app's interaction frames draw it (no aux target, no
+            // depth pre-pass): the same quantity and the same image.
             specialised.set_shade_options(ShadeOptions {
                 specialised: true,
                 aux: false,
+                depth_prepass: false,
             });
             specialised.render(&s, size);
             assert!(
                 worst_difference(&specialised.read_quantity(), &q1) < 2e-3,
-                "{what}: no aux"
+                "{what}: no aux, no pre-pass"
             );
             assert!(
                 specialised.read_display() == display,
-                "{what}: displayed without aux"
+                "{what}: displayed without aux and pre-pass"
             );
             shaded_views.push(q0);
         }

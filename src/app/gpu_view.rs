@@ -187,6 +187,7 @@ impl GpuViews {
         }
         h.renderer.set_shade_options(ShadeOptions {
             aux: !self.render_scale.interacting,
+            depth_prepass: !self.render_scale.interacting,
             ..Default::default()
         });
         let start = Instant::now();

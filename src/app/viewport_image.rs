@@ -56,6 +56,7 @@ impl ImagePipeline {
             &pipeline_layout,
             &Shader::ViewportImage.module(device),
             entry,
+            &[],
             target_format,
         );
         let sampler = |filter: wgpu::FilterMode| {

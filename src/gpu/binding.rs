@@ -123,13 +123,15 @@ pub fn pipeline_layout(
     })
 }
 
-/// A full-screen fragment pipeline (vertex entry `vs`, no vertex buffers).
+/// A full-screen fragment pipeline (vertex entry `vs`, no vertex buffers),
+/// its fragment stage given the override `constants`.
 pub fn fullscreen_pipeline(
     device: &wgpu::Device,
     label: &str,
     layout: &wgpu::PipelineLayout,
     module: &wgpu::ShaderModule,
     fragment_entry: &str,
+    constants: &[(&str, f64)],
     format: wgpu::TextureFormat,
 ) -> wgpu::RenderPipeline {
     device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -144,7 +146,10 @@ pub fn fullscreen_pipeline(
         fragment: Some(wgpu::FragmentState {
             module,
             entry_point: Some(fragment_entry),
-            compilation_options: Default::default(),
+            compilation_options: wgpu::PipelineCompilationOptions {
+                constants,
+                ..Default::default()
+            },
             targets: &[Some(format.into())],
         }),
         primitive: Default::default(),

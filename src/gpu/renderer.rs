@@ -352,10 +352,20 @@ impl Renderer {
             &shared.scene,
             shared.generation,
         );
+        // The pre-pass and the camera pass are timed as one span: the cost of shading.
+        let prepass = specialisation.prepassed;
+        if prepass {
+            let writes = self
+                .timer
+                .as_mut()
+                .and_then(|t| t.writes(Pass::Shade, true, false));
+            self.shade
+                .encode_depth(encoder, &shared.scene, &targets.depth_view, visible, writes);
+        }
         let writes = self
             .timer
             .as_mut()
-            .and_then(|t| t.writes(Pass::Shade, true, true));
+            .and_then(|t| t.writes(Pass::Shade, !prepass, true));
         self.shade.encode(
             encoder,
             specialisation,
@@ -377,6 +387,7 @@ impl Renderer {
             shadow_uniform: &self.shadow_uniform,
             target: &targets.display_view,
             size: targets.size,
+            view: settings.view.mode,
         };
         let writes = self
             .timer

@@ -3,9 +3,10 @@
 
 use super::binding;
 use super::scene_buffers::GpuScene;
+use super::scene_buffers::Vertex;
 use super::shaders::Shader;
 use super::shadow::ShadowTextures;
-use super::specialise::Specialisation;
+use super::specialise::{Specialisation, camera_depth_test};
 use super::uniforms::{GlobalsRaw, uniform_buffer};
 use std::collections::HashMap;
 use wgpu::ShaderStages;
@@ -19,6 +20,8 @@ pub struct ShadePass {
     hdr_format: wgpu::TextureFormat,
     /// Compiled on first use, kept: switching views or filters back is free.
     pipelines: HashMap<Specialisation, wgpu::RenderPipeline>,
+    /// The depth pre-pass: the nearest depth of every pixel, no colour.
+    depth_pipeline: wgpu::RenderPipeline,
     /// Group 2: the ray tracer's (gpu::raytrace).
     pub raytrace_layout: wgpu::BindGroupLayout,
     texture_sampler: wgpu::Sampler,
@@ -93,6 +96,27 @@ impl ShadePass {
             })
         };
         let linear = wgpu::FilterMode::Linear;
+        let module = Shader::Shade.module(device);
+        let depth_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("camera depth pre-pass"),
+            layout: Some(&binding::pipeline_layout(
+                device,
+                "camera depth pre-pass",
+                &[&scene_layout],
+            )),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_depth"),
+                compilation_options: Default::default(),
+                buffers: &[Some(Vertex::layout())],
+            },
+            fragment: None,
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(camera_depth_test()),
+            multisample: Default::default(),
+            multiview_mask: None,
+            cache: None,
+        });
         Self {
             globals: uniform_buffer::<GlobalsRaw>(device, "camera globals"),
             texture_sampler: sampler("base colour", linear, wgpu::AddressMode::Repeat, None),
@@ -113,9 +137,10 @@ impl ShadePass {
             scene_layout,
             shadow_layout,
             pipeline_layout,
-            module: Shader::Shade.module(device),
+            module,
             hdr_format,
             pipelines: HashMap::new(),
+            depth_pipeline,
             raytrace_layout,
             scene_group: None,
         }
@@ -169,9 +194,40 @@ impl ShadePass {
         }
     }
 
-    /// Draws the visible objects with the pipeline of `specialisation`
-    /// (compiled by [`Self::prepare`]); the aux target is written only when
-    /// the specialisation says so.
+    /// The depth pre-pass: the visible objects' nearest depths into `depth`
+    /// (cleared first), for [`Self::encode`] to shade each pixel once.
+    pub fn encode_depth(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        scene: &GpuScene,
+        depth: &wgpu::TextureView,
+        visible: &[usize],
+        timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("camera depth pre-pass"),
+            color_attachments: &[],
+            depth_stencil_attachment: binding::depth_attachment(depth, wgpu::LoadOp::Clear(0.0)),
+            timestamp_writes,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        let Some(scene_group) = &self.scene_group else {
+            return;
+        };
+        pass.set_pipeline(&self.depth_pipeline);
+        pass.set_bind_group(0, scene_group, &[]);
+        scene.bind_buffers(&mut pass);
+        for &object in visible {
+            scene.draw(&mut pass, object);
+        }
+    }
+
+    /// Shades the visible objects with the pipeline of `specialisation`
+    /// (compiled by [`Self::prepare`]): where they are nearest after
+    /// [`Self::encode_depth`] filled `depth` when the specialisation is
+    /// pre-passed, else with its own depth test from a cleared `depth`; the
+    /// aux target is written only when the specialisation says so.
     #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
@@ -194,7 +250,14 @@ impl ShadePass {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("camera pass"),
             color_attachments: if specialisation.aux { &both } else { &both[..1] },
-            depth_stencil_attachment: binding::depth_attachment(depth, wgpu::LoadOp::Clear(0.0)),
+            depth_stencil_attachment: binding::depth_attachment(
+                depth,
+                if specialisation.prepassed {
+                    wgpu::LoadOp::Load
+                } else {
+                    wgpu::LoadOp::Clear(0.0)
+                },
+            ),
             timestamp_writes,
             occlusion_query_set: None,
             multiview_mask: None,

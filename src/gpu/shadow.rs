@@ -378,6 +378,7 @@ impl BlurPass {
                 &pipeline_layout,
                 &module,
                 "fs",
+                &[],
                 format,
             ),
             params: device.create_buffer(&wgpu::BufferDescriptor {
