@@ -13,7 +13,9 @@ Races (each prints its times and the speed-up Mitsuba / lumlab, median and
   sphere   plane + box under a sphere light (R = 0.5 m), 256×192: the time each
            needs to bring the RMSE against its own converged image below 1 % of
            that image's mean luminance (lumlab: the pixel centre, N light
-           samples; Mitsuba: N samples per pixel, one emitter sample each).
+           samples; Mitsuba: N samples per pixel, one emitter sample each),
+           N the least on the finest ladder each sampler takes (every count
+           for lumlab's strata, squares for Mitsuba's stratified sampler).
 
 Times: "render" is the render call alone (lumlab: the `N spp: S s` of its
 summary line, which excludes loading, the BVH build and file output; Mitsuba:
@@ -375,6 +377,9 @@ def run_lumlab(lumlab, folder, scene, threads, spp, radius=0.0, light_samples=1)
     render_s = float(found.group(1)) if found else float("nan")
     import mitsuba as mi
 
+    if mi.variant() is None:
+        # Reading a bitmap needs a variant (the sphere race alone has none yet).
+        mi.set_variant("scalar_rgb")
     image = np.array(mi.Bitmap(str(exr)))[:, :, :3]
     return image, wall_s, render_s, summary
 
@@ -467,10 +472,13 @@ def sphere_race(args, folder):
     mts_conv = np.mean([render_mitsuba(mi, loaded["llvm_ad_rgb"], 4096, seed)[0] for seed in range(2)], axis=0)
     median_rel, flux = difference(lum_conv, mts_conv)
     print(f"converged images: median relative difference on lit pixels {100 * median_rel:.3f} %, flux ratio {flux:.4f}")
-    lum_n, _ = first_below(lumlab, [4, 9, 16, 25, 36, 49, 64, 81, 100, 144, 196, 256], lum_conv, target)
+    # Each count on the finest ladder its sampler takes: lumlab stratifies
+    # any count of light samples (n = a × b strata); Mitsuba's stratified
+    # sampler rounds a count to a square, so it is offered the squares.
+    lum_n, _ = first_below(lumlab, [*range(4, 65), 81, 100, 144, 196, 256], lum_conv, target)
     mts_n, _ = first_below(
         lambda n: render_mitsuba(mi, loaded["llvm_ad_rgb"], n, 100),
-        [4, 8, 16, 32, 64, 128, 256, 512, 1024, 2048],
+        [k * k for k in range(2, 46)],
         mts_conv,
         target,
     )
