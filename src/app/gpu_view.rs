@@ -204,7 +204,8 @@ impl GpuViews {
         h.rendered = Some(key);
         h.scale = None;
         h.pending_scale = None;
-        if super::legend::for_view(settings.view.mode, Some(1.0)).is_some() {
+        // Only the views that scale to the image have a scale to read.
+        if crate::gpu::display::scales_to_image(settings.view.mode) {
             h.pending_scale = Some(h.renderer.request_scale());
         }
         h.show_texture(&self.render_state, &self.image_pipeline);
