@@ -2,8 +2,7 @@
 //! quantity and the aux target (V, texel density, cos θ, coverage).
 
 use super::binding;
-use super::scene_buffers::GpuScene;
-use super::scene_buffers::Vertex;
+use super::scene_buffers::{GpuScene, Vertex};
 use super::shaders::Shader;
 use super::shadow::ShadowTextures;
 use super::specialise::{Specialisation, camera_depth_test};
