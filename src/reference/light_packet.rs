@@ -17,6 +17,10 @@ pub(super) struct LightPacket {
     origins: Vec<DVec3>,
     /// Whether the packet was cast (None: not yet) and could be.
     cast: Option<bool>,
+    /// Where the last origin asked about was found: the samples ask in
+    /// the order of `origins`, so each search starts there (one pass per
+    /// pixel instead of one per ray).
+    cursor: usize,
     packet: ShadowPacket,
 }
 
@@ -26,6 +30,7 @@ impl LightPacket {
         self.origins.clear();
         self.origins.extend(origins);
         self.cast = None;
+        self.cursor = 0;
     }
 
     /// Whether the shadow ray from `origin` (one of the packet's) to the
@@ -41,7 +46,11 @@ impl LightPacket {
             }
             cone.is_some()
         });
-        let i = self.origins.iter().position(|&o| o == origin)?;
+        // An equal origin elsewhere is the same ray, with the same answer.
+        let i = (self.cursor..self.origins.len())
+            .chain(0..self.cursor)
+            .find(|&i| self.origins[i] == origin)?;
+        self.cursor = i;
         cast.then(|| self.packet.blocked(i))
     }
 }

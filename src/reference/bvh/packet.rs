@@ -108,25 +108,28 @@ pub trait Rays {
     /// Whether the triangle in leaf slot `slot` matters to these rays.
     fn takes(&self, bvh: &TriangleBvh, slot: usize) -> bool;
     /// Ray k's own f64 test against the triangle in leaf slot `slot`
-    /// (corners `relative` to the apex).
-    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize);
+    /// (corners `relative` to the apex); true when its limit changed.
+    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize) -> bool;
 
     /// Tests the triangle (least depth `nearest`) against every ray that
-    /// can reach it and that the eight-lane filter keeps.
+    /// can reach it and that the eight-lane filter keeps; true when
+    /// a ray's limit changed.
     #[inline(always)]
-    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64) {
+    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], nearest: f64) -> bool {
         if !self.takes(bvh, slot) {
-            return;
+            return false;
         }
         let planes = self.lines().planes(relative);
+        let mut changed = false;
         for b in 0..self.lines().blocks() {
             let mut lanes = self.lines().may_hit(b, &planes, nearest);
             while lanes != 0 {
                 let k = b * LANES + lanes.trailing_zeros() as usize;
                 lanes &= lanes - 1;
-                self.test_ray(bvh, slot, relative, k);
+                changed |= self.test_ray(bvh, slot, relative, k);
             }
         }
+        changed
     }
 }
 
@@ -171,8 +174,8 @@ impl TriangleBvh {
                             .iter()
                             .fold(f64::INFINITY, |m, p| m.min(p.dot(cone.axis)))
                             - slack;
-                        if nearest <= farthest {
-                            rays.test(self, slot, &relative, nearest);
+                        // The deepest limit is found again only when one fell.
+                        if nearest <= farthest && rays.test(self, slot, &relative, nearest) {
                             farthest = deepest(rays.limits());
                             if farthest < 0.0 {
                                 break;
@@ -249,14 +252,14 @@ pub struct PrimaryPacket {
 
 impl PrimaryPacket {
     /// Ray k's test against the triangle (`relative` to the apex, the
-    /// rays' common origin), kept when it is the closest hit so far.
+    /// rays' common origin), kept when it is the closest hit so far (true).
     #[inline(always)]
     fn test_axes<const KZ: usize, const SWAP: bool>(
         &mut self,
         k: usize,
         triangle: usize,
         relative: &[DVec3; 3],
-    ) {
+    ) -> bool {
         let best = &mut self.hits[k];
         let limit = best.map_or(f64::INFINITY, |b| b.at.t.next_up());
         if let Some(at) = self.rays[k].intersect_in::<KZ, SWAP>(relative, 0.0, limit)
@@ -265,7 +268,9 @@ impl PrimaryPacket {
             *best = Some(Hit { triangle, at });
             self.limits[k] = at.t * self.along[k] * (1.0 + ROUNDING);
             self.lines.set_limit(k, self.limits[k]);
+            return true;
         }
+        false
     }
 }
 
@@ -283,9 +288,9 @@ impl Rays for PrimaryPacket {
     }
 
     #[inline(always)]
-    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize) {
+    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize) -> bool {
         let triangle = bvh.original[slot];
-        with_axes!(self.rays[k].axes(), KZ, SWAP => self.test_axes::<KZ, SWAP>(k, triangle, relative));
+        with_axes!(self.rays[k].axes(), KZ, SWAP => self.test_axes::<KZ, SWAP>(k, triangle, relative))
     }
 }
 
@@ -322,12 +327,14 @@ impl Rays for ShadowPacket {
     }
 
     #[inline(always)]
-    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, _: &[DVec3; 3], k: usize) {
-        if self.rays[k].hits(&bvh.corners[slot], 0.0, self.t_max) {
+    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, _: &[DVec3; 3], k: usize) -> bool {
+        let blocked = self.rays[k].hits(&bvh.corners[slot], 0.0, self.t_max);
+        if blocked {
             self.limits[k] = f64::NEG_INFINITY;
             self.lines.set_limit(k, f64::NEG_INFINITY);
             self.last_blocker = Some(slot);
         }
+        blocked
     }
 }
 
