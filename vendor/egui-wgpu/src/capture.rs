@@ -80,7 +80,9 @@ impl CaptureState {
             format,
             usage: wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
+                | wgpu::TextureUsages::COPY_SRC
+                // lumlab patch: the kept backdrop is copied in (backdrop.rs).
+                | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         });
 

@@ -37,6 +37,10 @@ pub mod capture;
 #[cfg(feature = "winit")]
 pub mod winit;
 
+/// lumlab patch: the unchanged part of a frame under its paint callbacks, kept.
+#[cfg(feature = "winit")]
+pub mod backdrop;
+
 use std::sync::Arc;
 
 use epaint::mutex::RwLock;

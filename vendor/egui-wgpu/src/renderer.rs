@@ -519,6 +519,18 @@ impl Renderer {
         paint_jobs: &[epaint::ClippedPrimitive],
         screen_descriptor: &ScreenDescriptor,
     ) {
+        self.render_range(render_pass, paint_jobs, screen_descriptor, 0..paint_jobs.len());
+    }
+
+    /// [`Self::render`] for the jobs whose indices lie in `range` only (lumlab patch:
+    /// the buffers hold every job, so the ones outside are stepped over).
+    pub fn render_range(
+        &self,
+        render_pass: &mut wgpu::RenderPass<'static>,
+        paint_jobs: &[epaint::ClippedPrimitive],
+        screen_descriptor: &ScreenDescriptor,
+        range: std::ops::Range<usize>,
+    ) {
         profiling::function_scope!();
 
         let pixels_per_point = screen_descriptor.pixels_per_point;
@@ -531,11 +543,25 @@ impl Renderer {
         let mut index_buffer_slices = self.index_buffer.slices.iter();
         let mut vertex_buffer_slices = self.vertex_buffer.slices.iter();
 
-        for epaint::ClippedPrimitive {
-            clip_rect,
-            primitive,
-        } in paint_jobs
+        for (
+            job,
+            epaint::ClippedPrimitive {
+                clip_rect,
+                primitive,
+            },
+        ) in paint_jobs.iter().enumerate()
         {
+            if !range.contains(&job) {
+                if let Primitive::Mesh(_) = primitive {
+                    index_buffer_slices
+                        .next()
+                        .expect("You must call .update_buffers() before .render()");
+                    vertex_buffer_slices
+                        .next()
+                        .expect("You must call .update_buffers() before .render()");
+                }
+                continue;
+            }
             if needs_reset {
                 render_pass.set_viewport(
                     0.0,

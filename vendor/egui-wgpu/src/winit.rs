@@ -37,6 +37,8 @@ pub struct Painter {
     // Per viewport/window:
     depth_texture_view: ViewportIdMap<wgpu::TextureView>,
     msaa_texture_view: ViewportIdMap<wgpu::TextureView>,
+    // lumlab patch: each viewport's kept backdrop (backdrop.rs).
+    backdrops: ViewportIdMap<crate::backdrop::BackdropCache>,
     surfaces: ViewportIdMap<SurfaceState>,
 }
 
@@ -74,6 +76,7 @@ impl Painter {
             depth_texture_view: Default::default(),
             surfaces: Default::default(),
             msaa_texture_view: Default::default(),
+            backdrops: Default::default(),
         }
     }
 
@@ -131,8 +134,14 @@ impl Painter {
         let width = surface_state.width;
         let height = surface_state.height;
 
+        // lumlab patch: frames take the kept backdrop by a copy where the surface allows it.
+        let copy_dst = wgpu::TextureUsages::COPY_DST;
+        let surface_usages = surface_state
+            .surface
+            .get_capabilities(&render_state.adapter)
+            .usages;
         let mut surf_config = wgpu::SurfaceConfiguration {
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | (surface_usages & copy_dst),
             format: render_state.target_format,
             present_mode,
             alpha_mode: surface_state.alpha_mode,
@@ -563,6 +572,8 @@ impl Painter {
             pixels_per_point,
         };
 
+        // lumlab patch: a kept backdrop is drawn again when egui's textures change.
+        let textures_changed = !textures_delta.set.is_empty();
         let user_cmd_bufs = {
             let mut renderer = render_state.renderer.write();
             #[expect(clippy::iter_over_hash_type)] // Order doesn't matter here
@@ -681,18 +692,44 @@ impl Painter {
                     (texture_view, Some(&target_view))
                 });
 
+            // lumlab patch: the jobs under the first paint callback come from the kept
+            // backdrop where it can be copied in (no multisampling, no depth buffer).
+            let backdrop_len = if resolve_target.is_none()
+                && self.depth_texture_view.get(&viewport_id).is_none()
+                && target_texture.usage().contains(wgpu::TextureUsages::COPY_DST)
+            {
+                crate::backdrop::backdrop_len(clipped_primitives)
+            } else {
+                0
+            };
+            let load = if backdrop_len > 0 {
+                self.backdrops.entry(viewport_id).or_default().copy_to(
+                    &render_state.device,
+                    &mut encoder,
+                    &renderer,
+                    clipped_primitives,
+                    backdrop_len,
+                    &screen_descriptor,
+                    clear_color,
+                    textures_changed,
+                    target_texture,
+                );
+                wgpu::LoadOp::Load
+            } else {
+                wgpu::LoadOp::Clear(wgpu::Color {
+                    r: clear_color[0] as f64,
+                    g: clear_color[1] as f64,
+                    b: clear_color[2] as f64,
+                    a: clear_color[3] as f64,
+                })
+            };
             let render_pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("egui_render"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                     view,
                     resolve_target,
                     ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color {
-                            r: clear_color[0] as f64,
-                            g: clear_color[1] as f64,
-                            b: clear_color[2] as f64,
-                            a: clear_color[3] as f64,
-                        }),
+                        load,
                         store: wgpu::StoreOp::Store,
                     },
                     depth_slice: None,
@@ -732,10 +769,11 @@ impl Painter {
             // Forgetting the pass' lifetime means that we are no longer compile-time protected from
             // runtime errors caused by accessing the parent encoder before the render pass is dropped.
             // Since we don't pass it on to the renderer, we should be perfectly safe against this mistake here!
-            renderer.render(
+            renderer.render_range(
                 &mut render_pass.forget_lifetime(),
                 clipped_primitives,
                 &screen_descriptor,
+                backdrop_len..clipped_primitives.len(),
             );
 
             if capture && let Some(capture_state) = &mut self.screen_capture_state {
@@ -802,6 +840,7 @@ impl Painter {
             .retain(|id, _| active_viewports.contains(id));
         self.msaa_texture_view
             .retain(|id, _| active_viewports.contains(id));
+        self.backdrops.retain(|id, _| active_viewports.contains(id));
     }
 
     #[expect(clippy::needless_pass_by_ref_mut, clippy::unused_self)]
