@@ -19,6 +19,8 @@
 // reads the uniform instead, the one generic pipeline.
 override SPECIALISED_VIEW: u32 = SPECIALISE_ANY;
 override SPECIALISED_VISIBILITY: u32 = SPECIALISE_ANY;
+// Shadows on (1) or off (0), or SPECIALISE_ANY to read shadow.enabled.
+override SPECIALISED_SHADOWS: u32 = SPECIALISE_ANY;
 
 fn view_mode() -> u32 {
     return select(SPECIALISED_VIEW, globals.view, SPECIALISED_VIEW == SPECIALISE_ANY);
@@ -26,6 +28,10 @@ fn view_mode() -> u32 {
 
 fn visibility_mode() -> u32 {
     return select(SPECIALISED_VISIBILITY, globals.visibility, SPECIALISED_VISIBILITY == SPECIALISE_ANY);
+}
+
+fn shadows_enabled() -> bool {
+    return select(SPECIALISED_SHADOWS, shadow.enabled, SPECIALISED_SHADOWS == SPECIALISE_ANY) != 0u;
 }
 
 struct VsIn {
@@ -151,7 +157,7 @@ fn visibility(p_l: vec3<f32>, s: Surface, incidence: LightIncidence, pixel: vec2
         // Its own attached-shadow rule: a sphere light straddling the horizon is partly seen.
         return ray_traced_visibility(p_l + globals.shadow_apex_rel, s.n, s.n_geo, pixel);
     }
-    if shadow.enabled == 0u {
+    if !shadows_enabled() {
         return 1.0;
     }
     // Attached shadow: the surface faces away from the light.

@@ -2,7 +2,7 @@
 //! shaders/shade.wgsl and shadow_map.wgsl read their mode through
 //! pipeline-overridable constants (`SPECIALISED_VIEW`, `SPECIALISED_FILTER`,
 //! `SPECIALISED_VISIBILITY`, `SPECIALISED_BIAS`, `SPECIALISED_CUBE`: the
-//! shadow map's layout); a pipeline given one value keeps only that
+//! shadow map's layout, `SPECIALISED_SHADOWS`: shadows on or off); a pipeline given one value keeps only that
 //! case of each `switch` (the compiler folds the rest away), the default
 //! value `SPECIALISE_ANY` reads the uniforms: the generic pipeline the tests
 //! hold the specialised ones to. A new mode (another visibility source, a
@@ -45,6 +45,10 @@ impl Default for ShadeOptions {
 pub struct Specialisation {
     pub view: Option<DebugView>,
     pub filter: Option<Filter>,
+    /// Shadows on (Settings::shadow.enabled): off, V = 1 is compiled in and
+    /// none of the shadow map's code is (lavapipe would run it for every
+    /// pixel, under a mask, on a uniform that says it is off).
+    pub shadows: Option<bool>,
     pub visibility: Option<Visibility>,
     pub bias: Option<BiasMode>,
     /// The shadow map's layout (None also when no map is drawn).
@@ -70,6 +74,7 @@ impl Specialisation {
             } else {
                 Filter::None
             }),
+            shadows: on.then_some(settings.shadow.enabled),
             visibility: on.then_some(settings.shadow.visibility),
             bias: on.then_some(settings.shadow.bias.mode),
             layout: layout.filter(|_| on),
@@ -86,6 +91,9 @@ impl Specialisation {
         }
         if let Some(filter) = self.filter {
             constants.push(("SPECIALISED_FILTER", code(Filter::ALL, &filter) as f64));
+        }
+        if let Some(shadows) = self.shadows {
+            constants.push(("SPECIALISED_SHADOWS", f64::from(u8::from(shadows))));
         }
         if let Some(visibility) = self.visibility {
             constants.push((
