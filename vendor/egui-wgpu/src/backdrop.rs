@@ -41,8 +41,9 @@ pub fn backdrop_len(jobs: &[ClippedPrimitive]) -> usize {
 }
 
 /// A hash of everything that decides the backdrop's pixels: the jobs' clip
-/// rectangles, textures, vertices and indices, the target's size and the
-/// clear colour.
+/// rectangles, textures, vertices and indices (with their counts, so that no
+/// two splits of the same bytes collide), the target's size and scale and
+/// the clear colour.
 pub fn backdrop_key(jobs: &[ClippedPrimitive], screen: &ScreenDescriptor, clear: [f32; 4]) -> u64 {
     let mut hasher = ahash::AHasher::default();
     screen.size_in_pixels.hash(&mut hasher);
@@ -54,6 +55,7 @@ pub fn backdrop_key(jobs: &[ClippedPrimitive], screen: &ScreenDescriptor, clear:
             .hash(&mut hasher);
         if let Primitive::Mesh(mesh) = primitive {
             mesh.texture_id.hash(&mut hasher);
+            [mesh.indices.len(), mesh.vertices.len()].hash(&mut hasher);
             hasher.write(bytemuck::cast_slice(&mesh.indices));
             hasher.write(bytemuck::cast_slice(&mesh.vertices));
         }
