@@ -2,8 +2,9 @@
 //! shaders/shade.wgsl and shadow_map.wgsl read their mode through
 //! pipeline-overridable constants (`SPECIALISED_VIEW`, `SPECIALISED_FILTER`,
 //! `SPECIALISED_VISIBILITY`, `SPECIALISED_BIAS`, `SPECIALISED_CUBE`: the
-//! shadow map's layout, `SPECIALISED_SHADOWS`: shadows on or off); a pipeline given one value keeps only that
-//! case of each `switch` (the compiler folds the rest away), the default
+//! shadow map's layout, `SPECIALISED_SHADOWS`: shadows on or off); a
+//! pipeline given one value keeps only that case of each `switch` (the
+//! compiler folds the rest away), the default
 //! value `SPECIALISE_ANY` reads the uniforms: the generic pipeline the tests
 //! hold the specialised ones to. A new mode (another visibility source, a
 //! bias mode) is one more constant here and one more `*_mode()` in WGSL.

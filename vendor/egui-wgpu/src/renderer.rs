@@ -551,17 +551,6 @@ impl Renderer {
             },
         ) in paint_jobs.iter().enumerate()
         {
-            if !range.contains(&job) {
-                if let Primitive::Mesh(_) = primitive {
-                    index_buffer_slices
-                        .next()
-                        .expect("You must call .update_buffers() before .render()");
-                    vertex_buffer_slices
-                        .next()
-                        .expect("You must call .update_buffers() before .render()");
-                }
-                continue;
-            }
             if needs_reset {
                 render_pass.set_viewport(
                     0.0,
@@ -579,8 +568,8 @@ impl Renderer {
             {
                 let rect = ScissorRect::new(clip_rect, pixels_per_point, size_in_pixels);
 
-                if rect.width == 0 || rect.height == 0 {
-                    // Skip rendering zero-sized clip areas.
+                if !range.contains(&job) || rect.width == 0 || rect.height == 0 {
+                    // Skip the jobs outside `range` and zero-sized clip areas.
                     if let Primitive::Mesh(_) = primitive {
                         // If this is a mesh, we need to advance the index and vertex buffer iterators:
                         index_buffer_slices
