@@ -163,32 +163,50 @@ fn interaction(renderer: &mut Renderer) {
 
 /// What the camera pass's cost is made of (`-- breakdown`): the specialised
 /// pass at full scale with one ingredient taken away at a time, against the
-/// flat pass: the filter's taps (PCF 5×5 → one tap → no shadows), the BRDF
-/// (the `visibility` view), the second target (aux).
+/// flat pass: the depth pre-pass (timed with the pass, the flat pass has
+/// none), the filter's taps (PCF 3×3, 16 depth tests → one → no shadows),
+/// the BRDF (the `visibility` view), the second target (aux).
 fn breakdown(renderer: &mut Renderer) {
     println!(
         "viewport {}×{}, camera pass GPU ms, median of {FRAMES} orbiting frames; median (min–max) of {RUNS} runs\n",
         VIEWPORT.0, VIEWPORT.1
     );
     println!("| variant | camera pass (ms) | / flat |\n|---|---|---|");
-    type Variant = (&'static str, fn(&mut Settings), bool);
-    let variants: [Variant; 6] = [
-        ("default: PCF 5×5, shaded, quantity only", |_| {}, false),
-        ("+ aux target (two targets written)", |_| {}, true),
+    // Quantity only, as a frame nobody reads back.
+    let plain = ShadeOptions {
+        aux: false,
+        ..ShadeOptions::default()
+    };
+    type Variant = (&'static str, fn(&mut Settings), ShadeOptions);
+    let variants: [Variant; 7] = [
+        ("default: PCF 3×3, shaded, quantity only", |_| {}, plain),
+        (
+            "+ aux target (two targets written)",
+            |_| {},
+            ShadeOptions { aux: true, ..plain },
+        ),
+        (
+            "no depth pre-pass (as while dragging)",
+            |_| {},
+            ShadeOptions {
+                depth_prepass: false,
+                ..plain
+            },
+        ),
         (
             "filter none (one depth tap)",
             |s| s.shadow.filter = Filter::None,
-            false,
+            plain,
         ),
         (
             "shadows off (no shadow-map lookup)",
             |s| s.shadow.enabled = false,
-            false,
+            plain,
         ),
         (
             "visibility view (PCF, no BRDF)",
             |s| s.view.mode = lumlab::settings::DebugView::Visibility,
-            false,
+            plain,
         ),
         (
             "shadows off, visibility view (neither)",
@@ -196,19 +214,16 @@ fn breakdown(renderer: &mut Renderer) {
                 s.shadow.enabled = false;
                 s.view.mode = lumlab::settings::DebugView::Visibility;
             },
-            false,
+            plain,
         ),
     ];
     let mut flat = Vec::new();
     let mut rows: Vec<Vec<(f64, f64)>> = vec![Vec::new(); variants.len()];
     for _ in 0..RUNS {
-        for (k, (_, change, aux)) in variants.iter().enumerate() {
+        for (k, (_, change, options)) in variants.iter().enumerate() {
             let mut settings = Settings::default();
             change(&mut settings);
-            renderer.set_shade_options(ShadeOptions {
-                aux: *aux,
-                ..ShadeOptions::default()
-            });
+            renderer.set_shade_options(*options);
             let (shade, _, _) = orbit(renderer, &mut settings, VIEWPORT);
             let f = median((0..FRAMES).filter_map(|_| renderer.minimal_pass_ms()).collect());
             flat.push(f);
