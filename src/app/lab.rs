@@ -502,6 +502,7 @@ impl eframe::App for LabApp {
                 gpu.map_or(1.0, |g| g.rendered_scale(Half::A)),
                 self.clock.ui_ms,
                 a.and_then(|h| h.times).map_or(0.0, |t| t.total_ms()),
+                a.and_then(|h| h.times?.shadow_ms).unwrap_or(0.0),
             ];
             bench.inject(raw_input, target, before);
         }

@@ -20,7 +20,7 @@ pub(super) fn radius_slider_rect(ctx: &egui::Context) -> Option<egui::Rect> {
 }
 
 fn radius_slider_key() -> egui::Id {
-    egui::Id::new("light radius slider")
+    egui::Id::unique("lumlab light radius slider")
 }
 
 pub struct LightPanel<'a> {

@@ -453,7 +453,7 @@ impl Viewport<'_> {
 /// The light gizmo's widget: one per window, so a fixed id, by which
 /// `lumlab --drag-bench-target light` finds where to press.
 pub(super) fn gizmo_id() -> egui::Id {
-    egui::Id::new("light gizmo")
+    egui::Id::unique("lumlab light gizmo")
 }
 
 /// The light gizmo: a small sun.

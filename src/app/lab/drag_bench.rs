@@ -93,6 +93,9 @@ pub(super) struct DragBench {
     ui_ms: Vec<f64>,
     /// GPU time of the renderer's passes, as last measured (ms).
     gpu_ms: Vec<f64>,
+    /// GPU time of the shadow pass among them (ms; 0 where the map was
+    /// kept): a light drag draws it every frame.
+    shadow_ms: Vec<f64>,
     /// CPU time (process, UI thread) when the measured frames began (s).
     cpu_start: Option<CpuTime>,
     /// CPU time spent over the measured frames (s).
@@ -118,6 +121,7 @@ impl DragBench {
             scales: Vec::new(),
             ui_ms: Vec::new(),
             gpu_ms: Vec::new(),
+            shadow_ms: Vec::new(),
             cpu_start: None,
             cpu_spent: None,
             start: None,
@@ -135,10 +139,10 @@ impl DragBench {
 
     /// Adds this frame's pointer events. `target`: the rectangle of what it
     /// drags, as last laid out (read when the drag starts; None: not on
-    /// screen). `before`: the render scale, the UI pass's CPU time and the
-    /// renderer's last GPU time (ms) of the frame before.
-    pub(super) fn inject(&mut self, raw: &mut egui::RawInput, target: Option<Rect>, before: [f64; 3]) {
-        let [scale, ui_ms, gpu_ms] = before;
+    /// screen). `before`: the render scale, the UI pass's CPU time, the
+    /// renderer's last GPU time and its shadow pass's (ms) of the frame before.
+    pub(super) fn inject(&mut self, raw: &mut egui::RawInput, target: Option<Rect>, before: [f64; 4]) {
+        let [scale, ui_ms, gpu_ms, shadow_ms] = before;
         let now = Instant::now();
         let k = self.frame;
         self.frame += 1;
@@ -185,6 +189,7 @@ impl DragBench {
                 self.scales.push(scale);
                 self.ui_ms.push(ui_ms);
                 self.gpu_ms.push(gpu_ms);
+                self.shadow_ms.push(shadow_ms);
                 if self.done() {
                     self.cpu_spent = self.cpu_start.zip(CpuTime::now()).map(|(a, b)| b.minus(a));
                 }
@@ -224,10 +229,11 @@ impl DragBench {
             )
         });
         Some(format!(
-            "{}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms{cpu}",
+            "{}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms (shadow {:.1}){cpu}",
             summary(self.target, &self.intervals_s, &self.scales, viewport),
             median(&self.ui_ms),
             median(&self.gpu_ms),
+            median(&self.shadow_ms),
         ))
     }
 }
@@ -338,12 +344,12 @@ mod tests {
         let mut frame = 0;
         while !bench.done() && !bench.missing {
             let mut raw = egui::RawInput::default();
-            bench.inject(&mut raw, target(frame), [0.5, 1.0, 1.0]);
+            bench.inject(&mut raw, target(frame), [0.5, 1.0, 1.0, 0.0]);
             events.extend(raw.events);
             frame += 1;
         }
         let mut raw = egui::RawInput::default();
-        bench.inject(&mut raw, target(frame), [0.5, 1.0, 1.0]);
+        bench.inject(&mut raw, target(frame), [0.5, 1.0, 1.0, 0.0]);
         events.extend(raw.events);
         events
     }
