@@ -4,12 +4,13 @@
 //! (`--drag-bench-target`, [`DragTarget`]): the camera's orbit over the
 //! viewport, the light gizmo, or the light radius slider, since each
 //! changes different parts of the frame (the light's position shows in the
-//! light panel, a slider's value in its panel). A frame's time is the interval between two
-//! frames' input hooks: everything a frame costs (egui's layout and
-//! painting, the renderer, the copy to the window) is in it. The CPU time
-//! the process spent over the measured frames (all threads: the UI thread
-//! and a software adapter's rasterizer threads) is given per frame beside
-//! it: unlike the frame rate it hardly depends on what else the machine runs.
+//! light panel, a slider's value in its panel). A frame's time is the
+//! interval between two frames' input hooks: everything a frame costs
+//! (egui's layout and painting, the renderer, the copy to the window) is in
+//! it. The CPU time the process spent over the measured frames (all
+//! threads: the UI thread and a software adapter's rasterizer threads) is
+//! given per frame beside it: unlike the frame rate it hardly depends on
+//! what else the machine runs.
 
 use egui::{Event, PointerButton, Pos2, Rect, vec2};
 use std::time::Instant;
