@@ -17,6 +17,8 @@ mod jobs;
 mod panels;
 mod tour;
 
+pub use drag_bench::DragTarget;
+
 use super::command::{Command, SceneView};
 use super::energy::EnergyPanel;
 use super::files::FilesPanel;
@@ -242,7 +244,9 @@ impl LabApp {
             help_open: false,
             jobs: Jobs::default(),
             script,
-            drag_bench: options.drag_bench_frames.map(drag_bench::DragBench::new),
+            drag_bench: options
+                .drag_bench_frames
+                .map(|frames| drag_bench::DragBench::new(frames, options.drag_bench_target)),
             window_cleared_to_panel_fill: false,
             outcome,
             frames: 0,
@@ -485,16 +489,22 @@ impl eframe::App for LabApp {
         self.script.is_none()
     }
 
-    fn raw_input_hook(&mut self, _ctx: &egui::Context, raw_input: &mut egui::RawInput) {
+    fn raw_input_hook(&mut self, ctx: &egui::Context, raw_input: &mut egui::RawInput) {
         if let Some(bench) = &mut self.drag_bench {
+            let target = match bench.target() {
+                DragTarget::Orbit => Some(self.viewport_rect),
+                DragTarget::Light => ctx.read_response(super::viewport::gizmo_id()).map(|r| r.rect),
+                DragTarget::Slider => super::light::radius_slider_rect(ctx),
+            };
             let gpu = self.gpu.as_ref();
             let a = gpu.and_then(|g| g.half(Half::A));
             let before = [
                 gpu.map_or(1.0, |g| g.rendered_scale(Half::A)),
                 self.clock.ui_ms,
                 a.and_then(|h| h.times).map_or(0.0, |t| t.total_ms()),
+                a.and_then(|h| h.times?.shadow_ms).unwrap_or(0.0),
             ];
-            bench.inject(raw_input, self.viewport_rect, before);
+            bench.inject(raw_input, target, before);
         }
     }
 

@@ -12,6 +12,17 @@ use crate::tr;
 /// settings file allows more.
 const MAX_POWER_W: f32 = 1e6;
 
+/// Where the radius slider was laid out last (rail and value, points),
+/// for `lumlab --drag-bench-target slider`; None before the light panel
+/// was first shown.
+pub(super) fn radius_slider_rect(ctx: &egui::Context) -> Option<egui::Rect> {
+    ctx.data(|d| d.get_temp(radius_slider_key()))
+}
+
+fn radius_slider_key() -> egui::Id {
+    egui::Id::unique("lumlab light radius slider")
+}
+
 pub struct LightPanel<'a> {
     pub light: &'a mut LightSettings,
     /// The scene's scale: the sliders' ranges and drag speeds follow it.
@@ -70,13 +81,15 @@ impl View for LightPanel<'_> {
         let label = ui
             .label(tr!("light-radius"))
             .on_hover_text(tr!("light-radius-tip"));
-        ui.add(
-            egui::Slider::new(radius_m, 0.0..=self.scale.max_light_radius_m())
-                .suffix(" m")
-                .custom_formatter(|x, _| super::widgets::number(x)),
-        )
-        .labelled_by(label.id)
-        .on_hover_text(tr!("light-radius-slider-tip"));
+        let slider = ui
+            .add(
+                egui::Slider::new(radius_m, 0.0..=self.scale.max_light_radius_m())
+                    .suffix(" m")
+                    .custom_formatter(|x, _| super::widgets::number(x)),
+            )
+            .labelled_by(label.id)
+            .on_hover_text(tr!("light-radius-slider-tip"));
+        ui.data_mut(|d| d.insert_temp(radius_slider_key(), slider.rect));
         if *radius_m > 0.0 {
             let le = radiometry::sphere_radiance(*power_w as f64, *radius_m as f64);
             derived(

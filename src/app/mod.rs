@@ -48,7 +48,7 @@ mod widgets;
 
 pub use command::Command;
 pub use files::FileAction;
-pub use lab::LabApp;
+pub use lab::{DragTarget, LabApp};
 pub use lecture::panel_title;
 pub use probe::{GpuSample, ProbePixel, ProbeTerms, evaluate as probe_terms};
 pub use reference::{ErrorStats, ReferenceFn};
@@ -80,8 +80,10 @@ pub struct LaunchOptions {
     /// `--tour [FILE]`: open at the first step of the lecture tour (None
     /// inside: the built-in tour).
     pub tour: Option<Option<PathBuf>>,
-    /// `--drag-bench N` (hidden): orbit for N frames, print the frame rate, quit.
+    /// `--drag-bench N` (hidden): drag for N frames, print the frame rate, quit.
     pub drag_bench_frames: Option<u32>,
+    /// `--drag-bench-target` (hidden): what the drag bench drags.
+    pub drag_bench_target: DragTarget,
 }
 
 impl LaunchOptions {

@@ -150,7 +150,7 @@ impl Viewport<'_> {
             let gizmo = ui
                 .interact(
                     Rect::from_center_size(p, Vec2::splat(2.0 * GIZMO_RADIUS + 6.0)),
-                    ui.make_persistent_id("light gizmo"),
+                    gizmo_id(),
                     Sense::drag(),
                 )
                 .on_hover_text(tr!(
@@ -448,6 +448,12 @@ impl Viewport<'_> {
         }
         out
     }
+}
+
+/// The light gizmo's widget: one per window, so a fixed id, by which
+/// `lumlab --drag-bench-target light` finds where to press.
+pub(super) fn gizmo_id() -> egui::Id {
+    egui::Id::unique("lumlab light gizmo")
 }
 
 /// The light gizmo: a small sun.

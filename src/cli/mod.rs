@@ -50,10 +50,15 @@ pub struct Cli {
     /// (assets/tour.toml), or FILE.
     #[arg(long, value_name = "FILE", num_args = 0..=1)]
     pub tour: Option<Option<PathBuf>>,
-    /// Measure the window's frame rate while orbiting: drag over the
-    /// viewport for N frames, print the frames/s and render scales, quit.
+    /// Measure the window's frame rate while dragging: orbit over the
+    /// viewport (or see --drag-bench-target) for N frames, print the
+    /// frames/s and render scales, quit.
     #[arg(long, value_name = "N", hide = true, value_parser = clap::value_parser!(u32).range(1..))]
     pub drag_bench: Option<u32>,
+    /// What --drag-bench drags: the camera's orbit, the light gizmo or the
+    /// light radius slider.
+    #[arg(long, value_name = "orbit|light|slider", hide = true, requires = "drag_bench")]
+    pub drag_bench_target: Option<crate::app::DragTarget>,
 }
 
 impl Cli {
@@ -67,6 +72,7 @@ impl Cli {
             quit_after_frames: self.quit_after_frames,
             tour: self.tour.clone(),
             drag_bench_frames: self.drag_bench,
+            drag_bench_target: self.drag_bench_target.unwrap_or_default(),
         };
         let any = options.settings.is_some()
             || options.scene.is_some()

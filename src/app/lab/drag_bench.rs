@@ -1,26 +1,88 @@
 //! `lumlab --drag-bench N` (hidden, for measuring): a scripted run that
-//! orbits the camera with a pointer drag over the viewport for N frames
-//! after a warm-up, prints the frame rate the window reached and the render
-//! scales chosen, and quits. A frame's time is the interval between two
-//! frames' input hooks: everything a frame costs (egui's layout and
-//! painting, the renderer, the copy to the window) is in it. The CPU time
-//! the process spent over the measured frames (all threads: the UI thread
-//! and a software adapter's rasterizer threads) is given per frame beside
-//! it: unlike the frame rate it hardly depends on what else the machine runs.
+//! drags the pointer for N frames after a warm-up, prints the frame rate the
+//! window reached and the render scales chosen, and quits. What it drags
+//! (`--drag-bench-target`, [`DragTarget`]): the camera's orbit over the
+//! viewport, the light gizmo, or the light radius slider, since each
+//! changes different parts of the frame (the light's position shows in the
+//! light panel, a slider's value in its panel). A frame's time is the
+//! interval between two frames' input hooks: everything a frame costs
+//! (egui's layout and painting, the renderer, the copy to the window) is in
+//! it. The CPU time the process spent over the measured frames (all
+//! threads: the UI thread and a software adapter's rasterizer threads) is
+//! given per frame beside it: unlike the frame rate it hardly depends on
+//! what else the machine runs.
 
-use egui::{Event, PointerButton, Pos2, Rect};
+use egui::{Event, PointerButton, Pos2, Rect, vec2};
 use std::time::Instant;
 
 /// Idle frames first: the shaders compile, the first GPU times come back.
 const WARM_UP_FRAMES: u32 = 30;
 /// Drag frames not counted: the render scale learns the frame cost.
 const SETTLE_FRAMES: u32 = 10;
-/// Pointer motion per frame (points): a steady orbit.
-const STEP_POINTS: f32 = 4.0;
-/// The drag turns back after this many frames, so it stays in the viewport.
+/// The drag turns back after this many frames, so that it stays on its
+/// target (see [`DragTarget::step_points`]).
 const SWING_FRAMES: u32 = 60;
 
+/// What the bench drags.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DragTarget {
+    /// The camera, from the viewport's centre: only the image changes.
+    #[default]
+    Orbit,
+    /// The light gizmo: the image, the shadow map and the light panel's
+    /// position fields change.
+    Light,
+    /// The light radius slider: its panel (the value, the derived
+    /// radiance) and the image change.
+    Slider,
+}
+
+impl DragTarget {
+    pub const ALL: [Self; 3] = [Self::Orbit, Self::Light, Self::Slider];
+
+    /// Its name on the command line and in the report.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Orbit => "orbit",
+            Self::Light => "light",
+            Self::Slider => "slider",
+        }
+    }
+
+    /// Where the drag starts on the target's rectangle.
+    fn press_at(self, rect: Rect) -> Pos2 {
+        match self {
+            Self::Orbit | Self::Light => rect.center(),
+            // The rectangle is the slider's rail followed by its value: a
+            // press near the rail's left end leaves it room to move right.
+            Self::Slider => rect.left_center() + vec2(40.0, 0.0),
+        }
+    }
+
+    /// Pointer motion per frame (points). Over a swing of [`SWING_FRAMES`]:
+    /// a steady orbit; the light across a good part of the image; the
+    /// slider along most of its 190-point rail (lab.rs's style).
+    fn step_points(self) -> f32 {
+        match self {
+            Self::Orbit => 4.0,
+            Self::Light | Self::Slider => 2.0,
+        }
+    }
+}
+
+impl std::str::FromStr for DragTarget {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, String> {
+        Self::ALL.into_iter().find(|t| t.name() == text).ok_or_else(|| {
+            let names: Vec<_> = Self::ALL.map(Self::name).into();
+            format!("expected one of {}", names.join(", "))
+        })
+    }
+}
+
 pub(super) struct DragBench {
+    target: DragTarget,
     /// Frames to measure.
     frames: u32,
     /// Frames seen so far.
@@ -32,19 +94,27 @@ pub(super) struct DragBench {
     ui_ms: Vec<f64>,
     /// GPU time of the renderer's passes, as last measured (ms).
     gpu_ms: Vec<f64>,
+    /// GPU time of the shadow pass among them (ms; 0 where the map was
+    /// kept): a light drag draws it every frame.
+    shadow_ms: Vec<f64>,
     /// CPU time (process, UI thread) when the measured frames began (s).
     cpu_start: Option<CpuTime>,
     /// CPU time spent over the measured frames (s).
     cpu_spent: Option<CpuTime>,
+    /// Where the drag started (points); None before the press.
+    start: Option<Pos2>,
     /// The pointer's offset from where the drag started (points).
     offset: f32,
+    /// The target was not on screen when the drag was to start.
+    missing: bool,
     released: bool,
     reported: bool,
 }
 
 impl DragBench {
-    pub(super) fn new(frames: u32) -> Self {
+    pub(super) fn new(frames: u32, target: DragTarget) -> Self {
         Self {
+            target,
             frames: frames.max(1),
             frame: 0,
             last: None,
@@ -52,26 +122,43 @@ impl DragBench {
             scales: Vec::new(),
             ui_ms: Vec::new(),
             gpu_ms: Vec::new(),
+            shadow_ms: Vec::new(),
             cpu_start: None,
             cpu_spent: None,
+            start: None,
             offset: 0.0,
+            missing: false,
             released: false,
             reported: false,
         }
     }
 
-    /// Adds this frame's pointer events. `before`: the render scale, the UI
-    /// pass's CPU time and the renderer's last GPU time (ms) of the frame before.
-    pub(super) fn inject(&mut self, raw: &mut egui::RawInput, viewport: Rect, before: [f64; 3]) {
-        let [scale, ui_ms, gpu_ms] = before;
+    /// What it drags.
+    pub(super) fn target(&self) -> DragTarget {
+        self.target
+    }
+
+    /// Adds this frame's pointer events. `target`: the rectangle of what it
+    /// drags, as last laid out (read when the drag starts; None: not on
+    /// screen). `before`: the render scale, the UI pass's CPU time, the
+    /// renderer's last GPU time and its shadow pass's (ms) of the frame before.
+    pub(super) fn inject(&mut self, raw: &mut egui::RawInput, target: Option<Rect>, before: [f64; 4]) {
+        let [scale, ui_ms, gpu_ms, shadow_ms] = before;
         let now = Instant::now();
         let k = self.frame;
         self.frame += 1;
-        if k < WARM_UP_FRAMES || self.released {
+        if k < WARM_UP_FRAMES || self.released || self.missing {
             return;
         }
         let d = k - WARM_UP_FRAMES;
-        let start = viewport.center();
+        let Some(start) = self
+            .start
+            .or_else(|| target.map(|rect| self.target.press_at(rect)))
+        else {
+            self.missing = true;
+            return;
+        };
+        self.start = Some(start);
         let at = |offset: f32| Pos2::new(start.x + offset, start.y);
         let button = |pos: Pos2, pressed: bool| Event::PointerButton {
             pos,
@@ -91,7 +178,7 @@ impl DragBench {
             } else {
                 -1.0
             };
-            self.offset += direction * STEP_POINTS;
+            self.offset += direction * self.target.step_points();
             raw.events.push(Event::PointerMoved(at(self.offset)));
             if d == SETTLE_FRAMES + 1 {
                 self.cpu_start = CpuTime::now();
@@ -103,6 +190,7 @@ impl DragBench {
                 self.scales.push(scale);
                 self.ui_ms.push(ui_ms);
                 self.gpu_ms.push(gpu_ms);
+                self.shadow_ms.push(shadow_ms);
                 if self.done() {
                     self.cpu_spent = self.cpu_start.zip(CpuTime::now()).map(|(a, b)| b.minus(a));
                 }
@@ -116,12 +204,18 @@ impl DragBench {
         self.intervals_s.len() as u32 >= self.frames
     }
 
-    /// The result line, once, when done.
+    /// The result line, once, when done (or when there was nothing to drag).
     pub(super) fn report(&mut self, viewport: (u32, u32)) -> Option<String> {
-        if !self.done() || self.reported {
+        if !(self.done() || self.missing) || self.reported {
             return None;
         }
         self.reported = true;
+        if self.missing {
+            return Some(format!(
+                "app drag, {}: nothing on screen to press on",
+                self.target.name()
+            ));
+        }
         let median = |values: &[f64]| {
             let mut sorted = values.to_vec();
             sorted.sort_by(f64::total_cmp);
@@ -136,10 +230,11 @@ impl DragBench {
             )
         });
         Some(format!(
-            "{}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms{cpu}",
-            summary(&self.intervals_s, &self.scales, viewport),
+            "{}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms (shadow {:.1}){cpu}",
+            summary(self.target, &self.intervals_s, &self.scales, viewport),
             median(&self.ui_ms),
             median(&self.gpu_ms),
+            median(&self.shadow_ms),
         ))
     }
 }
@@ -187,8 +282,8 @@ fn quantile(sorted: &[f64], q: f64) -> f64 {
     sorted[i.min(sorted.len() - 1)]
 }
 
-/// "app drag: N frames, viewport W×H px: F frames/s (…), render scale …".
-fn summary(intervals_s: &[f64], scales: &[f64], viewport: (u32, u32)) -> String {
+/// "app drag, TARGET: N frames, viewport W×H px: F frames/s (…), render scale …".
+fn summary(target: DragTarget, intervals_s: &[f64], scales: &[f64], viewport: (u32, u32)) -> String {
     let n = intervals_s.len();
     let mean_fps = n as f64 / intervals_s.iter().sum::<f64>();
     let mut fps: Vec<f64> = intervals_s.iter().map(|t| 1.0 / t).collect();
@@ -196,9 +291,10 @@ fn summary(intervals_s: &[f64], scales: &[f64], viewport: (u32, u32)) -> String 
     let mut scales = scales.to_vec();
     scales.sort_by(f64::total_cmp);
     format!(
-        "app drag: {n} frames, viewport {}×{} px: {mean_fps:.1} frames/s \
+        "app drag, {}: {n} frames, viewport {}×{} px: {mean_fps:.1} frames/s \
          (per frame: median {:.1}, 10–90 % {:.1}–{:.1}, min {:.1}); \
          render scale median {:.2} (range {:.2}–{:.2})",
+        target.name(),
         viewport.0,
         viewport.1,
         quantile(&fps, 0.5),
@@ -214,12 +310,17 @@ fn summary(intervals_s: &[f64], scales: &[f64], viewport: (u32, u32)) -> String 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use egui::vec2;
 
     #[test]
     fn the_summary_gives_the_mean_rate_over_all_frames() {
         // 3 frames of 50 ms and one of 100 ms: 4 frames in 0.25 s.
-        let line = summary(&[0.05, 0.05, 0.1, 0.05], &[0.5, 0.25, 0.5, 0.5], (800, 600));
+        let line = summary(
+            DragTarget::Orbit,
+            &[0.05, 0.05, 0.1, 0.05],
+            &[0.5, 0.25, 0.5, 0.5],
+            (800, 600),
+        );
+        assert!(line.starts_with("app drag, orbit: 4 frames"), "{line}");
         assert!(line.contains("16.0 frames/s"), "{line}");
         assert!(line.contains("median 20.0"), "{line}");
         assert!(line.contains("min 10.0"), "{line}");
@@ -237,19 +338,35 @@ mod tests {
         assert_eq!(stat_cpu_s("1234 (name) S 1 2"), None);
     }
 
-    #[test]
-    fn the_drag_presses_moves_then_releases_and_measures_n_frames() {
-        let mut bench = DragBench::new(5);
-        let viewport = Rect::from_min_size(Pos2::ZERO, vec2(200.0, 100.0));
+    /// Runs a bench of `frames` to its end over a target that `target`
+    /// gives for each frame; all the events it injected.
+    fn run(bench: &mut DragBench, target: impl Fn(u32) -> Option<Rect>) -> Vec<Event> {
         let mut events = Vec::new();
-        while !bench.done() {
+        let mut frame = 0;
+        while !bench.done() && !bench.missing {
             let mut raw = egui::RawInput::default();
-            bench.inject(&mut raw, viewport, [0.5, 1.0, 1.0]);
+            bench.inject(&mut raw, target(frame), [0.5, 1.0, 1.0, 0.0]);
             events.extend(raw.events);
+            frame += 1;
         }
         let mut raw = egui::RawInput::default();
-        bench.inject(&mut raw, viewport, [0.5, 1.0, 1.0]);
+        bench.inject(&mut raw, target(frame), [0.5, 1.0, 1.0, 0.0]);
         events.extend(raw.events);
+        events
+    }
+
+    fn pointer_at(event: &Event) -> Option<Pos2> {
+        match event {
+            Event::PointerMoved(p) | Event::PointerButton { pos: p, .. } => Some(*p),
+            _ => None,
+        }
+    }
+
+    #[test]
+    fn the_drag_presses_moves_then_releases_and_measures_n_frames() {
+        let mut bench = DragBench::new(5, DragTarget::Orbit);
+        let viewport = Rect::from_min_size(Pos2::ZERO, vec2(200.0, 100.0));
+        let events = run(&mut bench, |_| Some(viewport));
         let pressed = |e: &Event| matches!(e, Event::PointerButton { pressed: true, .. });
         let released = |e: &Event| matches!(e, Event::PointerButton { pressed: false, .. });
         assert_eq!(events.iter().filter(|e| pressed(e)).count(), 1);
@@ -257,5 +374,71 @@ mod tests {
         assert_eq!(bench.intervals_s.len(), 5);
         assert!(bench.report((200, 100)).is_some());
         assert!(bench.report((200, 100)).is_none(), "reported once");
+    }
+
+    #[test]
+    fn each_target_is_pressed_where_it_can_be_dragged_and_the_drag_stays_on_it() {
+        // The light radius slider: 190 points of rail, then its value.
+        let slider = Rect::from_min_size(Pos2::new(10.0, 300.0), vec2(260.0, 18.0));
+        let rail = Rect::from_min_size(slider.min, vec2(190.0, 18.0));
+        let gizmo = Rect::from_center_size(Pos2::new(500.0, 400.0), vec2(28.0, 28.0));
+        let viewport = Rect::from_min_size(Pos2::new(300.0, 30.0), vec2(1000.0, 800.0));
+        for (target, rect, stays_in) in [
+            (DragTarget::Orbit, viewport, viewport),
+            (DragTarget::Light, gizmo, viewport),
+            (DragTarget::Slider, slider, rail),
+        ] {
+            let mut bench = DragBench::new(3 * SWING_FRAMES, target);
+            let events = run(&mut bench, |_| Some(rect));
+            let points: Vec<Pos2> = events.iter().filter_map(pointer_at).collect();
+            assert!(rect.contains(points[0]), "{target:?} pressed at {:?}", points[0]);
+            assert!(
+                points.iter().all(|p| stays_in.contains(*p)),
+                "{target:?} leaves {stays_in:?}"
+            );
+            assert!(
+                points.iter().any(|p| p.x > points[0].x + 50.0),
+                "{target:?} moves"
+            );
+        }
+    }
+
+    #[test]
+    fn the_target_is_read_once_when_the_drag_starts() {
+        // The gizmo follows the pointer: the drag keeps its own course.
+        let mut bench = DragBench::new(20, DragTarget::Light);
+        let moving = |frame: u32| {
+            Some(Rect::from_center_size(
+                Pos2::new(100.0 + 10.0 * frame as f32, 50.0),
+                vec2(20.0, 20.0),
+            ))
+        };
+        let events = run(&mut bench, moving);
+        let xs: Vec<f32> = events.iter().filter_map(pointer_at).map(|p| p.x).collect();
+        let start = moving(WARM_UP_FRAMES).map(|r| r.center().x);
+        assert_eq!(Some(xs[0]), start);
+        let steps: Vec<f32> = xs.windows(2).map(|w| w[1] - w[0]).collect();
+        assert!(steps.iter().all(|s| s.abs() <= 2.0), "{steps:?}");
+    }
+
+    #[test]
+    fn a_target_off_screen_ends_the_bench_with_a_message() {
+        let mut bench = DragBench::new(5, DragTarget::Slider);
+        let events = run(&mut bench, |_| None);
+        assert!(events.is_empty(), "nothing pressed");
+        let line = bench.report((200, 100));
+        assert_eq!(
+            line.as_deref(),
+            Some("app drag, slider: nothing on screen to press on")
+        );
+    }
+
+    #[test]
+    fn targets_are_named_on_the_command_line() {
+        for target in DragTarget::ALL {
+            assert_eq!(target.name().parse(), Ok(target));
+        }
+        let error = "knob".parse::<DragTarget>().unwrap_err();
+        assert_eq!(error, "expected one of orbit, light, slider");
     }
 }

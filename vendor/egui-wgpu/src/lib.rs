@@ -40,6 +40,8 @@ pub mod winit;
 /// lumlab patch: the unchanged part of a frame under its paint callbacks, kept.
 #[cfg(feature = "winit")]
 pub mod backdrop;
+/// lumlab patch: which pixels of a kept backdrop a change of its jobs touches.
+pub mod damage;
 
 use std::sync::Arc;
 

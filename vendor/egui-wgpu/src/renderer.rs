@@ -7,6 +7,8 @@ use epaint::{PaintCallbackInfo, Primitive, Vertex, emath::NumExt as _};
 
 use wgpu::util::DeviceExt as _;
 
+use crate::damage::PixelRect;
+
 // Only implements Send + Sync on wasm32 in order to allow storing wgpu resources on the type map.
 #[cfg(not(all(
     target_arch = "wasm32",
@@ -519,19 +521,30 @@ impl Renderer {
         paint_jobs: &[epaint::ClippedPrimitive],
         screen_descriptor: &ScreenDescriptor,
     ) {
-        self.render_range(render_pass, paint_jobs, screen_descriptor, 0..paint_jobs.len());
+        self.render_range(
+            render_pass,
+            paint_jobs,
+            screen_descriptor,
+            0..paint_jobs.len(),
+            None,
+        );
     }
 
     /// [`Self::render`] for the jobs whose indices lie in `range` only (lumlab patch:
-    /// the buffers hold every job, so the ones outside are stepped over).
+    /// the buffers hold every job, so the ones outside are stepped over); with
+    /// `within`, meshes are drawn inside those disjoint pixel rectangles only
+    /// (a kept backdrop's damage, `damage.rs`), once for each.
     pub fn render_range(
         &self,
         render_pass: &mut wgpu::RenderPass<'static>,
         paint_jobs: &[epaint::ClippedPrimitive],
         screen_descriptor: &ScreenDescriptor,
         range: std::ops::Range<usize>,
+        within: Option<&[PixelRect]>,
     ) {
         profiling::function_scope!();
+
+        let mut scissors: Vec<PixelRect> = Vec::new();
 
         let pixels_per_point = screen_descriptor.pixels_per_point;
         let size_in_pixels = screen_descriptor.size_in_pixels;
@@ -566,9 +579,21 @@ impl Renderer {
             }
 
             {
-                let rect = ScissorRect::new(clip_rect, pixels_per_point, size_in_pixels);
+                let rect = PixelRect::scissor(*clip_rect, pixels_per_point, size_in_pixels);
+                // lumlab patch: with `within`, meshes are drawn in its rectangles only.
+                scissors.clear();
+                match (within, primitive) {
+                    (Some(within), Primitive::Mesh(_)) => scissors.extend(
+                        within
+                            .iter()
+                            .map(|r| r.intersect(&rect))
+                            .filter(|r| !r.is_empty()),
+                    ),
+                    _ if !rect.is_empty() => scissors.push(rect),
+                    _ => {}
+                }
 
-                if !range.contains(&job) || rect.width == 0 || rect.height == 0 {
+                if !range.contains(&job) || scissors.is_empty() {
                     // Skip the jobs outside `range` and zero-sized clip areas.
                     if let Primitive::Mesh(_) = primitive {
                         // If this is a mesh, we need to advance the index and vertex buffer iterators:
@@ -581,8 +606,6 @@ impl Renderer {
                     }
                     continue;
                 }
-
-                render_pass.set_scissor_rect(rect.x, rect.y, rect.width, rect.height);
             }
 
             match primitive {
@@ -608,7 +631,10 @@ impl Renderer {
                                 vertex_buffer_slice.start as u64..vertex_buffer_slice.end as u64,
                             ),
                         );
-                        render_pass.draw_indexed(0..mesh.indices.len() as u32, 0, 0..1);
+                        for r in &scissors {
+                            set_scissor(render_pass, r);
+                            render_pass.draw_indexed(0..mesh.indices.len() as u32, 0, 0..1);
+                        }
                     } else {
                         log::warn!("Missing texture: {:?}", mesh.texture_id);
                     }
@@ -618,6 +644,7 @@ impl Renderer {
                         // We already warned in the `prepare` callback
                         continue;
                     };
+                    set_scissor(render_pass, &scissors[0]);
 
                     let info = PaintCallbackInfo {
                         viewport: callback.rect,
@@ -1246,41 +1273,9 @@ fn create_index_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
     })
 }
 
-/// A Rect in physical pixel space, used for setting clipping rectangles.
-struct ScissorRect {
-    x: u32,
-    y: u32,
-    width: u32,
-    height: u32,
-}
-
-impl ScissorRect {
-    fn new(clip_rect: &epaint::Rect, pixels_per_point: f32, target_size: [u32; 2]) -> Self {
-        // Transform clip rect to physical pixels:
-        let clip_min_x = pixels_per_point * clip_rect.min.x;
-        let clip_min_y = pixels_per_point * clip_rect.min.y;
-        let clip_max_x = pixels_per_point * clip_rect.max.x;
-        let clip_max_y = pixels_per_point * clip_rect.max.y;
-
-        // Round to integer:
-        let clip_min_x = clip_min_x.round() as u32;
-        let clip_min_y = clip_min_y.round() as u32;
-        let clip_max_x = clip_max_x.round() as u32;
-        let clip_max_y = clip_max_y.round() as u32;
-
-        // Clamp:
-        let clip_min_x = clip_min_x.clamp(0, target_size[0]);
-        let clip_min_y = clip_min_y.clamp(0, target_size[1]);
-        let clip_max_x = clip_max_x.clamp(clip_min_x, target_size[0]);
-        let clip_max_y = clip_max_y.clamp(clip_min_y, target_size[1]);
-
-        Self {
-            x: clip_min_x,
-            y: clip_min_y,
-            width: clip_max_x - clip_min_x,
-            height: clip_max_y - clip_min_y,
-        }
-    }
+/// lumlab patch: the scissor of a pixel rectangle.
+fn set_scissor(render_pass: &mut wgpu::RenderPass<'static>, r: &PixelRect) {
+    render_pass.set_scissor_rect(r.min[0], r.min[1], r.max[0] - r.min[0], r.max[1] - r.min[1]);
 }
 
 // Compile-time check that `Renderer` is `Send + Sync`.

@@ -774,6 +774,7 @@ impl Painter {
                 clipped_primitives,
                 &screen_descriptor,
                 backdrop_len..clipped_primitives.len(),
+                None,
             );
 
             if capture && let Some(capture_state) = &mut self.screen_capture_state {
