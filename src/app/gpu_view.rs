@@ -6,7 +6,7 @@
 //! image size, the scene or the reference.
 
 use super::probe::{GpuSample, quantity_is_radiance};
-use super::render_scale::RenderScale;
+use super::render_scale::{RenderScale, shadow_map_side};
 use super::viewport_image::{ImageBinding, ImagePipeline};
 use crate::gpu::readback::ReadState;
 use crate::gpu::timing::PassTimes;
@@ -190,8 +190,11 @@ impl GpuViews {
             depth_prepass: !self.render_scale.interacting,
             ..Default::default()
         });
+        // The key keeps the settings as chosen: the drag's end renders again.
+        let mut drawn = settings.clone();
+        drawn.shadow.resolution = shadow_map_side(settings.shadow.resolution, self.frame_scale);
         let start = Instant::now();
-        h.report = h.renderer.render(settings, size);
+        h.report = h.renderer.render(&drawn, size);
         h.render_cpu_ms = start.elapsed().as_secs_f64() * 1e3;
         h.renders += 1;
         h.rendered_scale = self.frame_scale;

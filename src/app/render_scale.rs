@@ -5,6 +5,7 @@
 //! (never a blurry still image).
 
 use crate::gpu::timing::PassTimes;
+use crate::settings::ShadowSettings;
 use std::time::Instant;
 
 /// The frame rate aimed at while dragging (frames/s).
@@ -90,19 +91,20 @@ impl RenderScale {
 
     /// GPU times of a frame rendered at `scale` came back: the next
     /// interaction scale s follows from the cost model
-    /// t(s) = t_fixed + t_pixels · (s / scale)², where t_fixed (the shadow
-    /// map and its blur) does not depend on the image size and t_pixels (the
-    /// camera and display passes) is proportional to its pixel count:
-    /// s = scale · √((budget − t_fixed) / t_pixels), rounded down to one of
-    /// [`STEPS`]; a step up needs [`STEP_UP_MARGIN`] of room.
+    /// t(s) = t_pixels · (s / scale)², every pass's cost proportional to its
+    /// pixel count (the camera and display passes at the image's scale, the
+    /// shadow map and its blur at [`shadow_map_side`]'s, which follows it):
+    /// s = scale · √(budget / t_pixels), rounded down to one of [`STEPS`]; a
+    /// step up needs [`STEP_UP_MARGIN`] of room.
     pub fn observe(&mut self, scale: f64, times: &PassTimes) {
-        let fixed_ms = times.shadow_ms.unwrap_or(0.0) + times.blur_ms.unwrap_or(0.0);
-        let pixels_ms = times.shade_ms.unwrap_or(0.0) + times.display_ms.unwrap_or(0.0);
+        let pixels_ms = [times.shadow_ms, times.blur_ms, times.shade_ms, times.display_ms]
+            .into_iter()
+            .map(|t| t.unwrap_or(0.0))
+            .sum::<f64>();
         if !(pixels_ms > 0.0 && scale > 0.0) {
             return;
         }
-        let room_ms = (Self::budget_ms() - fixed_ms).max(0.0);
-        let ideal = scale * (room_ms / pixels_ms).sqrt();
+        let ideal = scale * (Self::budget_ms() / pixels_ms).sqrt();
         // Down to the largest step that fits at once; up only as far as the
         // largest step with room to spare.
         let fitting = largest_step(ideal);
@@ -112,6 +114,19 @@ impl RenderScale {
             largest_step(ideal / STEP_UP_MARGIN).max(self.interactive)
         };
     }
+}
+
+/// The shadow map's side (texels) for an image rendered at `scale`: the
+/// chosen `resolution` times the scale, so that a drag keeps the texels per
+/// pixel of the still image (a moved light redraws the map every frame, at
+/// 2048² six faces the largest pass of a light drag); a multiple of 64, at
+/// least the settings' minimum, and the chosen resolution itself at scale 1.
+pub fn shadow_map_side(resolution: u32, scale: f64) -> u32 {
+    if scale >= 1.0 {
+        return resolution;
+    }
+    let side = (resolution as f64 * scale / 64.0).round() as u32 * 64;
+    side.clamp(ShadowSettings::MIN_RESOLUTION.min(resolution), resolution)
 }
 
 /// The largest of [`STEPS`] at most `limit` (a rounding's worth of slack),
@@ -145,10 +160,11 @@ mod tests {
         // Measured at that scale on budget: it stays.
         scale.observe(0.5, &times(0.0, RenderScale::budget_ms()));
         assert!((scale.begin_frame(true) - 0.5).abs() < 1e-12);
-        // A fixed cost (the shadow map) leaves less room for pixels.
+        // The shadow map's cost scales with the image too (its side follows
+        // the scale): half of four budgets in each, half the side.
         scale.observe(
             1.0,
-            &times(0.75 * RenderScale::budget_ms(), RenderScale::budget_ms()),
+            &times(2.0 * RenderScale::budget_ms(), 2.0 * RenderScale::budget_ms()),
         );
         assert!((scale.begin_frame(true) - 0.5).abs() < 1e-12);
         assert_eq!(scale.begin_frame(false), 1.0, "idle frames are full resolution");
@@ -175,6 +191,18 @@ mod tests {
         scale.observe(STEPS[3], &at(STEPS[3], 0.6));
         assert_eq!(scale.begin_frame(true), 0.5);
         assert!(STEPS.windows(2).all(|w| w[0] < w[1]));
+    }
+
+    #[test]
+    fn the_shadow_map_shrinks_with_the_image_only_while_it_is_scaled() {
+        assert_eq!(shadow_map_side(2048, 1.0), 2048);
+        assert_eq!(shadow_map_side(2048, 0.5), 1024);
+        assert_eq!(shadow_map_side(2048, MIN_SCALE), 512);
+        // √2 steps: a multiple of 64 near the exact side (1448.2).
+        assert_eq!(shadow_map_side(2048, STEPS[3]), 1472);
+        assert_eq!(shadow_map_side(512, MIN_SCALE), ShadowSettings::MIN_RESOLUTION);
+        // Never above what was chosen, even below the minimum.
+        assert_eq!(shadow_map_side(100, 0.5), 100);
     }
 
     #[test]
