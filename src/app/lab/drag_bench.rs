@@ -23,32 +23,23 @@ const SETTLE_FRAMES: u32 = 10;
 /// target (see [`DragTarget::step_points`]).
 const SWING_FRAMES: u32 = 60;
 
-/// What the bench drags.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum DragTarget {
-    /// The camera, from the viewport's centre: only the image changes.
-    #[default]
-    Orbit,
-    /// The light gizmo: the image, the shadow map and the light panel's
-    /// position fields change.
-    Light,
-    /// The light radius slider: its panel (the value, the derived
-    /// radiance) and the image change.
-    Slider,
+crate::named_enum! {
+    /// What the bench drags; its name on the command line and in the report.
+    #[derive(Default)]
+    pub enum DragTarget {
+        /// The camera, from the viewport's centre: only the image changes.
+        #[default]
+        Orbit = "orbit",
+        /// The light gizmo: the image, the shadow map and the light panel's
+        /// position fields change.
+        Light = "light",
+        /// The light radius slider: its panel (the value, the derived
+        /// radiance) and the image change.
+        Slider = "slider",
+    }
 }
 
 impl DragTarget {
-    pub const ALL: [Self; 3] = [Self::Orbit, Self::Light, Self::Slider];
-
-    /// Its name on the command line and in the report.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Orbit => "orbit",
-            Self::Light => "light",
-            Self::Slider => "slider",
-        }
-    }
-
     /// Where the drag starts on the target's rectangle.
     fn press_at(self, rect: Rect) -> Pos2 {
         match self {
@@ -67,17 +58,6 @@ impl DragTarget {
             Self::Orbit => 4.0,
             Self::Light | Self::Slider => 2.0,
         }
-    }
-}
-
-impl std::str::FromStr for DragTarget {
-    type Err = String;
-
-    fn from_str(text: &str) -> Result<Self, String> {
-        Self::ALL.into_iter().find(|t| t.name() == text).ok_or_else(|| {
-            let names: Vec<_> = Self::ALL.map(Self::name).into();
-            format!("expected one of {}", names.join(", "))
-        })
     }
 }
 
@@ -435,10 +415,10 @@ mod tests {
 
     #[test]
     fn targets_are_named_on_the_command_line() {
-        for target in DragTarget::ALL {
+        for &target in DragTarget::ALL {
             assert_eq!(target.name().parse(), Ok(target));
         }
         let error = "knob".parse::<DragTarget>().unwrap_err();
-        assert_eq!(error, "expected one of orbit, light, slider");
+        assert_eq!(error, "unknown name 'knob' (allowed: orbit|light|slider)");
     }
 }
