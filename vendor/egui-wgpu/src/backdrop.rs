@@ -23,6 +23,8 @@ pub struct BackdropCache {
     /// rectangles are cleared by copies from it (a render pass clears a
     /// whole texture or nothing).
     blank: Option<wgpu::Texture>,
+    /// The colour `blank` holds (None: not cleared yet).
+    blank_colour: Option<[f32; 4]>,
     /// What was drawn into `texture`.
     drawn: Option<Drawn>,
 }
@@ -41,11 +43,7 @@ pub fn backdrop_len(jobs: &[ClippedPrimitive]) -> usize {
     let samples_user_texture = jobs[..first_callback].iter().any(|job| {
         matches!(&job.primitive, Primitive::Mesh(mesh) if matches!(mesh.texture_id, TextureId::User(_)))
     });
-    if samples_user_texture {
-        0
-    } else {
-        first_callback
-    }
+    if samples_user_texture { 0 } else { first_callback }
 }
 
 impl BackdropCache {
@@ -74,6 +72,7 @@ impl BackdropCache {
         };
         if !fits(&self.texture) || !fits(&self.blank) {
             self.drawn = None;
+            self.blank_colour = None;
             let texture = |label| {
                 device.create_texture(&wgpu::TextureDescriptor {
                     label: Some(label),
@@ -102,12 +101,11 @@ impl BackdropCache {
         let within = match &redraw {
             Redraw::Nothing => None,
             Redraw::Full => {
-                // The blank texture takes the clear colour too (it may be new).
-                drop(begin_pass(
-                    encoder,
-                    blank,
-                    wgpu::LoadOp::Clear(color(clear)),
-                ));
+                // The blank texture takes the clear colour when new or when it changed.
+                if self.blank_colour != Some(clear) {
+                    drop(begin_pass(encoder, blank, wgpu::LoadOp::Clear(color(clear))));
+                    self.blank_colour = Some(clear);
+                }
                 let pass = begin_pass(encoder, texture, wgpu::LoadOp::Clear(color(clear)));
                 Some((pass.forget_lifetime(), None))
             }
@@ -124,15 +122,12 @@ impl BackdropCache {
             drop(pass);
             self.drawn = Some(Drawn::new(backdrop, screen, clear));
         }
-        encoder.copy_texture_to_texture(
-            texture.as_image_copy(),
-            target.as_image_copy(),
-            target.size(),
-        );
+        encoder.copy_texture_to_texture(texture.as_image_copy(), target.as_image_copy(), target.size());
     }
 }
 
-fn color(clear: [f32; 4]) -> wgpu::Color {
+/// The clear colour as a render pass takes it.
+pub(crate) fn color(clear: [f32; 4]) -> wgpu::Color {
     let [r, g, b, a] = clear.map(f64::from);
     wgpu::Color { r, g, b, a }
 }
@@ -162,12 +157,7 @@ fn begin_pass<'a>(
 }
 
 /// Copies the pixels of `rect` from `from` to the same place in `to`.
-fn copy_rect(
-    encoder: &mut wgpu::CommandEncoder,
-    from: &wgpu::Texture,
-    to: &wgpu::Texture,
-    rect: &PixelRect,
-) {
+fn copy_rect(encoder: &mut wgpu::CommandEncoder, from: &wgpu::Texture, to: &wgpu::Texture, rect: &PixelRect) {
     let origin = wgpu::Origin3d {
         x: rect.min[0],
         y: rect.min[1],

@@ -52,10 +52,7 @@ impl PixelRect {
         let min = [round(clip.min.x, 0), round(clip.min.y, 1)];
         Self {
             min,
-            max: [
-                round(clip.max.x, 0).max(min[0]),
-                round(clip.max.y, 1).max(min[1]),
-            ],
+            max: [round(clip.max.x, 0).max(min[0]), round(clip.max.y, 1).max(min[1])],
         }
     }
 
@@ -110,12 +107,7 @@ impl Drawn {
 
     /// What must be drawn again to show `jobs` on `screen` cleared to `clear`
     /// (see the module's rule).
-    pub fn redraw(
-        &self,
-        jobs: &[ClippedPrimitive],
-        screen: &ScreenDescriptor,
-        clear: [f32; 4],
-    ) -> Redraw {
+    pub fn redraw(&self, jobs: &[ClippedPrimitive], screen: &ScreenDescriptor, clear: [f32; 4]) -> Redraw {
         let ppp = screen.pixels_per_point;
         let size = screen.size_in_pixels;
         let same_target = self.size_in_pixels == size

@@ -716,12 +716,7 @@ impl Painter {
                 );
                 wgpu::LoadOp::Load
             } else {
-                wgpu::LoadOp::Clear(wgpu::Color {
-                    r: clear_color[0] as f64,
-                    g: clear_color[1] as f64,
-                    b: clear_color[2] as f64,
-                    a: clear_color[3] as f64,
-                })
+                wgpu::LoadOp::Clear(crate::backdrop::color(clear_color))
             };
             let render_pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("egui_render"),
