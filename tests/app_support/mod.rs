@@ -34,6 +34,13 @@ pub fn harness_with_storage(storage: Option<&dyn eframe::Storage>) -> Harness<'s
     .expect("the app starts on a wgpu device");
     let mut harness = Harness::builder()
         .with_size(SIZE)
+        // `run` settles when no frame asks for another. The lab's GPU work
+        // (renders, timings, readbacks) reports back asynchronously, and each
+        // result that shows a widget for the first time asks one more frame
+        // (egui styles a new widget on its second frame): on a loaded machine
+        // that took 6 frames once, past kittest's default limit of 4. A UI
+        // that never settles still fails, after 16.
+        .with_max_steps(16)
         .renderer(WgpuTestRenderer::from_render_state(render_state))
         .with_render_cursor(false)
         .build_ui_state(
