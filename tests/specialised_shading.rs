@@ -2,7 +2,7 @@
 //! other cases compiled away) gives the pixels of the generic pipeline that
 //! branches on the uniforms, and the pipeline without the aux target gives
 //! the same quantity and displayed image. Every specialisation is compiled
-//! and drawn. Tests elsewhere hold the (specialised) renderer to the f64
+//! and drawn; one compiled ahead, on a thread of its own, draws the same. Tests elsewhere hold the (specialised) renderer to the f64
 //! physics and the CPU reference.
 
 mod common;
@@ -121,4 +121,36 @@ fn every_bias_mode_and_map_layout_specialisation_matches_the_generic_pipeline() 
             }
         }
     }
+}
+
+#[test]
+fn a_pipeline_compiled_ahead_draws_what_one_compiled_when_needed_draws() {
+    let gpu = gpu();
+    let scene = lumlab::scene::default_scene();
+    // A drag's frames, after a full frame (as the app draws them).
+    let drag = ShadeOptions {
+        specialised: true,
+        aux: false,
+        depth_prepass: false,
+    };
+    let settings = lumlab::settings::Settings::default();
+    let size = (64, 48);
+    let mut images = Vec::new();
+    for ahead in [false, true] {
+        let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+        renderer.render(&settings, size);
+        if ahead {
+            renderer.compile_ahead(&settings, drag);
+        }
+        renderer.set_shade_options(drag);
+        renderer.render(&settings, size);
+        assert_eq!(
+            renderer.pipelines_compiled_ahead(),
+            u64::from(ahead),
+            "ahead: {ahead}"
+        );
+        images.push(renderer.read_quantity());
+    }
+    assert!(images[0].iter().any(|t| t[0] > 0.0), "something is lit");
+    assert!(images[0] == images[1], "the same pixels either way");
 }

@@ -84,6 +84,8 @@ pub struct Renderer {
     scene_generation: Option<u64>,
     shade: ShadePass,
     shade_options: ShadeOptions,
+    /// The shadow map's layout in the last frame (None: no map).
+    layout_kind: Option<LayoutKind>,
     raytrace: RayTracePass,
     /// This view's shadow uniforms (filter and bias may differ between views
     /// that share a map).
@@ -133,6 +135,7 @@ impl Renderer {
             scene_generation: None,
             shade,
             shade_options: ShadeOptions::default(),
+            layout_kind: None,
             targets: None,
             has_comparison: false,
             comparison: None,
@@ -191,6 +194,20 @@ impl Renderer {
             targets.comparison.size(),
         );
         true
+    }
+
+    /// Starts compiling, on a thread of its own, the camera pass that a
+    /// frame with `settings` and `options` will need (the shadow map laid out
+    /// as in the last frame): the app asks for a drag's pipeline after each
+    /// full frame, so the drag's first frame does not wait for it.
+    pub fn compile_ahead(&mut self, settings: &Settings, options: ShadeOptions) {
+        let specialisation = Specialisation::for_frame(settings, self.layout_kind, options);
+        self.shade.compile_ahead(&self.device, specialisation);
+    }
+
+    /// How many camera-pass pipelines in use were compiled ahead.
+    pub fn pipelines_compiled_ahead(&self) -> u64 {
+        self.shade.compiled_ahead
     }
 
     /// Draws a frame of `size` pixels and submits it.
@@ -342,7 +359,8 @@ impl Renderer {
         let shadow_group = self
             .shade
             .shadow_group(&self.device, shadow_textures, &shared.dummy_moments);
-        let specialisation = Specialisation::for_frame(settings, layout.map(|l| l.kind), self.shade_options);
+        self.layout_kind = layout.map(|l| l.kind);
+        let specialisation = Specialisation::for_frame(settings, self.layout_kind, self.shade_options);
         self.shade.prepare(&self.device, specialisation);
         let raytrace_group = self.raytrace.prepare(
             &self.device,

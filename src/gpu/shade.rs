@@ -8,6 +8,7 @@ use super::shadow::ShadowTextures;
 use super::specialise::{Specialisation, camera_depth_test};
 use super::uniforms::{GlobalsRaw, uniform_buffer};
 use std::collections::HashMap;
+use std::thread::JoinHandle;
 use wgpu::ShaderStages;
 
 pub struct ShadePass {
@@ -19,6 +20,10 @@ pub struct ShadePass {
     hdr_format: wgpu::TextureFormat,
     /// Compiled on first use, kept: switching views or filters back is free.
     pipelines: HashMap<Specialisation, wgpu::RenderPipeline>,
+    /// Pipelines compiling on threads of their own ([`Self::compile_ahead`]).
+    ahead: HashMap<Specialisation, JoinHandle<wgpu::RenderPipeline>>,
+    /// How many pipelines in use were compiled ahead.
+    pub compiled_ahead: u64,
     /// The depth pre-pass: the nearest depth of every pixel, no colour.
     depth_pipeline: wgpu::RenderPipeline,
     /// Group 2: the ray tracer's (gpu::raytrace).
@@ -139,6 +144,8 @@ impl ShadePass {
             module,
             hdr_format,
             pipelines: HashMap::new(),
+            ahead: HashMap::new(),
+            compiled_ahead: 0,
             depth_pipeline,
             raytrace_layout,
             scene_group: None,
@@ -184,12 +191,37 @@ impl ShadePass {
         )
     }
 
-    /// Compiles the pipeline of a specialisation unless it already is.
+    /// Compiles the pipeline of a specialisation unless it already is
+    /// (waiting for the rest of its compilation if it was started ahead).
     pub fn prepare(&mut self, device: &wgpu::Device, specialisation: Specialisation) {
-        if !self.pipelines.contains_key(&specialisation) {
-            let pipeline =
-                specialisation.pipeline(device, &self.pipeline_layout, &self.module, self.hdr_format);
-            self.pipelines.insert(specialisation, pipeline);
+        if self.pipelines.contains_key(&specialisation) {
+            return;
+        }
+        // A compilation that failed on its thread is done again here, where
+        // its error shows as it would have.
+        let ahead = (self.ahead.remove(&specialisation)).and_then(|thread| thread.join().ok());
+        self.compiled_ahead += u64::from(ahead.is_some());
+        let pipeline = ahead.unwrap_or_else(|| {
+            specialisation.pipeline(device, &self.pipeline_layout, &self.module, self.hdr_format)
+        });
+        self.pipelines.insert(specialisation, pipeline);
+    }
+
+    /// Starts compiling the pipeline of a specialisation on a thread of its
+    /// own, unless it is compiled or compiling: lavapipe takes ~150 ms for
+    /// one, which the first frame needing it would otherwise wait for.
+    pub fn compile_ahead(&mut self, device: &wgpu::Device, specialisation: Specialisation) {
+        if self.pipelines.contains_key(&specialisation) || self.ahead.contains_key(&specialisation) {
+            return;
+        }
+        let (device, layout, module) = (device.clone(), self.pipeline_layout.clone(), self.module.clone());
+        let format = self.hdr_format;
+        let thread = std::thread::Builder::new()
+            .name("camera pass pipeline".to_owned())
+            .spawn(move || specialisation.pipeline(&device, &layout, &module, format));
+        // Without a thread it is compiled when first needed, as before.
+        if let Ok(thread) = thread {
+            self.ahead.insert(specialisation, thread);
         }
     }
 
