@@ -185,17 +185,18 @@ impl GpuViews {
         if h.rendered.as_ref() == Some(&key) && !accumulating {
             return false;
         }
-        h.renderer.set_shade_options(ShadeOptions {
-            aux: !self.render_scale.interacting,
-            depth_prepass: !self.render_scale.interacting,
-            ..Default::default()
-        });
+        let interacting = self.render_scale.interacting;
+        h.renderer.set_shade_options(shade_options(interacting));
         // The key keeps the settings as chosen: the drag's end renders again.
         let mut drawn = settings.clone();
         drawn.shadow.resolution = shadow_map_side(settings.shadow.resolution, self.frame_scale);
         let start = Instant::now();
         h.report = h.renderer.render(&drawn, size);
         h.render_cpu_ms = start.elapsed().as_secs_f64() * 1e3;
+        if !interacting {
+            // The next drag's pipeline compiles while the user looks.
+            h.renderer.compile_ahead(&drawn, shade_options(true));
+        }
         h.renders += 1;
         h.rendered_scale = self.frame_scale;
         if half == Half::A {
@@ -391,6 +392,17 @@ impl PendingProbe {
             }),
             _ => ReadState::Waiting,
         }
+    }
+}
+
+/// The camera pass's options for a frame: interaction frames skip the aux
+/// target (nothing reads V or the texel density back from them) and the
+/// depth pre-pass (at their size it costs what it saves).
+fn shade_options(interacting: bool) -> ShadeOptions {
+    ShadeOptions {
+        aux: !interacting,
+        depth_prepass: !interacting,
+        ..Default::default()
     }
 }
 
