@@ -11,10 +11,12 @@
 //! over the same geometry (their ratio), and the frame rate at the render
 //! scales the app drops to during interaction. Ratios are taken within one
 //! run, so a loaded machine slows both sides alike; the spread is over runs.
+//! Then the first drag frame after a new view, its pipeline compiled on
+//! demand or ahead (`-- first-drag` prints it alone).
 
 use lumlab::gpu::{GpuContext, Renderer, ShadeOptions};
-use lumlab::settings::{Filter, Settings};
-use std::time::Instant;
+use lumlab::settings::{DebugView, Filter, Settings};
+use std::time::{Duration, Instant};
 
 /// The lab's viewport in its default 1600×900 window, side panels open (0.68 Mpixel).
 const VIEWPORT: (u32, u32) = (1000, 680);
@@ -161,6 +163,57 @@ fn interaction(renderer: &mut Renderer) {
     println!();
 }
 
+/// The first drag frame after a full frame of a view not drawn before: its
+/// camera pass compiled when the drag needs it, or compiled ahead on a
+/// thread of its own (as the app starts it after each full frame) while the
+/// user pauses for a second. Each pair of views is new to the renderer.
+fn first_drag(renderer: &mut Renderer) {
+    let drag = ShadeOptions {
+        specialised: true,
+        aux: false,
+        depth_prepass: false,
+    };
+    let size = scaled(VIEWPORT, 0.25);
+    let pairs = [
+        (DebugView::Irradiance, DebugView::Ndotl),
+        (DebugView::Diffuse, DebugView::Specular),
+        (DebugView::Brdf, DebugView::Depth),
+    ];
+    let (mut on_demand, mut ahead) = (Vec::new(), Vec::new());
+    for (first, second) in pairs {
+        for (view, compiled_ahead) in [(first, false), (second, true)] {
+            let mut settings = Settings::default();
+            settings.view.mode = view;
+            renderer.set_shade_options(ShadeOptions::default());
+            renderer.render(&settings, VIEWPORT);
+            renderer.wait_idle();
+            if compiled_ahead {
+                renderer.compile_ahead(&settings, drag);
+                std::thread::sleep(Duration::from_secs(1));
+            }
+            renderer.set_shade_options(drag);
+            let start = Instant::now();
+            renderer.render(&settings, size);
+            renderer.wait_idle();
+            let ms = start.elapsed().as_secs_f64() * 1e3;
+            if compiled_ahead {
+                ahead.push(ms);
+            } else {
+                on_demand.push(ms);
+            }
+        }
+    }
+    renderer.set_shade_options(ShadeOptions::default());
+    println!(
+        "first drag frame ({}×{}) after a full frame of a new view, ms, median (min–max) of {}: pipeline compiled on demand {}, compiled ahead {}\n",
+        size.0,
+        size.1,
+        pairs.len(),
+        spread(&on_demand),
+        spread(&ahead)
+    );
+}
+
 /// What the camera pass's cost is made of (`-- breakdown`): the specialised
 /// pass at full scale with one ingredient taken away at a time, against the
 /// flat pass: the depth pre-pass (timed with the pass, the flat pass has
@@ -248,7 +301,12 @@ fn main() {
         breakdown(&mut renderer);
         return;
     }
+    if std::env::args().any(|a| a == "first-drag") {
+        first_drag(&mut renderer);
+        return;
+    }
     interaction(&mut renderer);
+    first_drag(&mut renderer);
     if std::env::args().any(|a| a == "interaction") {
         return;
     }
