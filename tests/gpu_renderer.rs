@@ -318,6 +318,40 @@ fn shadow_map_is_redrawn_only_when_light_geometry_or_shadow_settings_change() {
 }
 
 #[test]
+fn the_map_from_before_a_drag_is_used_again_at_its_end() {
+    let gpu = gpu();
+    let scene = occluder_scene(20.0, aabb(OCCLUDER.0, OCCLUDER.1));
+    let renderer = || lumlab::gpu::Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    let mut renderer_a = renderer();
+    let mut s = occluder_settings();
+    s.shadow.resolution = 1024;
+    let size = (64, 48);
+    assert!(renderer_a.render(&s, size).shadow_redrawn);
+    let before = renderer_a.read_quantity();
+    // A drag draws a smaller map (the camera turns, the light stays).
+    let mut drag = s.clone();
+    drag.shadow.resolution = 256;
+    drag.camera.eye.x += 0.1;
+    assert!(
+        renderer_a.render(&drag, (16, 12)).shadow_redrawn,
+        "the drag's map"
+    );
+    assert!(
+        !renderer_a.render(&s, size).shadow_redrawn,
+        "the map from before the drag"
+    );
+    assert!(renderer_a.read_quantity() == before, "the same pixels");
+    // A drag that moves the light: the map is drawn again, into textures kept.
+    drag.light.position.x += 0.1;
+    assert!(renderer_a.render(&drag, (16, 12)).shadow_redrawn);
+    s.light.position.x += 0.1;
+    assert!(renderer_a.render(&s, size).shadow_redrawn, "the light moved");
+    let mut never_dragged = renderer();
+    never_dragged.render(&s, size);
+    assert!(renderer_a.read_quantity() == never_dragged.read_quantity());
+}
+
+#[test]
 fn light_among_the_geometry_uses_only_the_cube_faces_that_see_it() {
     let gpu = gpu();
     let scene = occluder_scene(20.0, aabb([2.0, 0.0, -0.5], [3.0, 1.0, 0.5]));

@@ -42,6 +42,12 @@ struct ShadowKey {
 struct ShadowSlot {
     textures: ShadowTextures,
     key: Option<ShadowKey>,
+    /// The map these textures replaced, kept with its key: a drag scales the
+    /// map down and its end scales it back, and the map before the drag is
+    /// then often still right (the light did not move), or at least its
+    /// textures fit (re-creating a 2048² cube took about a full frame's time
+    /// on lavapipe). At most one map more in memory.
+    spare: Option<(ShadowTextures, Option<ShadowKey>)>,
 }
 
 /// The shadow map a frame reads, chosen by [`SharedScene::prepare_shadows`].
@@ -107,6 +113,7 @@ impl SharedScene {
         let slot = ShadowSlot {
             textures: ShadowTextures::new(&self.device, 256, self.caps.array_layers(1), None),
             key: None,
+            spare: None,
         };
         match self.slots.iter().position(Option::is_none) {
             Some(free) => {
@@ -216,15 +223,27 @@ impl SharedScene {
             None if report.shadow_map_unused => (view, false),
             None => {
                 let own = self.slots[view].as_mut().expect("a live view's slot exists");
-                if own.textures.resolution != resolution
-                    || own.textures.layers != texture_layers
-                    || own.textures.moments.is_some() != moments_format.is_some()
-                {
-                    own.textures =
-                        ShadowTextures::new(&self.device, resolution, texture_layers, moments_format);
+                let fits = |t: &ShadowTextures| {
+                    t.resolution == resolution
+                        && t.layers == texture_layers
+                        && t.moments.is_some() == moments_format.is_some()
+                };
+                let holds = own.spare.as_ref().is_some_and(|(_, k)| k.as_ref() == Some(&key));
+                if holds || !fits(&own.textures) {
+                    let (textures, spare_key) = match own.spare.take() {
+                        Some(spare) if holds || fits(&spare.0) => spare,
+                        _ => (
+                            ShadowTextures::new(&self.device, resolution, texture_layers, moments_format),
+                            None,
+                        ),
+                    };
+                    let replaced = std::mem::replace(&mut own.textures, textures);
+                    own.spare = Some((replaced, std::mem::replace(&mut own.key, spare_key)));
                 }
+                // The spare held this very map: nothing to draw.
+                let redraw = !holds;
                 own.key = Some(key);
-                (view, true)
+                (view, redraw)
             }
         };
         report.shadow_redrawn = redraw;
