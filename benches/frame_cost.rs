@@ -11,8 +11,10 @@
 //! over the same geometry (their ratio), and the frame rate at the render
 //! scales the app drops to during interaction. Ratios are taken within one
 //! run, so a loaded machine slows both sides alike; the spread is over runs.
-//! Then the first drag frame after a new view, its pipeline compiled on
-//! demand or ahead (`-- first-drag` prints it alone).
+//! Then a drag's two ends (`-- drag-ends` prints them alone): its first
+//! frame after a new view, the pipeline compiled on demand or ahead, and the
+//! full frame at its end, after an orbit (the map from before the drag
+//! still holds) and after a light drag (drawn again).
 
 use lumlab::gpu::{GpuContext, Renderer, ShadeOptions};
 use lumlab::settings::{DebugView, Filter, Settings};
@@ -214,6 +216,52 @@ fn first_drag(renderer: &mut Renderer) {
     );
 }
 
+/// The full frame at a drag's end, after a drag frame at scale 0.25 (its
+/// shadow map a quarter of the side, as the app draws it): the camera
+/// turned and the light stayed, or the light moved too.
+fn drag_end(renderer: &mut Renderer) {
+    let (mut kept, mut moved) = (Vec::new(), Vec::new());
+    let mut settings = Settings::default();
+    renderer.set_shade_options(ShadeOptions::default());
+    renderer.render(&settings, VIEWPORT);
+    renderer.wait_idle();
+    for run in 0..2 * RUNS {
+        let light_moves = run % 2 == 1;
+        let mut drag = settings.clone();
+        drag.shadow.resolution /= 4;
+        drag.camera.eye = glam::Quat::from_rotation_y(0.02) * drag.camera.eye;
+        if light_moves {
+            drag.light.position.x += 0.01;
+            settings.light.position.x += 0.02;
+        }
+        renderer.set_shade_options(ShadeOptions {
+            specialised: true,
+            aux: false,
+            depth_prepass: false,
+        });
+        renderer.render(&drag, scaled(VIEWPORT, 0.25));
+        renderer.wait_idle();
+        renderer.set_shade_options(ShadeOptions::default());
+        let start = Instant::now();
+        let report = renderer.render(&settings, VIEWPORT);
+        renderer.wait_idle();
+        assert_eq!(report.shadow_redrawn, light_moves);
+        let ms = start.elapsed().as_secs_f64() * 1e3;
+        if light_moves {
+            moved.push(ms);
+        } else {
+            kept.push(ms);
+        }
+    }
+    println!(
+        "full frame ({}×{}) at a drag's end, ms, median (min–max) of {RUNS}: the light kept (the map from before the drag) {}, the light moved (the map drawn again) {}\n",
+        VIEWPORT.0,
+        VIEWPORT.1,
+        spread(&kept),
+        spread(&moved)
+    );
+}
+
 /// What the camera pass's cost is made of (`-- breakdown`): the specialised
 /// pass at full scale with one ingredient taken away at a time, against the
 /// flat pass: the depth pre-pass (timed with the pass, the flat pass has
@@ -301,12 +349,14 @@ fn main() {
         breakdown(&mut renderer);
         return;
     }
-    if std::env::args().any(|a| a == "first-drag") {
+    if std::env::args().any(|a| a == "drag-ends") {
         first_drag(&mut renderer);
+        drag_end(&mut renderer);
         return;
     }
     interaction(&mut renderer);
     first_drag(&mut renderer);
+    drag_end(&mut renderer);
     if std::env::args().any(|a| a == "interaction") {
         return;
     }
