@@ -199,7 +199,10 @@ impl ShadePass {
         }
         // A compilation that failed on its thread is done again here, where
         // its error shows as it would have.
-        let ahead = self.ahead.remove(&specialisation).and_then(|thread| thread.join().ok());
+        let ahead = self
+            .ahead
+            .remove(&specialisation)
+            .and_then(|thread| thread.join().ok());
         self.compiled_ahead += u64::from(ahead.is_some());
         let pipeline = ahead.unwrap_or_else(|| {
             specialisation.pipeline(device, &self.pipeline_layout, &self.module, self.hdr_format)
