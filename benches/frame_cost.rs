@@ -136,11 +136,7 @@ fn interaction(renderer: &mut Renderer) {
             }
             // Interaction frames, as the app draws them: specialised,
             // without the aux target and the depth pre-pass.
-            renderer.set_shade_options(ShadeOptions {
-                specialised: true,
-                aux: false,
-                depth_prepass: false,
-            });
+            renderer.set_shade_options(ShadeOptions::INTERACTION);
             for (k, scale) in SCALES.into_iter().enumerate() {
                 let (_, gpu_ms, wall_ms) = orbit(renderer, &mut settings, scaled(VIEWPORT, scale));
                 let frame_ms = gpu_ms.max(wall_ms);
@@ -170,11 +166,7 @@ fn interaction(renderer: &mut Renderer) {
 /// thread of its own (as the app starts it after each full frame) while the
 /// user pauses for a second. Each pair of views is new to the renderer.
 fn first_drag(renderer: &mut Renderer) {
-    let drag = ShadeOptions {
-        specialised: true,
-        aux: false,
-        depth_prepass: false,
-    };
+    let drag = ShadeOptions::INTERACTION;
     let size = scaled(VIEWPORT, 0.25);
     let pairs = [
         (DebugView::Irradiance, DebugView::Ndotl),
@@ -234,11 +226,7 @@ fn drag_end(renderer: &mut Renderer) {
             drag.light.position.x += 0.01;
             settings.light.position.x += 0.02;
         }
-        renderer.set_shade_options(ShadeOptions {
-            specialised: true,
-            aux: false,
-            depth_prepass: false,
-        });
+        renderer.set_shade_options(ShadeOptions::INTERACTION);
         renderer.render(&drag, scaled(VIEWPORT, 0.25));
         renderer.wait_idle();
         renderer.set_shade_options(ShadeOptions::default());
@@ -289,10 +277,7 @@ fn breakdown(renderer: &mut Renderer) {
         (
             "no depth pre-pass (as while dragging)",
             |_| {},
-            ShadeOptions {
-                depth_prepass: false,
-                ..plain
-            },
+            ShadeOptions::INTERACTION,
         ),
         (
             "filter none (one depth tap)",

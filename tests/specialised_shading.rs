@@ -66,11 +66,7 @@ fn every_view_and_filter_specialisation_matches_the_generic_pipeline() {
             let display = specialised.read_display();
             // As the app's interaction frames draw it (no aux target, no
             // depth pre-pass): the same quantity and the same image.
-            specialised.set_shade_options(ShadeOptions {
-                specialised: true,
-                aux: false,
-                depth_prepass: false,
-            });
+            specialised.set_shade_options(ShadeOptions::INTERACTION);
             specialised.render(&s, size);
             assert!(
                 worst_difference(&specialised.read_quantity(), &q1) < 2e-3,
@@ -128,11 +124,7 @@ fn a_pipeline_compiled_ahead_draws_what_one_compiled_when_needed_draws() {
     let gpu = gpu();
     let scene = lumlab::scene::default_scene();
     // A drag's frames, after a full frame (as the app draws them).
-    let drag = ShadeOptions {
-        specialised: true,
-        aux: false,
-        depth_prepass: false,
-    };
+    let drag = ShadeOptions::INTERACTION;
     let settings = lumlab::settings::Settings::default();
     let size = (64, 48);
     let mut images = Vec::new();

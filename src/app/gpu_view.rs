@@ -186,7 +186,11 @@ impl GpuViews {
             return false;
         }
         let interacting = self.render_scale.interacting;
-        h.renderer.set_shade_options(shade_options(interacting));
+        h.renderer.set_shade_options(if interacting {
+            ShadeOptions::INTERACTION
+        } else {
+            ShadeOptions::default()
+        });
         // The key keeps the settings as chosen: the drag's end renders again.
         let mut drawn = settings.clone();
         drawn.shadow.resolution = shadow_map_side(settings.shadow.resolution, self.frame_scale);
@@ -195,7 +199,7 @@ impl GpuViews {
         h.render_cpu_ms = start.elapsed().as_secs_f64() * 1e3;
         if !interacting {
             // The next drag's pipeline compiles while the user looks.
-            h.renderer.compile_ahead(&drawn, shade_options(true));
+            h.renderer.compile_ahead(&drawn, ShadeOptions::INTERACTION);
         }
         h.renders += 1;
         h.rendered_scale = self.frame_scale;
@@ -392,17 +396,6 @@ impl PendingProbe {
             }),
             _ => ReadState::Waiting,
         }
-    }
-}
-
-/// The camera pass's options for a frame: interaction frames skip the aux
-/// target (nothing reads V or the texel density back from them) and the
-/// depth pre-pass (at their size it costs what it saves).
-fn shade_options(interacting: bool) -> ShadeOptions {
-    ShadeOptions {
-        aux: !interacting,
-        depth_prepass: !interacting,
-        ..Default::default()
     }
 }
 

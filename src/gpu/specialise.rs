@@ -31,6 +31,16 @@ pub struct ShadeOptions {
     pub depth_prepass: bool,
 }
 
+impl ShadeOptions {
+    /// The app's interaction frames (a drag): read back by nobody, so no aux
+    /// target, and small, so no depth pre-pass.
+    pub const INTERACTION: Self = Self {
+        specialised: true,
+        aux: false,
+        depth_prepass: false,
+    };
+}
+
 impl Default for ShadeOptions {
     fn default() -> Self {
         Self {
