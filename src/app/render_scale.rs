@@ -97,10 +97,7 @@ impl RenderScale {
     /// s = scale · √(budget / t_pixels), rounded down to one of [`STEPS`]; a
     /// step up needs [`STEP_UP_MARGIN`] of room.
     pub fn observe(&mut self, scale: f64, times: &PassTimes) {
-        let pixels_ms = [times.shadow_ms, times.blur_ms, times.shade_ms, times.display_ms]
-            .into_iter()
-            .map(|t| t.unwrap_or(0.0))
-            .sum::<f64>();
+        let pixels_ms = times.total_ms();
         if !(pixels_ms > 0.0 && scale > 0.0) {
             return;
         }
