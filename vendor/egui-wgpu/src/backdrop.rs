@@ -163,9 +163,10 @@ fn copy_rect(encoder: &mut wgpu::CommandEncoder, from: &wgpu::Texture, to: &wgpu
         y: rect.min[1],
         z: 0,
     };
+    let [width, height] = rect.size();
     let size = wgpu::Extent3d {
-        width: rect.max[0] - rect.min[0],
-        height: rect.max[1] - rect.min[1],
+        width,
+        height,
         depth_or_array_layers: 1,
     };
     encoder.copy_texture_to_texture(

@@ -56,6 +56,11 @@ impl PixelRect {
         }
     }
 
+    /// Width and height (pixels).
+    pub fn size(&self) -> [u32; 2] {
+        [self.max[0] - self.min[0], self.max[1] - self.min[1]]
+    }
+
     pub fn is_empty(&self) -> bool {
         self.min[0] >= self.max[0] || self.min[1] >= self.max[1]
     }

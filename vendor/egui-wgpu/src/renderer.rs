@@ -1275,7 +1275,8 @@ fn create_index_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
 
 /// lumlab patch: the scissor of a pixel rectangle.
 fn set_scissor(render_pass: &mut wgpu::RenderPass<'static>, r: &PixelRect) {
-    render_pass.set_scissor_rect(r.min[0], r.min[1], r.max[0] - r.min[0], r.max[1] - r.min[1]);
+    let [width, height] = r.size();
+    render_pass.set_scissor_rect(r.min[0], r.min[1], width, height);
 }
 
 // Compile-time check that `Renderer` is `Send + Sync`.
