@@ -1,13 +1,18 @@
 //! Frames stay fluid while the user drags: the viewport renders at a reduced
 //! scale during the drag and at full resolution as soon as it ends (with a
-//! repaint asked for, so the sharp image comes without another event).
+//! repaint asked for, so the sharp image comes without another event), on
+//! the window's device or on one of their own.
 
 mod app_support;
-use app_support::{harness, primary_button};
+mod common;
+use app_support::{harness_with, primary_button, step_until};
 use egui::Event;
+use egui_kittest::Harness;
+use lumlab::app::{DragDevice, LabApp, LaunchOptions};
+use lumlab::gpu::{Renderer, ShadeOptions};
 
 /// The size (pixels) of half A's last rendered image.
-fn rendered_size(harness: &egui_kittest::Harness<'_, lumlab::app::LabApp>) -> (u32, u32) {
+fn rendered_size(harness: &Harness<'_, LabApp>) -> (u32, u32) {
     let texture = harness
         .state()
         .renderer()
@@ -16,22 +21,35 @@ fn rendered_size(harness: &egui_kittest::Harness<'_, lumlab::app::LabApp>) -> (u
     (texture.width(), texture.height())
 }
 
-#[test]
-fn dragging_renders_at_a_reduced_scale_and_releasing_returns_to_full_resolution() {
-    let mut harness = harness();
-    // The first frames' GPU times size the interaction scale.
+/// The lab with drag frames on `device`, warmed up (the first frames' GPU
+/// times size the interaction scale) and the viewport pressed at its
+/// centre: the press's position.
+fn pressed_lab(device: DragDevice) -> (Harness<'static, LabApp>, egui::Pos2) {
+    let options = LaunchOptions {
+        drag_device: device,
+        ..LaunchOptions::default()
+    };
+    let mut harness = harness_with(None, &options);
     for _ in 0..20 {
         harness.step();
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
     let full = harness.state().viewport_size();
-    assert_eq!(rendered_size(&harness), full, "idle: full resolution");
-    let rect = harness.state().viewport_rect();
-    let from = rect.center();
+    let shown = harness.state().shown_image().map(|(_, image)| image.dimensions());
+    assert_eq!(shown, Some(full), "idle: full resolution");
+    let from = harness.state().viewport_rect().center();
     harness.event(Event::PointerMoved(from));
     harness.step();
     primary_button(&mut harness, from, true);
     harness.step();
+    (harness, from)
+}
+
+#[test]
+fn dragging_renders_at_a_reduced_scale_and_releasing_returns_to_full_resolution() {
+    // Drag frames on the window's device, as on a GPU: each renders in its step.
+    let (mut harness, from) = pressed_lab(DragDevice::Same);
+    let full = harness.state().viewport_size();
     let mut to = from;
     for _ in 0..5 {
         let renders = harness.state().renders();
@@ -78,5 +96,74 @@ fn dragging_renders_at_a_reduced_scale_and_releasing_returns_to_full_resolution(
         harness.state().renders(),
         settled,
         "idle again: nothing re-rendered"
+    );
+}
+
+/// A drag on a device of their own (the default on a software adapter):
+/// the images come back a frame or more later, each of the latest view,
+/// at a reduced scale, with the very pixels a renderer of the same
+/// settings gives; the drag's end is a full frame, and a drag frame back
+/// late does not replace it.
+#[test]
+fn drag_frames_on_a_device_of_their_own_show_what_that_device_renders() {
+    let (mut harness, from) = pressed_lab(DragDevice::Own);
+    assert!(harness.state().has_drag_device());
+    let full = harness.state().viewport_size();
+    let gpu = common::gpu();
+    let mut renderer = Renderer::new(
+        &gpu.adapter,
+        &gpu.device,
+        &gpu.queue,
+        harness.state().drawn_scene(),
+    );
+    renderer.set_shade_options(ShadeOptions::INTERACTION);
+    let mut to = from;
+    for _ in 0..3 {
+        let renders = harness.state().renders();
+        to += egui::vec2(20.0, 0.0);
+        harness.event(Event::PointerMoved(to));
+        harness.step();
+        step_until(&mut harness, "a drag frame", |app| app.renders() > renders);
+        let (drawn, shown) = harness.state().shown_image().expect("an image is shown");
+        // The drawn camera's field of view is fitted to the viewport.
+        let camera = harness.state().settings().camera;
+        assert_eq!(
+            (drawn.camera.eye, drawn.camera.target),
+            (camera.eye, camera.target),
+            "of the latest view"
+        );
+        let size = shown.dimensions();
+        assert!(
+            size.0 < full.0 && size.1 < full.1,
+            "dragging shows {size:?} of {full:?}"
+        );
+        renderer.render(&drawn, size);
+        assert!(
+            renderer.read_display() == shown,
+            "the drag device's image is the renderer's, byte for byte"
+        );
+    }
+    let renders = harness.state().renders();
+    primary_button(&mut harness, to, false);
+    harness.step();
+    step_until(&mut harness, "the full frame", |app| app.renders() > renders);
+    let shown_size =
+        |harness: &Harness<'_, LabApp>| harness.state().shown_image().map(|(_, image)| image.dimensions());
+    if shown_size(&harness) != Some(full) {
+        // The release frame showed the last drag frame: the full one follows.
+        let renders = harness.state().renders();
+        step_until(&mut harness, "the full frame", |app| app.renders() > renders);
+    }
+    assert_eq!(shown_size(&harness), Some(full), "released: full resolution");
+    let settled = harness.state().renders();
+    for _ in 0..10 {
+        std::thread::sleep(std::time::Duration::from_millis(30));
+        harness.step();
+    }
+    assert_eq!(shown_size(&harness), Some(full), "no late drag frame replaces it");
+    assert_eq!(
+        harness.state().renders(),
+        settled,
+        "idle again: nothing shown anew"
     );
 }

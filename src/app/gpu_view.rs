@@ -3,8 +3,10 @@
 //! texture (no CPU round trip). B shares A's uploaded scene and, when their
 //! shadow settings give the same map, A's shadow map (`Renderer::sharing`).
 //! A half re-renders only when what it shows changed: its settings, the
-//! image size, the scene or the reference.
+//! image size, the scene or the reference. Drag frames may render on a
+//! device of their own (`drag_device`).
 
+use super::drag_device::{DragDevice, DragFrame, DragRenderer, Job};
 use super::probe::{GpuSample, quantity_is_radiance};
 use super::render_scale::{RenderScale, shadow_map_side};
 use super::viewport_image::{ImageBinding, ImagePipeline};
@@ -27,6 +29,13 @@ struct RenderKey {
     comparison_generation: u64,
 }
 
+/// What comes back with a drag frame rendered on the drag device.
+struct DragTag {
+    key: RenderKey,
+    scale: f64,
+    drawn: Settings,
+}
+
 /// One half of the viewport: a renderer and the texture the window shows.
 pub struct HalfView {
     renderer: Renderer,
@@ -36,6 +45,9 @@ pub struct HalfView {
     shown: Option<wgpu::Texture>,
     image: Option<ImageBinding>,
     rendered: Option<RenderKey>,
+    /// The settings the shown image was drawn with (the shadow map's side
+    /// reduced with the image during a drag).
+    drawn: Option<Settings>,
     scene_generation: u64,
     comparison_generation: u64,
     /// A reference image is set (the error views have something to show).
@@ -87,10 +99,12 @@ pub struct GpuViews {
     /// This frame's render scale (see [`Self::begin_frame`]).
     frame_scale: f64,
     image_pipeline: ImagePipeline,
+    /// Where drag frames render when not on the window's device.
+    drag: Option<DragRenderer<DragTag>>,
 }
 
 impl GpuViews {
-    pub fn new(render_state: egui_wgpu::RenderState, scene: &Scene) -> Self {
+    pub fn new(render_state: egui_wgpu::RenderState, scene: &Arc<Scene>, drag_device: DragDevice) -> Self {
         let renderer = Renderer::new(
             &render_state.adapter,
             &render_state.device,
@@ -100,6 +114,10 @@ impl GpuViews {
         let a = HalfView::new(renderer, 0);
         let caps = a.renderer.capabilities().clone();
         let image_pipeline = ImagePipeline::new(&render_state.device, render_state.target_format);
+        let drag = drag_device
+            .own_on(&render_state.adapter)
+            .then(|| DragRenderer::new(&render_state.adapter, Arc::clone(scene)))
+            .flatten();
         Self {
             render_state,
             halves: [Some(a), None],
@@ -108,7 +126,13 @@ impl GpuViews {
             render_scale: RenderScale::default(),
             frame_scale: 1.0,
             image_pipeline,
+            drag,
         }
+    }
+
+    /// Whether drag frames render on a device of their own.
+    pub fn has_drag_device(&self) -> bool {
+        self.drag.is_some()
     }
 
     pub fn capabilities(&self) -> &Capabilities {
@@ -124,10 +148,13 @@ impl GpuViews {
     }
 
     /// Uploads a new scene, once for both halves (they share it).
-    pub fn set_scene(&mut self, scene: &Scene) {
+    pub fn set_scene(&mut self, scene: &Arc<Scene>) {
         self.scene_generation += 1;
         if let Some(a) = &mut self.halves[Half::A as usize] {
             a.renderer.set_scene(scene);
+        }
+        if let Some(drag) = &self.drag {
+            drag.set_scene(Arc::clone(scene));
         }
         for h in self.halves.iter_mut().flatten() {
             h.scene_generation = self.scene_generation;
@@ -137,6 +164,11 @@ impl GpuViews {
     /// Creates the B renderer when the split view is on, sharing A's scene
     /// and shadow maps; drops it when off (its own shadow map can be large).
     pub fn set_split(&mut self, on: bool) {
+        if let Some(drag) = &self.drag
+            && on != self.halves[Half::B as usize].is_some()
+        {
+            drag.set_split(on);
+        }
         let [a, b] = &mut self.halves;
         match (on, b.is_some()) {
             (true, false) => {
@@ -155,6 +187,9 @@ impl GpuViews {
             && h.comparison_generation != generation
         {
             h.renderer.set_comparison(image.map(|i| (**i).clone()));
+            if let Some(drag) = &self.drag {
+                drag.set_comparison(half, image.cloned());
+            }
             h.comparison_generation = generation;
             h.has_comparison = image.is_some();
         }
@@ -168,9 +203,17 @@ impl GpuViews {
         self.frame_scale
     }
 
-    /// Renders a half if what it shows changed; true when it did. `size`:
-    /// the image size at this frame's render scale.
-    pub fn prepare(&mut self, half: Half, settings: &Settings, size: (u32, u32)) -> bool {
+    /// Renders a half if what it shows changed; true when a new image is
+    /// shown. `size`: the image size at this frame's render scale. On a
+    /// drag device, a drag frame shows the last image that came back and
+    /// sends the next job; `wake` repaints when its image is back.
+    pub fn prepare(
+        &mut self,
+        half: Half,
+        settings: &Settings,
+        size: (u32, u32),
+        wake: &egui::Context,
+    ) -> bool {
         let Some(h) = &mut self.halves[half as usize] else {
             return false;
         };
@@ -180,6 +223,44 @@ impl GpuViews {
             scene_generation: h.scene_generation,
             comparison_generation: h.comparison_generation,
         };
+        if self.drag.as_ref().is_some_and(DragRenderer::is_gone) {
+            self.drag = None;
+        }
+        if let Some(drag) = &mut self.drag {
+            // A frame back after its drag ended is dropped.
+            let frame = drag.take(half);
+            if self.render_scale.interacting {
+                let shown = frame.is_some_and(|frame| {
+                    if half == Half::A {
+                        self.render_scale.rendered(frame.tag.scale);
+                        if let Some(t) = &frame.times {
+                            self.render_scale.observe(frame.tag.scale, t);
+                        }
+                    }
+                    h.show_drag_frame(frame, &self.render_state, &self.image_pipeline);
+                    true
+                });
+                if !drag.busy(half) && h.rendered.as_ref() != Some(&key) {
+                    let mut drawn = settings.clone();
+                    drawn.shadow.resolution = shadow_map_side(settings.shadow.resolution, self.frame_scale);
+                    let tag = DragTag {
+                        key,
+                        scale: self.frame_scale,
+                        drawn: drawn.clone(),
+                    };
+                    drag.render(
+                        Job {
+                            half,
+                            settings: drawn,
+                            size,
+                            tag,
+                        },
+                        wake.clone(),
+                    );
+                }
+                return shown;
+            }
+        }
         // A ray-traced image still accumulating renders on, unchanged settings or not.
         let accumulating = h.renderer.accumulation().is_some_and(|a| !a.is_complete());
         if h.rendered.as_ref() == Some(&key) && !accumulating {
@@ -199,7 +280,10 @@ impl GpuViews {
         h.render_cpu_ms = start.elapsed().as_secs_f64() * 1e3;
         if !interacting {
             // The next drag's pipeline compiles while the user looks.
-            h.renderer.compile_ahead(&drawn, ShadeOptions::INTERACTION);
+            match &self.drag {
+                Some(drag) => drag.compile_ahead(half, drawn.clone()),
+                None => h.renderer.compile_ahead(&drawn, ShadeOptions::INTERACTION),
+            }
         }
         h.renders += 1;
         h.rendered_scale = self.frame_scale;
@@ -210,6 +294,7 @@ impl GpuViews {
             h.times_due = Some(Instant::now() + Duration::from_secs(1));
         }
         h.rendered = Some(key);
+        h.drawn = Some(drawn);
         h.scale = None;
         h.pending_scale = None;
         // Only the views that scale to the image have a scale to read.
@@ -300,6 +385,19 @@ impl GpuViews {
         self.half(half).map_or(0, |h| h.renders)
     }
 
+    /// The image a half shows, read back (blocking), with the settings it
+    /// was drawn with: for tests.
+    pub fn shown_image(&self, half: Half) -> Option<(Settings, image::RgbaImage)> {
+        let h = self.half(half)?;
+        let (texture, drawn) = (h.shown.as_ref()?, h.drawn.clone()?);
+        let rs = &self.render_state;
+        let bytes = crate::gpu::readback::read_texture(&rs.device, &rs.queue, texture, 0, 4);
+        Some((
+            drawn,
+            image::RgbaImage::from_raw(texture.width(), texture.height(), bytes)?,
+        ))
+    }
+
     /// A half's renderer (exports read from A).
     pub fn renderer(&self, half: Half) -> Option<&Renderer> {
         self.half(half).map(|h| &h.renderer)
@@ -317,6 +415,7 @@ impl HalfView {
             shown: None,
             image: None,
             rendered: None,
+            drawn: None,
             scene_generation,
             comparison_generation: 0,
             has_comparison: false,
@@ -333,34 +432,92 @@ impl HalfView {
     }
 
     /// Copies the renderer's display texture into the one the window shows,
-    /// and binds it (a new texture whenever the size changed).
+    /// and binds it.
     fn show_texture(&mut self, render_state: &egui_wgpu::RenderState, pipeline: &ImagePipeline) {
-        let Some(display) = self.renderer.display_texture() else {
+        let Some(size) = self.renderer.display_texture().map(wgpu::Texture::size) else {
             return;
         };
-        let device = &render_state.device;
-        let size = display.size();
-        let recreate = self.shown.as_ref().is_none_or(|t| t.size() != size);
-        if recreate {
-            self.shown = Some(device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("lumlab display (egui)"),
-                size,
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba8Unorm,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            }));
-        }
-        let Some(shown) = &self.shown else { return };
-        let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-            label: Some("lumlab display copy"),
-        });
+        let recreated = self.resize_shown(&render_state.device, size);
+        let (Some(display), Some(shown)) = (self.renderer.display_texture(), &self.shown) else {
+            return;
+        };
+        let mut encoder = render_state
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("lumlab display copy"),
+            });
         // Same bytes, formats that differ only in their sRGB flag: a plain copy.
         encoder.copy_texture_to_texture(display.as_image_copy(), shown.as_image_copy(), size);
         render_state.queue.submit([encoder.finish()]);
-        if !recreate && self.image.is_some() {
+        self.bind_shown(&render_state.device, pipeline, recreated);
+    }
+
+    /// Shows a frame rendered on the drag device: its bytes are written into
+    /// the texture the window shows.
+    fn show_drag_frame(
+        &mut self,
+        frame: DragFrame<DragTag>,
+        render_state: &egui_wgpu::RenderState,
+        pipeline: &ImagePipeline,
+    ) {
+        let (width, height) = frame.image.dimensions();
+        let size = wgpu::Extent3d {
+            width,
+            height,
+            depth_or_array_layers: 1,
+        };
+        self.report = frame.report;
+        self.render_cpu_ms = frame.render_cpu_ms;
+        if frame.times.is_some() {
+            self.times = frame.times;
+        }
+        self.scale = frame.scale;
+        self.pending_scale = None;
+        self.renders += 1;
+        self.rendered_scale = frame.tag.scale;
+        self.rendered = Some(frame.tag.key);
+        self.drawn = Some(frame.tag.drawn);
+        let recreated = self.resize_shown(&render_state.device, size);
+        let Some(shown) = &self.shown else { return };
+        render_state.queue.write_texture(
+            shown.as_image_copy(),
+            &frame.image,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(4 * width),
+                rows_per_image: Some(height),
+            },
+            size,
+        );
+        self.bind_shown(&render_state.device, pipeline, recreated);
+    }
+
+    /// Makes the texture the window shows `size` (a new one when the size
+    /// changed: true then).
+    fn resize_shown(&mut self, device: &wgpu::Device, size: wgpu::Extent3d) -> bool {
+        if self.shown.as_ref().is_some_and(|t| t.size() == size) {
+            return false;
+        }
+        self.shown = Some(device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("lumlab display (egui)"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            // COPY_SRC: tests read back what the window shows.
+            usage: wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_DST
+                | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        }));
+        true
+    }
+
+    /// Binds the shown texture for egui when it is new or not bound yet.
+    fn bind_shown(&mut self, device: &wgpu::Device, pipeline: &ImagePipeline, recreated: bool) {
+        let Some(shown) = &self.shown else { return };
+        if !recreated && self.image.is_some() {
             return;
         }
         let view = shown.create_view(&wgpu::TextureViewDescriptor::default());

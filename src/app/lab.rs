@@ -200,7 +200,7 @@ impl LabApp {
         let ground = state.settings.ground;
         let file_scene = Arc::new(scene);
         let scene = Arc::new(with_ground((*file_scene).clone(), &ground));
-        let gpu = render_state.map(|rs| GpuViews::new(rs, &scene));
+        let gpu = render_state.map(|rs| GpuViews::new(rs, &scene, options.drag_device));
         if gpu.is_none() {
             return Err("eframe started without the wgpu renderer".into());
         }
@@ -297,6 +297,22 @@ impl LabApp {
     /// The probed pixel, if any.
     pub fn probe_pixel(&self) -> Option<super::ProbePixel> {
         self.probe.pixel
+    }
+
+    /// The image half A shows and the settings it was drawn with (see
+    /// `GpuViews::shown_image`).
+    pub fn shown_image(&self) -> Option<(Settings, ::image::RgbaImage)> {
+        self.gpu.as_ref()?.shown_image(Half::A)
+    }
+
+    /// The scene the viewport draws (the file's, with the ground).
+    pub fn drawn_scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// Whether drag frames render on a device of their own.
+    pub fn has_drag_device(&self) -> bool {
+        self.gpu.as_ref().is_some_and(GpuViews::has_drag_device)
     }
 
     /// The renderer of half A (B is the split view's right half).
@@ -498,12 +514,13 @@ impl eframe::App for LabApp {
             };
             let gpu = self.gpu.as_ref();
             let a = gpu.and_then(|g| g.half(Half::A));
-            let before = [
-                gpu.map_or(1.0, |g| g.rendered_scale(Half::A)),
-                self.clock.ui_ms,
-                a.and_then(|h| h.times).map_or(0.0, |t| t.total_ms()),
-                a.and_then(|h| h.times?.shadow_ms).unwrap_or(0.0),
-            ];
+            let before = drag_bench::FrameBefore {
+                scale: gpu.map_or(1.0, |g| g.rendered_scale(Half::A)),
+                ui_ms: self.clock.ui_ms,
+                gpu_ms: a.and_then(|h| h.times).map_or(0.0, |t| t.total_ms()),
+                shadow_ms: a.and_then(|h| h.times?.shadow_ms).unwrap_or(0.0),
+                images: a.map_or(0, |h| h.renders),
+            };
             bench.inject(raw_input, target, before);
         }
     }

@@ -19,6 +19,7 @@
 mod camera_control;
 mod colour;
 mod command;
+mod drag_device;
 mod energy;
 mod files;
 mod gpu_view;
@@ -47,6 +48,7 @@ mod visibility;
 mod widgets;
 
 pub use command::Command;
+pub use drag_device::DragDevice;
 pub use files::FileAction;
 pub use lab::{DragTarget, LabApp};
 pub use lecture::panel_title;
@@ -84,6 +86,8 @@ pub struct LaunchOptions {
     pub drag_bench_frames: Option<u32>,
     /// `--drag-bench-target` (hidden): what the drag bench drags.
     pub drag_bench_target: DragTarget,
+    /// `--drag-device` (hidden): where drag frames render.
+    pub drag_device: DragDevice,
 }
 
 impl LaunchOptions {

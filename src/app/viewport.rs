@@ -290,7 +290,7 @@ impl Viewport<'_> {
         };
         for &half in halves {
             let s = Self::render_settings(settings, split, half, render_size);
-            out.rendered[half as usize] = gpu.prepare(half, &s, render_size);
+            out.rendered[half as usize] = gpu.prepare(half, &s, render_size, ui.ctx());
         }
         out.preview = gpu.rendered_scale(Half::A) < 1.0;
         if out.preview {

@@ -59,6 +59,11 @@ pub struct Cli {
     /// light radius slider.
     #[arg(long, value_name = "orbit|light|slider", hide = true, requires = "drag_bench")]
     pub drag_bench_target: Option<crate::app::DragTarget>,
+
+    /// Where drag frames render: auto (a device of their own on software
+    /// adapters), same (the window's) or own (for measuring).
+    #[arg(long, value_name = "auto|same|own", hide = true)]
+    pub drag_device: Option<crate::app::DragDevice>,
 }
 
 impl Cli {
@@ -73,10 +78,12 @@ impl Cli {
             tour: self.tour.clone(),
             drag_bench_frames: self.drag_bench,
             drag_bench_target: self.drag_bench_target.unwrap_or_default(),
+            drag_device: self.drag_device.unwrap_or_default(),
         };
         let any = options.settings.is_some()
             || options.scene.is_some()
             || options.tour.is_some()
+            || self.drag_device.is_some()
             || options.is_scripted();
         if any && self.command.is_some() {
             return Err(usage(

@@ -17,6 +17,14 @@ pub fn harness() -> Harness<'static, LabApp> {
 
 /// The lab as `harness`, its state restored from `storage` as at start-up.
 pub fn harness_with_storage(storage: Option<&dyn eframe::Storage>) -> Harness<'static, LabApp> {
+    harness_with(storage, &LaunchOptions::default())
+}
+
+/// The lab as `harness`, started with `options`.
+pub fn harness_with(
+    storage: Option<&dyn eframe::Storage>,
+    options: &LaunchOptions,
+) -> Harness<'static, LabApp> {
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.instance_descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
     setup.device_descriptor = Arc::new(lumlab::gpu::context::device_descriptor);
@@ -27,7 +35,7 @@ pub fn harness_with_storage(storage: Option<&dyn eframe::Storage>) -> Harness<'s
     let app = LabApp::new(
         Some(render_state.clone()),
         storage,
-        &LaunchOptions::default(),
+        options,
         Preloaded::default(),
         Arc::default(),
     )

@@ -220,11 +220,11 @@ impl LabApp {
     /// what was computed for the old one goes.
     pub(super) fn redraw_scene(&mut self) {
         self.ground = self.state.settings.ground;
-        let scene = with_ground((*self.file_scene).clone(), &self.ground);
+        let scene = Arc::new(with_ground((*self.file_scene).clone(), &self.ground));
         if let Some(gpu) = &mut self.gpu {
             gpu.set_scene(&scene);
         }
-        self.scene = Arc::new(scene);
+        self.scene = scene;
         self.tracer = None;
         self.reference.clear();
         self.reference_generation += 1;

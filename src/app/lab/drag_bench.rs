@@ -10,7 +10,9 @@
 //! it. The CPU time the process spent over the measured frames (all
 //! threads: the UI thread and a software adapter's rasterizer threads) is
 //! given per frame beside it: unlike the frame rate it hardly depends on
-//! what else the machine runs.
+//! what else the machine runs. Where the view renders on a device of its
+//! own (`--drag-device`), a frame may show no new image: the images the
+//! view showed are counted apart, with their own rate.
 
 use egui::{Event, PointerButton, Pos2, Rect, vec2};
 use std::time::Instant;
@@ -61,6 +63,21 @@ impl DragTarget {
     }
 }
 
+/// What the frame before did, as the next frame's input hook reads it.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct FrameBefore {
+    /// Render scale of the view's last image.
+    pub scale: f64,
+    /// CPU time of the UI pass, rendering included (ms).
+    pub ui_ms: f64,
+    /// GPU time of the renderer's passes, as last measured (ms).
+    pub gpu_ms: f64,
+    /// GPU time of the shadow pass among them (ms).
+    pub shadow_ms: f64,
+    /// Images the view has shown so far.
+    pub images: u64,
+}
+
 pub(super) struct DragBench {
     target: DragTarget,
     /// Frames to measure.
@@ -77,6 +94,10 @@ pub(super) struct DragBench {
     /// GPU time of the shadow pass among them (ms; 0 where the map was
     /// kept): a light drag draws it every frame.
     shadow_ms: Vec<f64>,
+    /// When the view showed a new image, over the measured frames.
+    image_times: Vec<Instant>,
+    /// The view's image count at the frame before.
+    images: u64,
     /// CPU time (process, UI thread) when the measured frames began (s).
     cpu_start: Option<CpuTime>,
     /// CPU time spent over the measured frames (s).
@@ -103,6 +124,8 @@ impl DragBench {
             ui_ms: Vec::new(),
             gpu_ms: Vec::new(),
             shadow_ms: Vec::new(),
+            image_times: Vec::new(),
+            images: 0,
             cpu_start: None,
             cpu_spent: None,
             start: None,
@@ -120,11 +143,11 @@ impl DragBench {
 
     /// Adds this frame's pointer events. `target`: the rectangle of what it
     /// drags, as last laid out (read when the drag starts; None: not on
-    /// screen). `before`: the render scale, the UI pass's CPU time, the
-    /// renderer's last GPU time and its shadow pass's (ms) of the frame before.
-    pub(super) fn inject(&mut self, raw: &mut egui::RawInput, target: Option<Rect>, before: [f64; 4]) {
-        let [scale, ui_ms, gpu_ms, shadow_ms] = before;
+    /// screen). `before`: what the frame before did.
+    pub(super) fn inject(&mut self, raw: &mut egui::RawInput, target: Option<Rect>, before: FrameBefore) {
         let now = Instant::now();
+        let new_image = before.images > self.images;
+        self.images = before.images;
         let k = self.frame;
         self.frame += 1;
         if k < WARM_UP_FRAMES || self.released || self.missing {
@@ -167,10 +190,13 @@ impl DragBench {
                 && let Some(last) = self.last
             {
                 self.intervals_s.push((now - last).as_secs_f64());
-                self.scales.push(scale);
-                self.ui_ms.push(ui_ms);
-                self.gpu_ms.push(gpu_ms);
-                self.shadow_ms.push(shadow_ms);
+                self.scales.push(before.scale);
+                self.ui_ms.push(before.ui_ms);
+                self.gpu_ms.push(before.gpu_ms);
+                self.shadow_ms.push(before.shadow_ms);
+                if new_image {
+                    self.image_times.push(now);
+                }
                 if self.done() {
                     self.cpu_spent = self.cpu_start.zip(CpuTime::now()).map(|(a, b)| b.minus(a));
                 }
@@ -209,9 +235,15 @@ impl DragBench {
                 c.thread_s / n * 1e3
             )
         });
+        let images: Vec<f64> = self
+            .image_times
+            .windows(2)
+            .map(|w| (w[1] - w[0]).as_secs_f64())
+            .collect();
         Some(format!(
-            "{}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms (shadow {:.1}){cpu}",
+            "{}; {}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms (shadow {:.1}){cpu}",
             summary(self.target, &self.intervals_s, &self.scales, viewport),
+            image_summary(&images),
             median(&self.ui_ms),
             median(&self.gpu_ms),
             median(&self.shadow_ms),
@@ -287,6 +319,24 @@ fn summary(target: DragTarget, intervals_s: &[f64], scales: &[f64], viewport: (u
     )
 }
 
+/// "N images: F images/s (…)" from the intervals between new images.
+fn image_summary(intervals_s: &[f64]) -> String {
+    if intervals_s.is_empty() {
+        return "fewer than 2 images".into();
+    }
+    let mut rates: Vec<f64> = intervals_s.iter().map(|t| 1.0 / t).collect();
+    rates.sort_by(f64::total_cmp);
+    format!(
+        "{} images: {:.1} images/s (per image: median {:.1}, 10–90 % {:.1}–{:.1}, min {:.1})",
+        intervals_s.len() + 1,
+        intervals_s.len() as f64 / intervals_s.iter().sum::<f64>(),
+        quantile(&rates, 0.5),
+        quantile(&rates, 0.1),
+        quantile(&rates, 0.9),
+        rates[0],
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -311,6 +361,16 @@ mod tests {
     }
 
     #[test]
+    fn images_are_counted_apart_from_frames() {
+        // 4 images, 3 intervals in 0.2 s: 15 images/s.
+        let line = image_summary(&[0.05, 0.05, 0.1]);
+        assert!(line.starts_with("4 images: 15.0 images/s"), "{line}");
+        assert!(line.contains("median 20.0"), "{line}");
+        assert!(line.contains("min 10.0"), "{line}");
+        assert_eq!(image_summary(&[]), "fewer than 2 images");
+    }
+
+    #[test]
     fn cpu_time_is_read_after_the_command_name() {
         // utime 250 ticks, stime 50 ticks: 3 s; the name holds a space and a ')'.
         let line = "1234 (llvm pipe) x) S 1 2 3 4 5 6 7 8 9 10 250 50 0 0 20 0 3 0";
@@ -325,12 +385,12 @@ mod tests {
         let mut frame = 0;
         while !bench.done() && !bench.missing {
             let mut raw = egui::RawInput::default();
-            bench.inject(&mut raw, target(frame), [0.5, 1.0, 1.0, 0.0]);
+            bench.inject(&mut raw, target(frame), FrameBefore::default());
             events.extend(raw.events);
             frame += 1;
         }
         let mut raw = egui::RawInput::default();
-        bench.inject(&mut raw, target(frame), [0.5, 1.0, 1.0, 0.0]);
+        bench.inject(&mut raw, target(frame), FrameBefore::default());
         events.extend(raw.events);
         events
     }

@@ -238,10 +238,16 @@ impl LabApp {
     /// `--drag-bench`: frames follow one another; once measured, the
     /// result on standard output and the window closes.
     pub(super) fn run_drag_bench(&mut self, ctx: &egui::Context) {
+        let own_device = self.has_drag_device();
         let Some(bench) = &mut self.drag_bench else { return };
         ctx.request_repaint();
         if let Some(line) = bench.report(self.viewport_size) {
-            println!("{line}");
+            let device = if own_device {
+                "a device of their own"
+            } else {
+                "the window's device"
+            };
+            println!("{line}; drag frames on {device}");
             ctx.send_viewport_cmd(egui::ViewportCommand::Close);
         }
     }
