@@ -25,7 +25,7 @@ use crate::settings::Settings;
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::thread::JoinHandle;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 crate::named_enum! {
     /// Where drag frames render (`--drag-device`).
@@ -101,6 +101,7 @@ impl<T: Send + 'static> DragRenderer<T> {
     /// thread; None when the device cannot be created (drag frames then
     /// render on the window's device).
     pub fn new(adapter: &wgpu::Adapter, scene: Arc<Scene>) -> Option<Self> {
+        let adapter = &same_adapter_anew(adapter).unwrap_or_else(|| adapter.clone());
         let descriptor = crate::gpu::context::device_descriptor(adapter);
         let (device, queue) = pollster::block_on(adapter.request_device(&descriptor)).ok()?;
         let (jobs, inbox) = channel();
@@ -165,14 +166,27 @@ impl<T: Send + 'static> DragRenderer<T> {
         self.busy[half] = self.send(Message::Render(job, wake));
     }
 
-    /// A half's finished frame, if one came back since the last call.
-    pub fn take(&mut self, half: Half) -> Option<DragFrame<T>> {
+    /// A half's finished frame, if one came back since the last call or
+    /// comes back within `wait` (none while the half is not busy).
+    pub fn take(&mut self, half: Half, wait: Duration) -> Option<DragFrame<T>> {
         while let Ok(frame) = self.frames.try_recv() {
-            let i = frame.half as usize;
-            self.busy[i] = false;
-            self.ready[i] = Some(frame);
+            self.keep(frame);
+        }
+        let deadline = Instant::now() + wait;
+        while self.ready[half as usize].is_none() && self.busy[half as usize] {
+            let left = deadline.saturating_duration_since(Instant::now());
+            match self.frames.recv_timeout(left) {
+                Ok(frame) => self.keep(frame),
+                Err(_) => break,
+            }
         }
         self.ready[half as usize].take()
+    }
+
+    fn keep(&mut self, frame: DragFrame<T>) {
+        let i = frame.half as usize;
+        self.busy[i] = false;
+        self.ready[i] = Some(frame);
     }
 }
 
@@ -185,6 +199,19 @@ impl<T> Drop for DragRenderer<T> {
             let _ = worker.join();
         }
     }
+}
+
+/// `adapter` as a new instance enumerates it, if it does. lavapipe
+/// rasterizes for all the devices of one instance's adapter on one pool of
+/// threads (perf over a drag: two rasterizer threads busy, the other pool
+/// idle): from an instance of its own, the drag device has its own pool,
+/// and the view's image does not queue behind the window's paint.
+fn same_adapter_anew(adapter: &wgpu::Adapter) -> Option<wgpu::Adapter> {
+    let wanted = adapter.get_info();
+    let instance = crate::gpu::context::instance();
+    pollster::block_on(instance.enumerate_adapters(wanted.backend.into()))
+        .into_iter()
+        .find(|a| a.get_info() == wanted)
 }
 
 /// The worker thread's renderers, one per half as on the window's device

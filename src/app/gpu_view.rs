@@ -7,16 +7,16 @@
 //! device of their own (`drag_device`).
 
 use super::drag_device::{DragDevice, DragFrame, DragRenderer, Job};
-use super::probe::{GpuSample, quantity_is_radiance};
 use super::render_scale::{RenderScale, shadow_map_side};
+use super::view_readback::{PendingFrame, PendingProbe};
 use super::viewport_image::{ImageBinding, ImagePipeline};
 use crate::gpu::readback::ReadState;
 use crate::gpu::timing::PassTimes;
 use crate::gpu::{Capabilities, ShadeOptions};
-use crate::gpu::{ComparisonImage, FloatTarget, FrameReport, PendingScale, PendingTexels, Renderer};
+use crate::gpu::{ComparisonImage, FloatTarget, FrameReport, PendingScale, Renderer};
 use crate::presets::Half;
 use crate::scene::Scene;
-use crate::settings::{DebugView, Settings, Visibility};
+use crate::settings::Settings;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -28,6 +28,10 @@ struct RenderKey {
     scene_generation: u64,
     comparison_generation: u64,
 }
+
+/// How long a drag frame waits for the drag device's image on its way
+/// (a third of a 30 frames/s frame).
+const DRAG_FRAME_WAIT: Duration = Duration::from_millis(10);
 
 /// What comes back with a drag frame rendered on the drag device.
 struct DragTag {
@@ -69,24 +73,6 @@ pub struct HalfView {
     /// The false-colour scale of the displayed frame, once read back.
     pub scale: Option<f32>,
     pending_scale: Option<PendingScale>,
-}
-
-/// A pixel of a half being read back for the probe.
-pub struct PendingProbe {
-    view: DebugView,
-    method: Visibility,
-    aux: PendingTexels,
-    quantity: PendingTexels,
-    aux_value: Option<[f32; 4]>,
-    quantity_value: Option<[f32; 4]>,
-}
-
-/// The whole frame of half A, read back for the error statistics.
-pub struct PendingFrame {
-    quantity: PendingTexels,
-    aux: PendingTexels,
-    quantity_value: Option<Vec<[f32; 4]>>,
-    aux_value: Option<Vec<[f32; 4]>>,
 }
 
 pub struct GpuViews {
@@ -227,8 +213,16 @@ impl GpuViews {
             self.drag = None;
         }
         if let Some(drag) = &mut self.drag {
-            // A frame back after its drag ended is dropped.
-            let frame = drag.take(half);
+            // A frame back after its drag ended is dropped. While dragging,
+            // a frame that would show no new image waits a little for it:
+            // it leaves the cores to the drag device instead of painting
+            // the same image again.
+            let wait = if self.render_scale.interacting {
+                DRAG_FRAME_WAIT
+            } else {
+                Duration::ZERO
+            };
+            let frame = drag.take(half, wait);
             if self.render_scale.interacting {
                 let shown = frame.is_some_and(|frame| {
                     if half == Half::A {
@@ -358,26 +352,22 @@ impl GpuViews {
     pub fn request_probe(&self, half: Half, pixel: (u32, u32)) -> Option<PendingProbe> {
         let h = self.half(half)?;
         let settings = &h.rendered.as_ref()?.settings;
-        Some(PendingProbe {
-            view: settings.view.mode,
-            method: settings.shadow.visibility,
-            aux: h.renderer.request_texels(FloatTarget::Aux, pixel, (1, 1))?,
-            quantity: h.renderer.request_texels(FloatTarget::Quantity, pixel, (1, 1))?,
-            aux_value: None,
-            quantity_value: None,
-        })
+        Some(PendingProbe::new(
+            settings.view.mode,
+            settings.shadow.visibility,
+            h.renderer.request_texels(FloatTarget::Aux, pixel, (1, 1))?,
+            h.renderer.request_texels(FloatTarget::Quantity, pixel, (1, 1))?,
+        ))
     }
 
     /// Starts reading half A's whole frame (quantity and aux).
     pub fn request_frame(&self) -> Option<PendingFrame> {
         let h = self.half(Half::A)?;
         let size = h.rendered.as_ref()?.size;
-        Some(PendingFrame {
-            quantity: h.renderer.request_texels(FloatTarget::Quantity, (0, 0), size)?,
-            aux: h.renderer.request_texels(FloatTarget::Aux, (0, 0), size)?,
-            quantity_value: None,
-            aux_value: None,
-        })
+        Some(PendingFrame::new(
+            h.renderer.request_texels(FloatTarget::Quantity, (0, 0), size)?,
+            h.renderer.request_texels(FloatTarget::Aux, (0, 0), size)?,
+        ))
     }
 
     /// Frames rendered by a half so far.
@@ -524,66 +514,5 @@ impl HalfView {
         // Nearest at full scale: one texel per pixel. Linear for the
         // reduced images of interaction frames.
         self.image = Some(pipeline.bind(device, &view, self.rendered_scale < 1.0));
-    }
-}
-
-impl PendingProbe {
-    /// The GPU's values at the pixel once both reads are back.
-    pub fn poll(&mut self) -> ReadState<GpuSample> {
-        for (pending, slot) in [
-            (&self.aux, &mut self.aux_value),
-            (&self.quantity, &mut self.quantity_value),
-        ] {
-            if slot.is_none() {
-                match pending.poll() {
-                    ReadState::Waiting => {}
-                    ReadState::Ready(texels) => *slot = Some(texels.first().copied().unwrap_or_default()),
-                    ReadState::Failed => return ReadState::Failed,
-                }
-            }
-        }
-        match (self.aux_value, self.quantity_value) {
-            (Some(aux), Some(quantity)) => ReadState::Ready(GpuSample {
-                visibility: aux[0],
-                method: self.method,
-                texel_density: aux[1],
-                radiance: quantity_is_radiance(self.view).then_some([quantity[0], quantity[1], quantity[2]]),
-                // Negative: no illuminant, no ΔE (gpu::delta_e).
-                delta_e: (self.view == DebugView::DeltaE && quantity[0] >= 0.0).then_some(quantity[0]),
-            }),
-            _ => ReadState::Waiting,
-        }
-    }
-}
-
-/// Half A's quantity and aux targets, row-major from the top.
-pub struct FrameTexels {
-    pub quantity: Vec<[f32; 4]>,
-    pub aux: Vec<[f32; 4]>,
-}
-
-impl PendingFrame {
-    /// Both targets once they are back.
-    pub fn poll(&mut self) -> ReadState<FrameTexels> {
-        for (pending, slot) in [
-            (&self.quantity, &mut self.quantity_value),
-            (&self.aux, &mut self.aux_value),
-        ] {
-            if slot.is_none() {
-                match pending.poll() {
-                    ReadState::Waiting => {}
-                    ReadState::Ready(texels) => *slot = Some(texels),
-                    ReadState::Failed => return ReadState::Failed,
-                }
-            }
-        }
-        match (self.quantity_value.take(), self.aux_value.take()) {
-            (Some(quantity), Some(aux)) => ReadState::Ready(FrameTexels { quantity, aux }),
-            (quantity, aux) => {
-                self.quantity_value = quantity;
-                self.aux_value = aux;
-                ReadState::Waiting
-            }
-        }
     }
 }

@@ -42,6 +42,7 @@ mod timings;
 mod toast;
 mod undo;
 mod view;
+mod view_readback;
 mod viewport;
 mod viewport_image;
 mod visibility;

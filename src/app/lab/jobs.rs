@@ -4,8 +4,9 @@
 
 use super::super::LaunchOptions;
 use super::super::command::Command;
-use super::super::gpu_view::{GpuViews, PendingFrame, PendingProbe};
+use super::super::gpu_view::GpuViews;
 use super::super::reference::error_stats;
+use super::super::view_readback::{FrameTexels, PendingFrame, PendingProbe};
 use super::LabApp;
 use crate::gpu::readback::ReadState;
 use crate::scene::Scene;
@@ -161,7 +162,7 @@ impl LabApp {
     }
 
     /// The exposure that shows the lit pixels' bright end near white.
-    fn set_exposure_from(&mut self, frame: &super::super::gpu_view::FrameTexels) {
+    fn set_exposure_from(&mut self, frame: &FrameTexels) {
         let lit: Vec<f64> = frame
             .quantity
             .iter()

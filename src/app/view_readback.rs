@@ -1,0 +1,108 @@
+//! What the app reads back from the viewport's frames without blocking: a
+//! pixel for the probe, half A's whole frame for the error statistics and
+//! the exposure (started by `GpuViews::request_probe` and `request_frame`).
+
+use super::probe::{GpuSample, quantity_is_radiance};
+use crate::gpu::PendingTexels;
+use crate::gpu::readback::ReadState;
+use crate::settings::{DebugView, Visibility};
+
+/// A pixel of a half being read back for the probe.
+pub struct PendingProbe {
+    view: DebugView,
+    method: Visibility,
+    aux: PendingTexels,
+    quantity: PendingTexels,
+    aux_value: Option<[f32; 4]>,
+    quantity_value: Option<[f32; 4]>,
+}
+
+/// The whole frame of half A, read back for the error statistics.
+pub struct PendingFrame {
+    quantity: PendingTexels,
+    aux: PendingTexels,
+    quantity_value: Option<Vec<[f32; 4]>>,
+    aux_value: Option<Vec<[f32; 4]>>,
+}
+
+impl PendingProbe {
+    /// The probe's reads of a pixel of a frame showing `view`, V from `method`.
+    pub fn new(view: DebugView, method: Visibility, aux: PendingTexels, quantity: PendingTexels) -> Self {
+        Self {
+            view,
+            method,
+            aux,
+            quantity,
+            aux_value: None,
+            quantity_value: None,
+        }
+    }
+
+    /// The GPU's values at the pixel once both reads are back.
+    pub fn poll(&mut self) -> ReadState<GpuSample> {
+        for (pending, slot) in [
+            (&self.aux, &mut self.aux_value),
+            (&self.quantity, &mut self.quantity_value),
+        ] {
+            if slot.is_none() {
+                match pending.poll() {
+                    ReadState::Waiting => {}
+                    ReadState::Ready(texels) => *slot = Some(texels.first().copied().unwrap_or_default()),
+                    ReadState::Failed => return ReadState::Failed,
+                }
+            }
+        }
+        match (self.aux_value, self.quantity_value) {
+            (Some(aux), Some(quantity)) => ReadState::Ready(GpuSample {
+                visibility: aux[0],
+                method: self.method,
+                texel_density: aux[1],
+                radiance: quantity_is_radiance(self.view).then_some([quantity[0], quantity[1], quantity[2]]),
+                // Negative: no illuminant, no ΔE (gpu::delta_e).
+                delta_e: (self.view == DebugView::DeltaE && quantity[0] >= 0.0).then_some(quantity[0]),
+            }),
+            _ => ReadState::Waiting,
+        }
+    }
+}
+
+/// Half A's quantity and aux targets, row-major from the top.
+pub struct FrameTexels {
+    pub quantity: Vec<[f32; 4]>,
+    pub aux: Vec<[f32; 4]>,
+}
+
+impl PendingFrame {
+    pub fn new(quantity: PendingTexels, aux: PendingTexels) -> Self {
+        Self {
+            quantity,
+            aux,
+            quantity_value: None,
+            aux_value: None,
+        }
+    }
+
+    /// Both targets once they are back.
+    pub fn poll(&mut self) -> ReadState<FrameTexels> {
+        for (pending, slot) in [
+            (&self.quantity, &mut self.quantity_value),
+            (&self.aux, &mut self.aux_value),
+        ] {
+            if slot.is_none() {
+                match pending.poll() {
+                    ReadState::Waiting => {}
+                    ReadState::Ready(texels) => *slot = Some(texels),
+                    ReadState::Failed => return ReadState::Failed,
+                }
+            }
+        }
+        match (self.quantity_value.take(), self.aux_value.take()) {
+            (Some(quantity), Some(aux)) => ReadState::Ready(FrameTexels { quantity, aux }),
+            (quantity, aux) => {
+                self.quantity_value = quantity;
+                self.aux_value = aux;
+                ReadState::Waiting
+            }
+        }
+    }
+}
