@@ -10,6 +10,7 @@ use egui::Event;
 use egui_kittest::Harness;
 use lumlab::app::{DragDevice, LabApp, LaunchOptions};
 use lumlab::gpu::{Renderer, ShadeOptions};
+use lumlab::presets::Half;
 
 /// The size (pixels) of half A's last rendered image.
 fn rendered_size(harness: &Harness<'_, LabApp>) -> (u32, u32) {
@@ -35,7 +36,10 @@ fn pressed_lab(device: DragDevice) -> (Harness<'static, LabApp>, egui::Pos2) {
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
     let full = harness.state().viewport_size();
-    let shown = harness.state().shown_image().map(|(_, image)| image.dimensions());
+    let shown = harness
+        .state()
+        .shown_image(Half::A)
+        .map(|(_, image)| image.dimensions());
     assert_eq!(shown, Some(full), "idle: full resolution");
     let from = harness.state().viewport_rect().center();
     harness.event(Event::PointerMoved(from));
@@ -124,7 +128,7 @@ fn drag_frames_on_a_device_of_their_own_show_what_that_device_renders() {
         harness.event(Event::PointerMoved(to));
         harness.step();
         step_until(&mut harness, "a drag frame", |app| app.renders() > renders);
-        let (drawn, shown) = harness.state().shown_image().expect("an image is shown");
+        let (drawn, shown) = harness.state().shown_image(Half::A).expect("an image is shown");
         // The drawn camera's field of view is fitted to the viewport.
         let camera = harness.state().settings().camera;
         assert_eq!(
@@ -147,8 +151,12 @@ fn drag_frames_on_a_device_of_their_own_show_what_that_device_renders() {
     primary_button(&mut harness, to, false);
     harness.step();
     step_until(&mut harness, "the full frame", |app| app.renders() > renders);
-    let shown_size =
-        |harness: &Harness<'_, LabApp>| harness.state().shown_image().map(|(_, image)| image.dimensions());
+    let shown_size = |harness: &Harness<'_, LabApp>| {
+        harness
+            .state()
+            .shown_image(Half::A)
+            .map(|(_, image)| image.dimensions())
+    };
     if shown_size(&harness) != Some(full) {
         // The release frame showed the last drag frame: the full one follows.
         let renders = harness.state().renders();
@@ -166,4 +174,31 @@ fn drag_frames_on_a_device_of_their_own_show_what_that_device_renders() {
         settled,
         "idle again: nothing shown anew"
     );
+}
+
+/// In the split view both halves' drag frames come from the drag device.
+#[test]
+fn both_halves_of_the_split_view_get_drag_frames_from_the_drag_device() {
+    let (mut harness, from) = pressed_lab(DragDevice::Own);
+    {
+        let state = harness.state_mut().state_mut();
+        state.split.enabled = true;
+        state.split.layout = lumlab::app::SplitLayout::SideBySide;
+    }
+    harness.step();
+    let full = harness.state().viewport_size();
+    let renders = [Half::A, Half::B].map(|h| harness.state().renders_of(h));
+    harness.event(Event::PointerMoved(from + egui::vec2(20.0, 0.0)));
+    harness.step();
+    step_until(&mut harness, "both halves' drag frames", |app| {
+        app.renders_of(Half::A) > renders[0] && app.renders_of(Half::B) > renders[1]
+    });
+    for half in [Half::A, Half::B] {
+        let (_, image) = harness.state().shown_image(half).expect("an image is shown");
+        let size = image.dimensions();
+        assert!(
+            size.0 < full.0 && size.1 < full.1,
+            "{half:?} shows {size:?} of {full:?} while dragging"
+        );
+    }
 }

@@ -4,11 +4,12 @@
 //! thread that submits it: rendering the view on the window's device keeps
 //! the UI thread waiting for it (~15 ms of a ~30 ms drag frame), then the
 //! window's paint and present wait for the UI thread. With a second device
-//! on the same adapter, the view renders on a worker thread while the UI
-//! thread lays out, paints and presents the last finished image: a drag
-//! frame costs the longer of the two instead of their sum. The worker's
-//! image comes back as bytes (a reduced drag image is ~0.1–0.7 MB) and is
-//! copied into the texture the window shows.
+//! (the same adapter from an instance of its own, see [`same_adapter_anew`]),
+//! the view renders on a worker thread while the UI thread lays out, paints
+//! and presents the last finished image: a drag frame costs the longer of
+//! the two instead of their sum. The worker's image comes back as bytes (a
+//! reduced drag image is ~0.1–0.7 MB) and is copied into the texture the
+//! window shows.
 //!
 //! Only drag frames go there: full frames, the probe's and the error
 //! statistics' readbacks stay on the window's device. A frame that arrives
@@ -101,12 +102,11 @@ impl<T: Send + 'static> DragRenderer<T> {
     /// thread; None when the device cannot be created (drag frames then
     /// render on the window's device).
     pub fn new(adapter: &wgpu::Adapter, scene: Arc<Scene>) -> Option<Self> {
-        let adapter = &same_adapter_anew(adapter).unwrap_or_else(|| adapter.clone());
-        let descriptor = crate::gpu::context::device_descriptor(adapter);
+        let adapter = same_adapter_anew(adapter).unwrap_or_else(|| adapter.clone());
+        let descriptor = crate::gpu::context::device_descriptor(&adapter);
         let (device, queue) = pollster::block_on(adapter.request_device(&descriptor)).ok()?;
         let (jobs, inbox) = channel();
         let (outbox, frames) = channel();
-        let adapter = adapter.clone();
         let worker = std::thread::Builder::new()
             .name("lumlab drag device".into())
             .spawn(move || {
@@ -230,7 +230,11 @@ impl Worker {
                 self.apply(message);
                 continue;
             };
-            // B exists: the split's message came before B's first job.
+            // The split's message comes before B's first job; should it
+            // not, B is made here: every job gets its frame back.
+            if job.half == Half::B {
+                self.set_split(true);
+            }
             let Some(renderer) = &mut self.halves[job.half as usize] else {
                 continue;
             };

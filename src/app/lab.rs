@@ -299,10 +299,10 @@ impl LabApp {
         self.probe.pixel
     }
 
-    /// The image half A shows and the settings it was drawn with (see
+    /// The image a half shows and the settings it was drawn with (see
     /// `GpuViews::shown_image`).
-    pub fn shown_image(&self) -> Option<(Settings, ::image::RgbaImage)> {
-        self.gpu.as_ref()?.shown_image(Half::A)
+    pub fn shown_image(&self, half: Half) -> Option<(Settings, ::image::RgbaImage)> {
+        self.gpu.as_ref()?.shown_image(half)
     }
 
     /// The scene the viewport draws (the file's, with the ground).
@@ -347,7 +347,12 @@ impl LabApp {
 
     /// Frames rendered by half A so far (the lab renders only on change).
     pub fn renders(&self) -> u64 {
-        self.gpu.as_ref().map_or(0, |g| g.renders(Half::A))
+        self.renders_of(Half::A)
+    }
+
+    /// Images a half has shown so far.
+    pub fn renders_of(&self, half: Half) -> u64 {
+        self.gpu.as_ref().map_or(0, |g| g.renders(half))
     }
 
     /// The persisted state (settings, split view, panels, paths).
