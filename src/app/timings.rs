@@ -37,7 +37,7 @@ impl FrameClock {
 }
 
 /// The render scale and the frame rate while dragging.
-fn interaction_rows(ui: &mut egui::Ui, scale: &RenderScale) {
+fn interaction_rows(ui: &mut egui::Ui, scale: &RenderScale, own_device: bool) {
     egui::Grid::new("interaction")
         .num_columns(2)
         .striped(true)
@@ -66,6 +66,16 @@ fn interaction_rows(ui: &mut egui::Ui, scale: &RenderScale) {
                 &tr!("timings-drag-fps"),
                 &scale.drag_fps.map_or_else(|| "—".into(), number),
                 &tr!("timings-drag-fps-tip"),
+            );
+            value_row(
+                ui,
+                &tr!("timings-drag-device"),
+                &if own_device {
+                    tr!("timings-drag-device-own")
+                } else {
+                    tr!("timings-drag-device-window")
+                },
+                &tr!("timings-drag-device-tip"),
             );
         });
 }
@@ -96,7 +106,7 @@ pub fn ui(ui: &mut egui::Ui, clock: &FrameClock, gpu: Option<&GpuViews>) {
         return;
     };
     let caps = gpu.capabilities();
-    interaction_rows(ui, &gpu.render_scale);
+    interaction_rows(ui, &gpu.render_scale, gpu.has_drag_device());
     for half in [Half::A, Half::B] {
         let Some(h) = gpu.half(half) else { continue };
         if gpu.half(Half::B).is_some() {
