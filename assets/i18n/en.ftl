@@ -514,9 +514,9 @@ timings-full = (full)
 timings-render-scale-tip = Image side rendered / viewport side. While dragging, s = s_measured · √((budget − t_shadow) / t_pixels), budget { $budget } ms for { $fps } frames/s, rounded down to a step of √2 (25, 35, 50, 71, 100 %; up a step only with 10 % of room to spare), at least { $min } %; full resolution as soon as the drag ends
 timings-drag-fps = frames/s (drag)
 timings-drag-fps-tip = Frames rendered per second during the last drag: 1 / (time between frames), smoothed
-timings-drag-device = drag frames on
-timings-drag-device-own = a device of their own
-timings-drag-device-window = the window's device
+timings-drag-device = drag frames
+timings-drag-device-own = own device
+timings-drag-device-window = window's device
 timings-drag-device-tip = On a software adapter (lavapipe, llvmpipe) drag frames render on a second device, on a thread of their own, while the window paints the last image that came back; on a GPU they render on the window's device (--drag-device auto|same|own)
 timings-ui-pass = UI pass
 timings-ui-pass-tip = CPU time of the last UI frame, rendering calls included

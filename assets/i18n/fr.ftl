@@ -520,9 +520,9 @@ timings-full = (pleine)
 timings-render-scale-tip = Côté de l'image rendue / côté de la vue. Pendant un glissement, s = s_measured · √((budget − t_shadow) / t_pixels), budget de { $budget } ms pour { $fps } images/s, arrondi au palier de √2 inférieur (25, 35, 50, 71, 100 % ; un palier de plus seulement avec 10 % de marge), au moins { $min } % ; pleine résolution dès la fin du glissement
 timings-drag-fps = images/s (glissement)
 timings-drag-fps-tip = Images rendues par seconde pendant le dernier glissement : 1 / (temps entre deux images), lissé
-timings-drag-device = images de glissement sur
-timings-drag-device-own = leur propre périphérique
-timings-drag-device-window = le périphérique de la fenêtre
+timings-drag-device = glissement
+timings-drag-device-own = périph. propre
+timings-drag-device-window = périph. fenêtre
 timings-drag-device-tip = Sur un adaptateur logiciel (lavapipe, llvmpipe), les images d'un glissement sont rendues sur un second périphérique, dans un fil d'exécution à part, pendant que la fenêtre peint la dernière image revenue ; sur un GPU, sur le périphérique de la fenêtre (--drag-device auto|same|own)
 timings-ui-pass = passe d'interface
 timings-ui-pass-tip = Temps CPU de la dernière image de l'interface, appels de rendu compris
