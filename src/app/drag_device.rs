@@ -65,6 +65,8 @@ pub struct Job<T> {
 /// A finished drag frame.
 pub struct DragFrame<T> {
     pub half: Half,
+    /// The settings it was drawn with (the job's).
+    pub settings: Settings,
     /// sRGB-encoded RGBA bytes, row-major from the top.
     pub image: image::RgbaImage,
     pub report: FrameReport,
@@ -294,6 +296,7 @@ fn render<T>(renderer: &mut Renderer, job: Job<T>) -> DragFrame<T> {
     let scale = crate::gpu::display::scales_to_image(job.settings.view.mode).then(|| renderer.read_scale());
     DragFrame {
         half: job.half,
+        settings: job.settings,
         image,
         report,
         times: renderer.wait_timings(),

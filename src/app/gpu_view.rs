@@ -37,7 +37,15 @@ const DRAG_FRAME_WAIT: Duration = Duration::from_millis(10);
 struct DragTag {
     key: RenderKey,
     scale: f64,
-    drawn: Settings,
+}
+
+/// The settings a frame at render scale `scale` is drawn with: the
+/// shadow map's side scaled with the image ([`shadow_map_side`]). The key
+/// keeps the settings as chosen, so the drag's end renders again.
+fn drawn_at(settings: &Settings, scale: f64) -> Settings {
+    let mut drawn = settings.clone();
+    drawn.shadow.resolution = shadow_map_side(settings.shadow.resolution, scale);
+    drawn
 }
 
 /// One half of the viewport: a renderer and the texture the window shows.
@@ -235,17 +243,14 @@ impl GpuViews {
                     true
                 });
                 if !drag.busy(half) && h.rendered.as_ref() != Some(&key) {
-                    let mut drawn = settings.clone();
-                    drawn.shadow.resolution = shadow_map_side(settings.shadow.resolution, self.frame_scale);
                     let tag = DragTag {
                         key,
                         scale: self.frame_scale,
-                        drawn: drawn.clone(),
                     };
                     drag.render(
                         Job {
                             half,
-                            settings: drawn,
+                            settings: drawn_at(settings, self.frame_scale),
                             size,
                             tag,
                         },
@@ -266,9 +271,7 @@ impl GpuViews {
         } else {
             ShadeOptions::default()
         });
-        // The key keeps the settings as chosen: the drag's end renders again.
-        let mut drawn = settings.clone();
-        drawn.shadow.resolution = shadow_map_side(settings.shadow.resolution, self.frame_scale);
+        let drawn = drawn_at(settings, self.frame_scale);
         let start = Instant::now();
         h.report = h.renderer.render(&drawn, size);
         h.render_cpu_ms = start.elapsed().as_secs_f64() * 1e3;
@@ -279,16 +282,13 @@ impl GpuViews {
                 None => h.renderer.compile_ahead(&drawn, ShadeOptions::INTERACTION),
             }
         }
-        h.renders += 1;
-        h.rendered_scale = self.frame_scale;
+        h.shows(key, drawn, self.frame_scale);
         if half == Half::A {
             self.render_scale.rendered(self.frame_scale);
         }
         if self.caps.timestamps {
             h.times_due = Some(Instant::now() + Duration::from_secs(1));
         }
-        h.rendered = Some(key);
-        h.drawn = Some(drawn);
         h.scale = None;
         h.pending_scale = None;
         // Only the views that scale to the image have a scale to read.
@@ -442,6 +442,14 @@ impl HalfView {
         self.bind_shown(&render_state.device, pipeline, recreated);
     }
 
+    /// Counts a new image, rendered from `key` with `drawn` at render scale `scale`.
+    fn shows(&mut self, key: RenderKey, drawn: Settings, scale: f64) {
+        self.renders += 1;
+        self.rendered = Some(key);
+        self.drawn = Some(drawn);
+        self.rendered_scale = scale;
+    }
+
     /// Shows a frame rendered on the drag device: its bytes are written into
     /// the texture the window shows.
     fn show_drag_frame(
@@ -463,10 +471,7 @@ impl HalfView {
         }
         self.scale = frame.scale;
         self.pending_scale = None;
-        self.renders += 1;
-        self.rendered_scale = frame.tag.scale;
-        self.rendered = Some(frame.tag.key);
-        self.drawn = Some(frame.tag.drawn);
+        self.shows(frame.tag.key, frame.settings, frame.tag.scale);
         let recreated = self.resize_shown(&render_state.device, size);
         let Some(shown) = &self.shown else { return };
         render_state.queue.write_texture(

@@ -40,17 +40,12 @@ impl PendingProbe {
 
     /// The GPU's values at the pixel once both reads are back.
     pub fn poll(&mut self) -> ReadState<GpuSample> {
-        for (pending, slot) in [
+        let reads = [
             (&self.aux, &mut self.aux_value),
             (&self.quantity, &mut self.quantity_value),
-        ] {
-            if slot.is_none() {
-                match pending.poll() {
-                    ReadState::Waiting => {}
-                    ReadState::Ready(texels) => *slot = Some(texels.first().copied().unwrap_or_default()),
-                    ReadState::Failed => return ReadState::Failed,
-                }
-            }
+        ];
+        if !collect(reads, |texels| texels.first().copied().unwrap_or_default()) {
+            return ReadState::Failed;
         }
         match (self.aux_value, self.quantity_value) {
             (Some(aux), Some(quantity)) => ReadState::Ready(GpuSample {
@@ -84,17 +79,12 @@ impl PendingFrame {
 
     /// Both targets once they are back.
     pub fn poll(&mut self) -> ReadState<FrameTexels> {
-        for (pending, slot) in [
+        let reads = [
             (&self.quantity, &mut self.quantity_value),
             (&self.aux, &mut self.aux_value),
-        ] {
-            if slot.is_none() {
-                match pending.poll() {
-                    ReadState::Waiting => {}
-                    ReadState::Ready(texels) => *slot = Some(texels),
-                    ReadState::Failed => return ReadState::Failed,
-                }
-            }
+        ];
+        if !collect(reads, |texels| texels) {
+            return ReadState::Failed;
         }
         match (self.quantity_value.take(), self.aux_value.take()) {
             (Some(quantity), Some(aux)) => ReadState::Ready(FrameTexels { quantity, aux }),
@@ -105,4 +95,19 @@ impl PendingFrame {
             }
         }
     }
+}
+
+/// Polls the reads whose values are not back yet, keeping each value as
+/// `keep` makes it from the texels; false when a read failed.
+fn collect<T>(reads: [(&PendingTexels, &mut Option<T>); 2], keep: impl Fn(Vec<[f32; 4]>) -> T) -> bool {
+    for (pending, slot) in reads {
+        if slot.is_none() {
+            match pending.poll() {
+                ReadState::Waiting => {}
+                ReadState::Ready(texels) => *slot = Some(keep(texels)),
+                ReadState::Failed => return false,
+            }
+        }
+    }
+    true
 }
