@@ -195,6 +195,11 @@ impl DirectionGrid {
             .then_some(cell)
     }
 
+    /// Whether the cell lists no triangle: every ray in it misses them all.
+    pub fn is_empty(&self, cell: Cell) -> bool {
+        self.cells[cell.0].1 == 0
+    }
+
     /// Whether the cell lists too many triangles and defers to the BVH.
     pub fn is_crowded(&self, cell: Cell) -> bool {
         self.cells[cell.0].1 == CROWDED

@@ -36,17 +36,20 @@ impl Reference {
         options: &ReferenceOptions,
         control: &RenderControl,
     ) -> Result<ReferenceImage, ReferenceError> {
-        self.render_in_runs(settings, options, control, RUN)
+        self.render_in_runs(settings, options, control, RUN, true)
     }
 
     /// [`Self::render`] with primary packets of `run` pixels where there is
-    /// no eye grid.
+    /// no eye grid; `skip`: blocks of pixels that see only background are
+    /// told so without casting their samples (the same pixels; false for
+    /// the tests that show it).
     fn render_in_runs(
         &self,
         settings: &Settings,
         options: &ReferenceOptions,
         control: &RenderControl,
         run: u32,
+        skip: bool,
     ) -> Result<ReferenceImage, ReferenceError> {
         settings.validate()?;
         let start = Instant::now();
@@ -72,7 +75,7 @@ impl Reference {
         let spp = Strata::new(options.spp);
         let rendered: Vec<Option<Tile>> = tiles
             .par_iter()
-            .map(|&(x0, y0)| self.render_tile(&setup, spp, (x0, y0), run, control))
+            .map(|&(x0, y0)| self.render_tile(&setup, spp, (x0, y0), run, skip, control))
             .collect();
         if control.cancelled() {
             return Err(ReferenceError::Cancelled);
@@ -115,12 +118,15 @@ impl Reference {
 
     /// One tile from (x0, y0), with primary packets of `run` pixels (2 rows
     /// by run / 2 columns) where there is no eye grid, or None when cancelled.
+    /// `skip`: tiles, blocks and pixels whose cone meets no triangle are
+    /// background without a sample cast.
     fn render_tile(
         &self,
         setup: &Setup,
         spp: Strata,
         (x0, y0): (u32, u32),
         run: u32,
+        skip: bool,
         control: &RenderControl,
     ) -> Option<Tile> {
         let run = if setup.eye_grid.is_none() && spp.count() > 1 {
@@ -138,6 +144,22 @@ impl Reference {
             shadow_rays: 0,
             noise_known: true,
         };
+        let n = spp.count();
+        let sees = |x: u32, y: u32, width: u32, height: u32| {
+            !skip || self.bvh.meets_cone(&block_cone(setup, (x, y), (width, height)))
+        };
+        if !sees(x0, y0, x1 - x0, y1 - y0) {
+            if control.cancelled() {
+                return None;
+            }
+            for _ in 0..(x1 - x0) * (y1 - y0) {
+                tile.add(Pixel::background(n));
+            }
+            control
+                .pixels_done
+                .fetch_add(((x1 - x0) * (y1 - y0)) as usize, Ordering::Relaxed);
+            return Some(tile);
+        }
         let mut buffers = PixelBuffers::default();
         // Blocks of `run` pixels, two rows by run / 2 columns (or one row).
         let (cols, rows) = if run > 1 { (run / 2, 2) } else { (1, 1) };
@@ -150,14 +172,25 @@ impl Reference {
             for i in (x0..x1).step_by(cols as usize) {
                 let width = cols.min(x1 - i);
                 if width * band == 1 {
-                    self.trace_pixel_samples(setup, spp, i, j, &mut buffers);
-                    tile.add(self.shade_pixel(setup, spp.count(), &mut buffers));
+                    let pixel_sees = self.trace_pixel_samples(setup, spp, i, j, skip, &mut buffers);
+                    tile.add(if pixel_sees {
+                        self.shade_pixel(setup, n, &mut buffers)
+                    } else {
+                        Pixel::background(n)
+                    });
                     continue;
                 }
-                self.trace_run(setup, spp, (i, j), (width, band), &mut buffers);
+                let block_sees = sees(i, j, width, band);
+                if block_sees {
+                    self.trace_run(setup, spp, (i, j), (width, band), &mut buffers);
+                }
                 for k in 0..(width * band) as usize {
-                    self.run_pixel_samples(setup, k, spp.count() as usize, &mut buffers);
-                    let pixel = self.shade_pixel(setup, spp.count(), &mut buffers);
+                    let pixel = if block_sees {
+                        self.run_pixel_samples(setup, k, n as usize, &mut buffers);
+                        self.shade_pixel(setup, n, &mut buffers)
+                    } else {
+                        Pixel::background(n)
+                    };
                     if k < width as usize {
                         tile.add(pixel);
                     } else {
@@ -196,7 +229,6 @@ impl Reference {
         } = buffers;
         run_samples.clear();
         directions.clear();
-        let (x, y) = (i as f64, j as f64);
         for r in 0..height {
             for c in 0..width {
                 for (sx, sy, rng) in sample_points(setup, spp, i + c, j + r) {
@@ -205,9 +237,7 @@ impl Reference {
                 }
             }
         }
-        let (far_x, far_y) = (x + width as f64, y + height as f64);
-        let corners = [(x, y), (far_x, y), (far_x, far_y), (x, far_y)];
-        let cone = Cone::spanned(setup.rays.eye, corners.map(|(cx, cy)| setup.rays.towards(cx, cy)));
+        let cone = block_cone(setup, (i, j), (width, height));
         self.bvh.closest_hits_in_cone(&cone, directions, packet);
     }
 
@@ -226,9 +256,18 @@ impl Reference {
     /// primary ray, then (in `shade_pixel`) the light at every surface. Two
     /// short loops of independent iterations let the CPU overlap the
     /// samples' long chains of divisions and square roots better than one
-    /// long loop does (8 %).
+    /// long loop does (8 %). False, and no samples, when `skip` and the
+    /// pixel lies in an empty cell of the eye grid: it sees only background.
     #[inline(always)]
-    fn trace_pixel_samples(&self, setup: &Setup, spp: Strata, i: u32, j: u32, buffers: &mut PixelBuffers) {
+    fn trace_pixel_samples(
+        &self,
+        setup: &Setup,
+        spp: Strata,
+        i: u32,
+        j: u32,
+        skip: bool,
+        buffers: &mut PixelBuffers,
+    ) -> bool {
         let n = spp.count();
         let (x, y) = (i as f64, j as f64);
         // Several samples: find their cell once when it is the same for all.
@@ -237,6 +276,9 @@ impl Reference {
             .as_ref()
             .filter(|_| n > 1)
             .and_then(|grid| grid.pixel_cell(&setup.rays, x, y));
+        if skip && cell.is_some_and(|c| setup.eye_grid.as_ref().is_some_and(|g| g.is_empty(c))) {
+            return false;
+        }
         // Crowded cells (or none): the pixel's rays go through the BVH
         // together, as one packet in the cone of its corner rays.
         let packet = n > 1
@@ -253,6 +295,7 @@ impl Reference {
                 buffers.samples.push((self.surface(setup, sx, sy, cell), rng));
             }
         }
+        true
     }
 
     /// The pixel from its samples in `buffers.samples` (`n` of them).
@@ -332,6 +375,15 @@ struct PixelBuffers {
     run_samples: Vec<Rng>,
 }
 
+/// The cone from the eye of the block of width × height pixels from (x, y),
+/// spanned by its corner rays: every primary ray of the block lies inside.
+fn block_cone(setup: &Setup, (x, y): (u32, u32), (width, height): (u32, u32)) -> Cone {
+    let (x, y) = (x as f64, y as f64);
+    let (far_x, far_y) = (x + width as f64, y + height as f64);
+    let corners = [(x, y), (far_x, y), (far_x, far_y), (x, far_y)];
+    Cone::spanned(setup.rays.eye, corners.map(|(cx, cy)| setup.rays.towards(cx, cy)))
+}
+
 /// Pixel (i, j)'s primary sample points (image coordinates) and their
 /// random streams, stratum by stratum.
 fn sample_points(setup: &Setup, spp: Strata, i: u32, j: u32) -> impl Iterator<Item = (f64, f64, Rng)> + '_ {
@@ -358,6 +410,22 @@ struct Pixel {
     primary_rays: u64,
     shadow_rays: u64,
     noise_known: bool,
+}
+
+impl Pixel {
+    /// A pixel whose `n` samples all see the background: what
+    /// `Reference::shade_pixel` makes of them.
+    fn background(n: u32) -> Self {
+        Self {
+            radiance: [0.0; 3],
+            visibility: 0.0,
+            coverage: 0.0,
+            noise: 0.0,
+            primary_rays: n as u64,
+            shadow_rays: 0,
+            noise_known: true,
+        }
+    }
 }
 
 struct Tile {
@@ -412,15 +480,59 @@ mod tests {
         };
         let control = RenderControl::default();
         let single = reference
-            .render_in_runs(&settings, &options, &control, 1)
+            .render_in_runs(&settings, &options, &control, 1, true)
             .unwrap();
         let runs = reference
-            .render_in_runs(&settings, &options, &control, RUN)
+            .render_in_runs(&settings, &options, &control, RUN, true)
             .unwrap();
         assert!(single.coverage.iter().any(|&c| c > 0.0) && single.visibility.iter().any(|&v| v < 1.0));
         assert_eq!(single.radiance, runs.radiance);
         assert_eq!(single.visibility, runs.visibility);
         assert_eq!(single.coverage, runs.coverage);
         assert_eq!(single.noise, runs.noise);
+    }
+
+    /// Tiles, blocks and pixels that see only background are told so
+    /// without casting their samples, and the image is the same bit for
+    /// bit: through the eye grid (small scene) and the BVH's packets.
+    #[test]
+    fn skipping_background_blocks_changes_no_pixel() {
+        for divisions in [10, 100] {
+            let ground = shapes::ground_grid(Vec3::ZERO, 6.0, divisions);
+            let scene = Scene {
+                objects: vec![Object::new("ground", ground, 0)],
+                materials: vec![crate::scene::Material::default()],
+                ..Scene::default()
+            };
+            let reference = Reference::new(&scene);
+            let mut settings = Settings::default();
+            // Level with the ground's far edge: the top half is sky, the
+            // horizon runs through tiles and blocks.
+            settings.camera.eye = Vec3::new(0.3, 1.0, 2.0);
+            settings.camera.target = Vec3::new(0.0, 0.9, -3.0);
+            settings.light.position = Vec3::new(-1.0, 4.0, 1.0);
+            (settings.image.width, settings.image.height) = (40, 36);
+            let options = ReferenceOptions {
+                spp: 4,
+                ..ReferenceOptions::default()
+            };
+            let setup = Setup::new(&settings, 1, 0, &reference.materials);
+            assert!(!reference.bvh.meets_cone(&block_cone(&setup, (0, 0), (16, 16))));
+            assert!(reference.bvh.meets_cone(&block_cone(&setup, (0, 20), (16, 16))));
+            let control = RenderControl::default();
+            let cast = reference
+                .render_in_runs(&settings, &options, &control, RUN, false)
+                .unwrap();
+            let skipped = reference
+                .render_in_runs(&settings, &options, &control, RUN, true)
+                .unwrap();
+            assert!(cast.coverage.contains(&0.0) && cast.coverage.contains(&1.0));
+            assert_eq!(cast.radiance, skipped.radiance);
+            assert_eq!(cast.visibility, skipped.visibility);
+            assert_eq!(cast.coverage, skipped.coverage);
+            assert_eq!(cast.noise, skipped.noise);
+            assert_eq!(cast.noise_known, skipped.noise_known);
+            assert_eq!(cast.stats.primary_rays, skipped.stats.primary_rays);
+        }
     }
 }

@@ -188,6 +188,16 @@ impl TriangleBvh {
         TRAVERSAL.set(owned);
     }
 
+    /// Whether a triangle may meet `cone`: false only when none does, so
+    /// that no ray inside it hits anything (a block of pixels that sees
+    /// only background). The walk's own filters, stopped at the first
+    /// triangle they keep.
+    pub fn meets_cone(&self, cone: &Cone) -> bool {
+        let mut probe = Probe::default();
+        self.walk_cone(cone, &mut probe);
+        probe.found
+    }
+
     /// The closest hit, t > 0, of each ray from the cone's apex along
     /// `directions` (each inside the cone), into `hits`: what
     /// [`Self::closest_hit`] gives each with t ∈ (0, ∞).
@@ -235,6 +245,48 @@ impl TriangleBvh {
             }
         }
         self.walk_cone(cone, packet);
+    }
+}
+
+/// No ray, only whether the walk keeps a triangle (see [`TriangleBvh::meets_cone`]).
+struct Probe {
+    /// [∞] until a triangle is kept, then [−1]: the walk stops.
+    limits: [f64; 1],
+    found: bool,
+    lines: Lines,
+}
+
+impl Default for Probe {
+    fn default() -> Self {
+        Self {
+            limits: [f64::INFINITY],
+            found: false,
+            lines: Lines::default(),
+        }
+    }
+}
+
+impl Rays for Probe {
+    fn limits(&self) -> &[f64] {
+        &self.limits
+    }
+
+    fn lines(&self) -> &Lines {
+        &self.lines
+    }
+
+    fn takes(&self, _: &TriangleBvh, _: usize) -> bool {
+        true
+    }
+
+    /// Never called (the probe has no rays): as `test`.
+    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], _: usize) -> bool {
+        self.test(bvh, slot, relative, 0.0)
+    }
+
+    fn test(&mut self, _: &TriangleBvh, _: usize, _: &[DVec3; 3], _: f64) -> bool {
+        (self.found, self.limits) = (true, [-1.0]);
+        true
     }
 }
 
