@@ -1,6 +1,7 @@
-//! A pixel's shadow rays towards a point light, cast together: they all
-//! end at the light and start at the pixel's surface points, so they lie in
-//! one narrow cone from the light, and walk the BVH as one packet (see
+//! The shadow rays of a pixel (or of a block of pixels traced together)
+//! towards a point light, cast together: they all end at the light and
+//! start at the pixels' surface points, so they lie in one narrow cone from
+//! the light, and walk the BVH as one packet (see
 //! [`TriangleBvh::occluded_in_cone`]), lazily, at the first ray the light's
 //! grid cannot answer. Each ray is still decided by the same f64 test, so
 //! every answer is the one the BVH gives that ray on its own.

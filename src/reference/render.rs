@@ -174,7 +174,8 @@ impl Reference {
                 if width * band == 1 {
                     let pixel_sees = self.trace_pixel_samples(setup, spp, i, j, skip, &mut buffers);
                     tile.add(if pixel_sees {
-                        self.shade_pixel(setup, n, &mut buffers)
+                        self.aim_light_packet(setup, &mut buffers);
+                        self.shade_pixel(setup, 0, n, &mut buffers)
                     } else {
                         Pixel::background(n)
                     });
@@ -183,11 +184,12 @@ impl Reference {
                 let block_sees = sees(i, j, width, band);
                 if block_sees {
                     self.trace_run(setup, spp, (i, j), (width, band), &mut buffers);
+                    self.run_samples(setup, &mut buffers);
+                    self.aim_light_packet(setup, &mut buffers);
                 }
                 for k in 0..(width * band) as usize {
                     let pixel = if block_sees {
-                        self.run_pixel_samples(setup, k, n as usize, &mut buffers);
-                        self.shade_pixel(setup, n, &mut buffers)
+                        self.shade_pixel(setup, k * n as usize, n, &mut buffers)
                     } else {
                         Pixel::background(n)
                     };
@@ -241,11 +243,12 @@ impl Reference {
         self.bvh.closest_hits_in_cone(&cone, directions, packet);
     }
 
-    /// Pixel k (row by row) of a traced block (`n` samples each) into `buffers.samples`.
+    /// Every sample of a traced block, pixel by pixel (row by row), into
+    /// `buffers.samples`.
     #[inline(always)]
-    fn run_pixel_samples(&self, setup: &Setup, k: usize, n: usize, buffers: &mut PixelBuffers) {
+    fn run_samples(&self, setup: &Setup, buffers: &mut PixelBuffers) {
         buffers.samples.clear();
-        for s in k * n..(k + 1) * n {
+        for s in 0..buffers.directions.len() {
             let surface =
                 buffers.packet.hits[s].map(|hit| self.surface_at(setup, buffers.directions[s], hit));
             buffers.samples.push((surface, buffers.run_samples[s].clone()));
@@ -288,7 +291,7 @@ impl Reference {
             });
         if packet {
             self.trace_run(setup, spp, (i, j), (1, 1), buffers);
-            self.run_pixel_samples(setup, 0, n as usize, buffers);
+            self.run_samples(setup, buffers);
         } else {
             buffers.samples.clear();
             for (sx, sy, rng) in sample_points(setup, spp, i, j) {
@@ -298,9 +301,23 @@ impl Reference {
         true
     }
 
-    /// The pixel from its samples in `buffers.samples` (`n` of them).
+    /// Aims the light packet at the shadow rays of every sample in
+    /// `buffers.samples` (a pixel's, or a block's: one walk for them all).
     #[inline(always)]
-    fn shade_pixel(&self, setup: &Setup, n: u32, buffers: &mut PixelBuffers) -> Pixel {
+    fn aim_light_packet(&self, setup: &Setup, buffers: &mut PixelBuffers) {
+        if setup.shadows && !setup.is_sphere_light() {
+            let origins = buffers
+                .samples
+                .iter()
+                .filter_map(|(s, _)| s.as_ref()?.shadow_ray_origin(setup.light_position));
+            buffers.scratch.light_packet.reset(origins);
+        }
+    }
+
+    /// The pixel from its `n` samples from `first` in `buffers.samples`,
+    /// the light packet aimed at them.
+    #[inline(always)]
+    fn shade_pixel(&self, setup: &Setup, first: usize, n: u32, buffers: &mut PixelBuffers) -> Pixel {
         let PixelBuffers {
             samples,
             luminance: sample_luminance,
@@ -310,14 +327,8 @@ impl Reference {
         let mut sum = [0.0; 3];
         let (mut hits, mut visibility, mut variance) = (0u32, 0.0, 0.0);
         let (mut shadow_rays, mut noise_known) = (0, true);
-        if setup.shadows && !setup.is_sphere_light() {
-            let origins = samples
-                .iter()
-                .filter_map(|(s, _)| s.as_ref()?.shadow_ray_origin(setup.light_position));
-            scratch.light_packet.reset(origins);
-        }
         sample_luminance.clear();
-        for (surface, rng) in samples.iter_mut() {
+        for (surface, rng) in &mut samples[first..first + n as usize] {
             let Some(surface) = surface else {
                 sample_luminance.push(0.0);
                 continue;
