@@ -23,7 +23,7 @@
 //!   through the apex in f32 (`bvh/lanes.rs`), with a margin that makes a
 //!   ray it rules out a miss of the scalar test.
 
-use super::lanes::{LANES, Lines, with_avx2};
+use super::lanes::{GROUP, LANES, Lines, with_avx2};
 use super::{Hit, TRAVERSAL, TriangleBvh, closer};
 use crate::reference::intersect::{ShearedRay, with_axes};
 // `UVec2` is named inside obvhs's `traverse!` macro.
@@ -121,12 +121,17 @@ pub trait Rays {
         }
         let planes = self.lines().planes(relative);
         let mut changed = false;
-        for b in 0..self.lines().blocks() {
-            let mut lanes = self.lines().may_hit(b, &planes, nearest);
-            while lanes != 0 {
-                let k = b * LANES + lanes.trailing_zeros() as usize;
-                lanes &= lanes - 1;
-                changed |= self.test_ray(bvh, slot, relative, k);
+        for group in 0..self.lines().groups() {
+            let mut blocks = self.lines().group_may_hit(group, &planes, nearest);
+            while blocks != 0 {
+                let b = group * GROUP + blocks.trailing_zeros() as usize;
+                blocks &= blocks - 1;
+                let mut lanes = self.lines().may_hit(b, &planes, nearest);
+                while lanes != 0 {
+                    let k = b * LANES + lanes.trailing_zeros() as usize;
+                    lanes &= lanes - 1;
+                    changed |= self.test_ray(bvh, slot, relative, k);
+                }
             }
         }
         changed
