@@ -349,6 +349,27 @@ mod tests {
     use crate::reference::intersect::ShearedRay;
     use crate::reference::sampling::Rng;
 
+    /// Rays towards the points `aims`: from the apex (primary rays), or
+    /// (shadow rays) from beyond each point to the apex; and their spread
+    /// (the farthest origin from the apex, |·|∞).
+    fn packet(apex: DVec3, aims: &[DVec3], shadow: bool) -> (Vec<ShearedRay>, f64) {
+        let rays: Vec<ShearedRay> = aims
+            .iter()
+            .map(|&p| {
+                if shadow {
+                    let o = apex + (p - apex) * 1.5;
+                    ShearedRay::new(o, apex - o)
+                } else {
+                    ShearedRay::new(apex, p - apex)
+                }
+            })
+            .collect();
+        let spread = rays
+            .iter()
+            .fold(0.0_f64, |m, r| m.max((r.origin - apex).abs().max_element()));
+        (rays, spread)
+    }
+
     /// Rays through corners, along edges and near them, from random points
     /// on lines through an apex (behind it for shadow rays, at it for
     /// primary rays): whenever the scalar test finds the triangle (at any
@@ -374,22 +395,7 @@ mod tests {
                     _ => point(2.0),
                 } + point(jitter))
                 .collect();
-            // Shadow rays start beyond the triangle and end at the apex.
-            let shadow = case % 2 == 1;
-            let rays: Vec<ShearedRay> = aims
-                .iter()
-                .map(|&p| {
-                    if shadow {
-                        let o = apex + (p - apex) * 1.5;
-                        ShearedRay::new(o, apex - o)
-                    } else {
-                        ShearedRay::new(apex, p - apex)
-                    }
-                })
-                .collect();
-            let spread = rays
-                .iter()
-                .fold(0.0_f64, |m, r| m.max((r.origin - apex).abs().max_element()));
+            let (rays, spread) = packet(apex, &aims, case % 2 == 1);
             // Depths: the last ray is done, the others stop short of the
             // depth asked, reach just to it (not an f32) or reach far.
             let nearest = 1.0 + 1e-9;
@@ -458,20 +464,7 @@ mod tests {
             let size = width * [0.1, 1.0, 3.0][case / 3 % 3];
             let centre = point(1.0 + unit(), width * 3.0);
             let tri = [0, 1, 2].map(|_| centre + DVec3::new(unit(), unit(), unit()) * size - size / 2.0);
-            let rays: Vec<ShearedRay> = aims
-                .iter()
-                .map(|&p| {
-                    if shadow {
-                        let o = apex + (p - apex) * 1.5;
-                        ShearedRay::new(o, apex - o)
-                    } else {
-                        ShearedRay::new(apex, p - apex)
-                    }
-                })
-                .collect();
-            let spread = rays
-                .iter()
-                .fold(0.0_f64, |m, r| m.max((r.origin - apex).abs().max_element()));
+            let (rays, spread) = packet(apex, &aims, shadow);
             let nearest = 0.5 + unit();
             let limits: Vec<f64> = (0..count)
                 .map(|k| match (k + case) % 7 {

@@ -105,8 +105,11 @@ pub trait Rays {
     fn limits(&self) -> &[f64];
     /// The rays as lines through the apex, for the eight-lane filter.
     fn lines(&self) -> &Lines;
-    /// Whether the triangle in leaf slot `slot` matters to these rays.
-    fn takes(&self, bvh: &TriangleBvh, slot: usize) -> bool;
+    /// Whether the triangle in leaf slot `slot` matters to these rays
+    /// (every one does, unless they say otherwise).
+    fn takes(&self, _bvh: &TriangleBvh, _slot: usize) -> bool {
+        true
+    }
     /// Ray k's own f64 test against the triangle in leaf slot `slot`
     /// (corners `relative` to the apex); true when its limit changed.
     fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize) -> bool;
@@ -280,10 +283,6 @@ impl Rays for Probe {
         &self.lines
     }
 
-    fn takes(&self, _: &TriangleBvh, _: usize) -> bool {
-        true
-    }
-
     /// Never called (the probe has no rays): as `test`.
     fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], _: usize) -> bool {
         self.test(bvh, slot, relative, 0.0)
@@ -338,10 +337,6 @@ impl Rays for PrimaryPacket {
 
     fn lines(&self) -> &Lines {
         &self.lines
-    }
-
-    fn takes(&self, _: &TriangleBvh, _: usize) -> bool {
-        true
     }
 
     #[inline(always)]
