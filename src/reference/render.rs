@@ -279,7 +279,10 @@ impl Reference {
             .as_ref()
             .filter(|_| n > 1)
             .and_then(|grid| grid.pixel_cell(&setup.rays, x, y));
-        if skip && cell.is_some_and(|c| setup.eye_grid.as_ref().is_some_and(|g| g.is_empty(c))) {
+        if skip
+            && let (Some(grid), Some(cell)) = (&setup.eye_grid, cell)
+            && grid.is_empty(cell)
+        {
             return false;
         }
         // Crowded cells (or none): the pixel's rays go through the BVH
