@@ -68,6 +68,7 @@ fn exr_holds_the_linear_radiance_of_the_library_render() {
         spp: 1,
         light_samples: 4,
         seed: 5,
+        ..ReferenceOptions::DEFAULT
     };
     let image = Reference::new(&scene::default_scene())
         .render(&settings, &options, &RenderControl::default())

@@ -52,10 +52,22 @@ fn lambert_settings(eye: Vec3, target: Vec3, fovy_deg: f32, size: (u32, u32), li
 }
 
 fn render(scene: &Scene, settings: &Settings, light_samples: u32, seed: u64) -> ReferenceImage {
+    render_with(scene, settings, light_samples, seed, false)
+}
+
+/// `render`, with the sphere light sampled even where nothing can block it.
+fn render_with(
+    scene: &Scene,
+    settings: &Settings,
+    light_samples: u32,
+    seed: u64,
+    sample_everywhere: bool,
+) -> ReferenceImage {
     let options = ReferenceOptions {
         spp: 1,
         light_samples,
         seed,
+        sample_everywhere,
     };
     Reference::new(scene)
         .render(settings, &options, &RenderControl::default())
@@ -145,7 +157,7 @@ fn blinn_phong_plane_under_a_point_light_matches_the_brdf_to_1e9() {
 /// estimated from N/2 pairs of strata: allow its tail), and on average errors
 /// the size σ says or smaller. Returns the worst relative error.
 fn assert_sphere_light_matches_the_closed_form(settings: &Settings, light_samples: u32) -> f64 {
-    let image = render(&plane_scene(None), settings, light_samples, 1);
+    let image = render_with(&plane_scene(None), settings, light_samples, 1, true);
     let (q, radius) = (settings.light.position.as_dvec3(), settings.light.radius_m as f64);
     let (mut worst, mut sum_z2, mut checked): (f64, f64, usize) = (0.0, 0.0, 0);
     for j in 0..settings.image.height {
@@ -184,6 +196,45 @@ fn an_unoccluded_sphere_light_gives_the_point_lights_irradiance_within_its_noise
     settings.light.radius_m = 0.3;
     let worst = assert_sphere_light_matches_the_closed_form(&settings, 64);
     assert!(worst < 1e-2, "worst relative error {worst}");
+}
+
+/// Where nothing can block the light, the default estimator gives the
+/// closed form itself: no noise, no shadow ray (points inside the light
+/// still sample their hemisphere). Returns the points checked.
+fn assert_sphere_light_is_the_closed_form(settings: &Settings) -> usize {
+    let image = render(&plane_scene(None), settings, 16, 1);
+    let (q, radius) = (settings.light.position.as_dvec3(), settings.light.radius_m as f64);
+    let mut checked = 0;
+    for j in 0..settings.image.height {
+        for i in 0..settings.image.width {
+            let p = ground_point(settings, i, j).unwrap();
+            let r = (q - p).length();
+            if r <= radius {
+                continue;
+            }
+            let e = sphere_irradiance(500.0, radius, (q.y - p.y) / r, r);
+            let at = image.index(i, j);
+            let err = relative_error(image.radiance[at], lambert_tint() * e);
+            assert!(err < 1e-9, "pixel ({i}, {j}): relative error {err:e}");
+            assert_eq!((image.noise[at], image.visibility[at]), (0.0, 1.0));
+            checked += 1;
+        }
+    }
+    assert_eq!(image.stats.shadow_rays, 0);
+    checked
+}
+
+#[test]
+fn an_unoccluded_sphere_light_is_the_closed_form_without_noise() {
+    let q = Vec3::new(0.5, 2.0, 0.2);
+    let mut settings = lambert_settings(Vec3::new(0.0, 4.0, 3.0), Vec3::ZERO, 40.0, (40, 30), q);
+    settings.light.radius_m = 0.3;
+    assert_eq!(assert_sphere_light_is_the_closed_form(&settings), 40 * 30);
+    // Cut by every point's horizon, shadows off.
+    settings.light.position = Vec3::new(0.0, 0.1, 0.0);
+    settings.shadow.enabled = false;
+    let checked = assert_sphere_light_is_the_closed_form(&settings);
+    assert!(checked > 40 * 30 * 9 / 10, "{checked} points outside the light");
 }
 
 #[test]
@@ -307,6 +358,7 @@ fn a_square_occluder_gives_exactly_zero_in_its_umbra() {
             spp: 1,
             light_samples: 16,
             seed: 3,
+            ..ReferenceOptions::DEFAULT
         };
         let image = reference
             .render(&settings, &options, &RenderControl::default())

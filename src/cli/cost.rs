@@ -169,7 +169,7 @@ mod tests {
         let options = ReferenceOptions {
             spp: 4,
             light_samples: 64,
-            seed: 0,
+            ..ReferenceOptions::DEFAULT
         };
         let base = reference(&settings, &options, 0);
         let more = reference(&settings, &ReferenceOptions { spp: 8, ..options }, 0);

@@ -36,6 +36,11 @@ pub struct Sampling {
     /// Seed of the random numbers (same seed, same image).
     #[arg(long, value_name = "S", default_value_t = 0)]
     pub seed: u64,
+    /// Sample the sphere light's cone even where nothing can block it (plain
+    /// Monte Carlo everywhere, to show its noise); by default the diffuse
+    /// part there is the closed form, exact and noiseless.
+    #[arg(long)]
+    pub sample_everywhere: bool,
 }
 
 impl Sampling {
@@ -44,6 +49,7 @@ impl Sampling {
             spp: self.spp,
             light_samples: self.light_samples,
             seed: self.seed,
+            sample_everywhere: self.sample_everywhere,
         }
     }
 }

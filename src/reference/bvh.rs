@@ -16,6 +16,7 @@
 //! The f64 test decides every hit, so the BVH answers exactly what testing
 //! every triangle would (see `closest_hit_brute_force` and the tests).
 
+mod ball;
 mod build;
 mod lanes;
 mod packet;
@@ -25,7 +26,6 @@ pub use packet::{Cone, PrimaryPacket, ShadowPacket};
 // `UVec2` is named inside obvhs's `traverse!` macro.
 use glam::{DVec3, UVec2, Vec3A};
 use obvhs::cwbvh::Traversal;
-use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::ray::Ray;
 use obvhs::{aabb::Aabb, cwbvh::CwBvh};
 use rayon::prelude::*;
@@ -271,89 +271,6 @@ impl TriangleBvh {
         });
         blocked
     }
-
-    /// The occluders that may block a segment from `from` to any point of
-    /// the ball (`centre`, `radius`), e.g. every shadow ray of a sphere light
-    /// from one shading point: into `out`, as indices for [`Self::blocked_by`].
-    /// Such segments lie in the capsule of that radius around the segment
-    /// from `from` to `centre`; a BVH node is kept when its bounding sphere
-    /// (padded) reaches the capsule. False, with `out` unfinished, when more
-    /// than `limit` are found: cast each ray through the BVH instead.
-    pub fn gather_near_ball(
-        &self,
-        from: DVec3,
-        centre: DVec3,
-        radius: f64,
-        limit: usize,
-        out: &mut Vec<u32>,
-    ) -> bool {
-        out.clear();
-        let Some(bvh) = self.bvh.as_ref() else {
-            return true;
-        };
-        let to_frame = |p: DVec3| (p - self.centre) * self.per_scale;
-        let (a, b) = (to_frame(from), to_frame(centre));
-        let reach = radius * self.per_scale + 4.0 * PAD;
-        let mut fits = true;
-        TRAVERSAL.with_borrow_mut(|state| {
-            state.reinit((b - a).as_vec3a());
-            let mut node;
-            obvhs::traverse!(
-                bvh,
-                node,
-                state,
-                near_capsule(node, a, b, reach, state.oct_inv4),
-                {
-                    let slot = state.primitive_id;
-                    if self.occludes[slot as usize] {
-                        if out.len() == limit {
-                            fits = false;
-                            break;
-                        }
-                        out.push(slot);
-                    }
-                }
-            );
-        });
-        fits
-    }
-
-    /// Whether one of the gathered occluders (see [`Self::gather_near_ball`])
-    /// lies at t ∈ (0, t_max) along the ray.
-    pub fn blocked_by(&self, candidates: &[u32], origin: DVec3, direction: DVec3, t_max: f64) -> bool {
-        let sheared = ShearedRay::new(origin, direction);
-        candidates
-            .iter()
-            .any(|&slot| sheared.hits(&self.corners[slot as usize], 0.0, t_max))
-    }
-}
-
-/// The hit mask (obvhs's layout) of the children of `node` whose boxes'
-/// bounding spheres come within `reach` of the segment a–b (frame units).
-#[inline(always)]
-fn near_capsule(node: &CwBvhNode, a: DVec3, b: DVec3, reach: f64, oct_inv4: u32) -> u32 {
-    let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
-    let ab = b - a;
-    let length2 = ab.length_squared();
-    let mut hit_mask = 0;
-    for child in 0..8 {
-        let child_box = node.child_aabb(child);
-        let (lo, hi) = (child_box.min.as_dvec3(), child_box.max.as_dvec3());
-        let c = 0.5 * (lo + hi);
-        let r = 0.5 * (hi - lo).length();
-        // The point of a–b nearest to the box's centre.
-        let s = if length2 > 0.0 {
-            ((c - a).dot(ab) / length2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let gap = (a + ab * s - c).length();
-        if gap <= r + reach {
-            hit_mask |= obvhs::cwbvh::node::extract_byte64(child_bits8, child)
-                << obvhs::cwbvh::node::extract_byte64(bit_index8, child);
-        }
-    }
-    hit_mask
 }
 
 thread_local! {

@@ -57,14 +57,20 @@ pub struct ReferenceOptions {
     pub light_samples: u32,
     /// Seed of every random number: same seed, same image.
     pub seed: u64,
+    /// Sample the sphere light even where no shadow ray can be blocked
+    /// (plain Monte Carlo everywhere, to show its noise). Off: there the
+    /// diffuse part is the closed form, exact and without noise.
+    pub sample_everywhere: bool,
 }
 
 impl ReferenceOptions {
-    /// The pixel centre, 64 light samples (8 × 8 strata), seed 0.
+    /// The pixel centre, 64 light samples (8 × 8 strata), seed 0, the
+    /// closed form where nothing blocks the light.
     pub const DEFAULT: Self = Self {
         spp: 1,
         light_samples: 64,
         seed: 0,
+        sample_everywhere: false,
     };
 }
 
@@ -208,7 +214,7 @@ impl Reference {
         x: f64,
         y: f64,
     ) -> Option<ShadingSample> {
-        let setup = Setup::new(settings, options.light_samples, options.seed, &self.materials);
+        let setup = Setup::new(settings, options, &self.materials);
         let pixel = pixel_index(&setup, x.floor(), y.floor());
         let mut rng = Rng::new(options.seed, pixel, 0);
         self.probe(&setup, x, y, &mut rng)

@@ -53,7 +53,7 @@ impl Reference {
     ) -> Result<ReferenceImage, ReferenceError> {
         settings.validate()?;
         let start = Instant::now();
-        let mut setup = Setup::new(settings, options.light_samples, options.seed, &self.materials);
+        let mut setup = Setup::new(settings, options, &self.materials);
         // Every primary ray leaves the eye and every point-light shadow ray
         // ends at the light: both are cast through direction grids there,
         // unless the scene is so large that their cells would be crowded.
@@ -530,7 +530,7 @@ mod tests {
                 spp: 4,
                 ..ReferenceOptions::default()
             };
-            let setup = Setup::new(&settings, 1, 0, &reference.materials);
+            let setup = Setup::new(&settings, &options, &reference.materials);
             assert!(!reference.bvh.meets_cone(&block_cone(&setup, (0, 0), (16, 16))));
             assert!(reference.bvh.meets_cone(&block_cone(&setup, (0, 20), (16, 16))));
             let control = RenderControl::default();

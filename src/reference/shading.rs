@@ -20,25 +20,26 @@
 //! distance stays negative whatever cos θ divides both by), while at 1 m
 //! from the origin it is 1 nm: no occluder closer than that exists in a scene.
 
-use super::Reference;
 use super::bvh::Hit;
 use super::grid::{Answer, Cell, DirectionGrid};
 use super::image::luminance;
 use super::light_packet::LightPacket;
 use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
 use super::spectral::SpectralLight;
+use super::{Reference, ReferenceOptions};
 use crate::colour::ColourModel;
 use crate::colour::chart::illuminant_linear_srgb;
 use crate::physics::brdf::blinn_phong;
 use crate::physics::colour::tint;
 use crate::physics::radiometry::{
-    incidence, intensity, point_irradiance, sphere_irradiance, sphere_radiance,
+    MIN_LIGHT_DISTANCE_M, incidence, intensity, point_irradiance, sphere_irradiance, sphere_radiance,
 };
 use crate::physics::{BrdfParams, BrdfTerms, Normalization};
 use crate::scene::Material;
 use crate::scene::camera::PixelRays;
 use crate::settings::Settings;
 use glam::{DVec2, DVec3};
+use std::f64::consts::PI;
 
 /// Shadow-ray origin offset, relative to the hit triangle's coordinates.
 pub const SHADOW_OFFSET_REL: f64 = 1e-9;
@@ -67,6 +68,8 @@ pub(super) struct Setup {
     pub color_override: Option<DVec3>,
     pub shadows: bool,
     pub light_strata: Strata,
+    /// See [`ReferenceOptions::sample_everywhere`].
+    pub sample_everywhere: bool,
     pub seed: u64,
     /// Primary rays through a grid around the eye, and point-light shadow
     /// rays through one around the light (none: the BVH alone).
@@ -76,7 +79,7 @@ pub(super) struct Setup {
 
 impl Setup {
     /// `materials`: the reference's (for their reflectances).
-    pub fn new(settings: &Settings, light_samples: u32, seed: u64, materials: &[Material]) -> Self {
+    pub fn new(settings: &Settings, options: &ReferenceOptions, materials: &[Material]) -> Self {
         let (l, m) = (&settings.light, &settings.material);
         let colour = settings.colour;
         let (light_color, spectral) = match (colour.illuminant, colour.model) {
@@ -112,8 +115,9 @@ impl Setup {
             use_scene_materials: m.use_scene_materials,
             color_override: m.color_override.map(|c| c.as_dvec3()),
             shadows: settings.shadow.enabled,
-            light_strata: Strata::new(light_samples),
-            seed,
+            light_strata: Strata::new(options.light_samples),
+            sample_everywhere: options.sample_everywhere,
+            seed: options.seed,
             eye_grid: None,
             light_grid: None,
         }
@@ -427,6 +431,16 @@ impl Reference {
             && self
                 .bvh
                 .gather_near_ball(s.shadow_origin, q, radius, MAX_CANDIDATES, candidates);
+        // No shadow ray can be blocked: the diffuse part in closed form.
+        let clear = !setup.sample_everywhere
+            && (!s.shadowed
+                || gathered
+                    && self
+                        .bvh
+                        .clear_towards_ball(candidates, s.shadow_origin, q, radius));
+        if clear && let Some(estimate) = unoccluded_sphere(setup, s, rng, y) {
+            return estimate;
+        }
         let le = sphere_radiance(setup.power_w, radius);
         let to_centre = q - s.p;
         let d2 = to_centre.length_squared();
@@ -499,4 +513,55 @@ impl Reference {
             shadow_rays,
         }
     }
+}
+
+/// The sphere light's contribution where no shadow ray can be blocked
+/// (V = 1 over the whole cone), None inside the light or nearer than
+/// [`MIN_LIGHT_DISTANCE_M`]. The diffuse part k/π · E is the closed form
+/// `sphere_irradiance` (Snyder's, the horizon included): no noise. Only the
+/// specular lobe, when there is one, is still sampled over the strata, each
+/// sample carrying the diffuse part too (same mean, and the noise estimate
+/// sees only the lobe's spread). The expectation is the sampled estimator's
+/// with every V = 1, the same integral; only its variance changes.
+fn unoccluded_sphere(setup: &Setup, s: &Surface, rng: &mut Rng, y: &mut Vec<f64>) -> Option<LightEstimate> {
+    let (q, radius) = (setup.light_position, setup.radius_m);
+    let to_centre = q - s.p;
+    let d2 = to_centre.length_squared();
+    let d = d2.sqrt();
+    if !(d > radius && d >= MIN_LIGHT_DISTANCE_M) {
+        return None;
+    }
+    // blinn_phong is zero for a viewer below the shading normal's horizon.
+    let diffuse = if s.n.dot(s.o) > 0.0 {
+        s.brdf.k / PI * sphere_irradiance(setup.power_w, radius, s.n.dot(to_centre) / d, d)
+    } else {
+        0.0
+    };
+    let mut estimate = LightEstimate {
+        scaled_radiance: diffuse,
+        visibility: 1.0,
+        std_error: Some(0.0),
+        shadow_rays: 0,
+    };
+    if s.brdf.k >= 1.0 {
+        return Some(estimate);
+    }
+    let cone = Cone::new(to_centre / d, radius * radius / d2);
+    let weight = cone.solid_angle() * sphere_radiance(setup.power_w, radius);
+    y.clear();
+    for stratum in setup.light_strata.cells() {
+        let l = cone
+            .direction(setup.light_strata.jittered(stratum, rng))
+            .direction;
+        let cos = s.n.dot(l).max(0.0);
+        let specular = if cos > 0.0 {
+            blinn_phong(s.n, l, s.o, &s.brdf).specular
+        } else {
+            0.0
+        };
+        y.push(diffuse + weight * specular * cos);
+    }
+    estimate.scaled_radiance = y.iter().sum::<f64>() / y.len() as f64;
+    estimate.std_error = collapsed_strata_variance(y).map(f64::sqrt);
+    Some(estimate)
 }

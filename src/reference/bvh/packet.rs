@@ -31,7 +31,7 @@ use glam::{DVec3, UVec2};
 use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
 
 /// Relative allowance for the rounding of depths and plane distances.
-const ROUNDING: f64 = 1e-12;
+pub(super) const ROUNDING: f64 = 1e-12;
 
 /// A cone of directions from its apex: what every ray of a packet lies in.
 #[derive(Clone, Copy, Debug)]
@@ -91,7 +91,7 @@ impl Cone {
     /// Whether the triangle (corners relative to the apex) lies wholly
     /// outside one side plane, `slack` allowed.
     #[inline(always)]
-    fn misses(&self, relative: &[DVec3; 3], slack: f64) -> bool {
+    pub(super) fn misses(&self, relative: &[DVec3; 3], slack: f64) -> bool {
         self.planes.iter().any(|&n| {
             let s = slack * n.abs().element_sum();
             relative.iter().all(|p| n.dot(*p) < -s)
