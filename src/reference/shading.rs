@@ -432,13 +432,11 @@ impl Reference {
                 .bvh
                 .gather_near_ball(s.shadow_origin, q, radius, MAX_CANDIDATES, candidates);
         // No shadow ray can be blocked: the diffuse part in closed form.
-        let clear = !setup.sample_everywhere
-            && (!s.shadowed
-                || gathered
-                    && self
-                        .bvh
-                        .clear_towards_ball(candidates, s.shadow_origin, q, radius));
-        if clear && let Some(estimate) = unoccluded_sphere(setup, s, rng, y) {
+        let clear = !s.shadowed || gathered && candidates.is_empty();
+        if clear
+            && !setup.sample_everywhere
+            && let Some(estimate) = unoccluded_sphere(setup, s, rng, y)
+        {
             return estimate;
         }
         let le = sphere_radiance(setup.power_w, radius);

@@ -17,8 +17,10 @@ impl TriangleBvh {
     /// from one shading point: into `out`, as indices for [`Self::blocked_by`].
     /// Such segments lie in the capsule of that radius around the segment
     /// from `from` to `centre`; a BVH node is kept when its bounding sphere
-    /// (padded) reaches the capsule. False, with `out` unfinished, when more
-    /// than `limit` are found: cast each ray through the BVH instead.
+    /// (padded) reaches the capsule. Of its occluders, those that cannot
+    /// meet the ball's cone are left out (see [`BallCone`]), so an empty
+    /// list means no segment is blocked. False, with `out` unfinished, when
+    /// more than `limit` are found: cast each ray through the BVH instead.
     pub fn gather_near_ball(
         &self,
         from: DVec3,
@@ -31,6 +33,7 @@ impl TriangleBvh {
         let Some(bvh) = self.bvh.as_ref() else {
             return true;
         };
+        let cone = BallCone::new(from, centre, radius);
         let to_frame = |p: DVec3| (p - self.centre) * self.per_scale;
         let (a, b) = (to_frame(from), to_frame(centre));
         let reach = radius * self.per_scale + 4.0 * PAD;
@@ -45,7 +48,11 @@ impl TriangleBvh {
                 near_capsule(node, a, b, reach, state.oct_inv4),
                 {
                     let slot = state.primitive_id;
-                    if self.occludes[slot as usize] {
+                    if self.occludes[slot as usize]
+                        && cone
+                            .as_ref()
+                            .is_none_or(|c| c.may_meet(&self.corners[slot as usize]))
+                    {
                         if out.len() == limit {
                             fits = false;
                             break;
@@ -66,44 +73,69 @@ impl TriangleBvh {
             .iter()
             .any(|&slot| sheared.hits(&self.corners[slot as usize], 0.0, t_max))
     }
+}
 
-    /// Whether none of the gathered occluders (see [`Self::gather_near_ball`])
-    /// can meet a segment from `from` to a point of the ball (`centre`,
-    /// `radius`): then every shadow ray of a sphere light from that origin
-    /// is unblocked, and V = 1 over the whole cone. Conservative: false
-    /// whenever one might. An occluder is ruled out when it lies outside a
-    /// pyramid from `from` around the ball, or wholly beyond the ball, or
-    /// when `from` and the whole ball lie on one side of its plane (the
-    /// surface the origin was lifted off, a wall facing away).
-    pub fn clear_towards_ball(&self, candidates: &[u32], from: DVec3, centre: DVec3, radius: f64) -> bool {
+/// Every segment from a point to a ball, as a filter of the triangles that
+/// may meet one. Conservative: a triangle is ruled out only when it lies
+/// outside a pyramid from the point around the ball, or wholly beyond the
+/// ball, or when the point and the whole ball lie on one side of its plane
+/// (the surface the point was lifted off, a wall facing away).
+struct BallCone {
+    from: DVec3,
+    /// The ball's centre and radius, relative to `from`.
+    centre: DVec3,
+    radius: f64,
+    pyramid: Cone,
+    axis: DVec3,
+    /// The greatest depth along the axis of a point of the ball.
+    deepest: f64,
+}
+
+impl BallCone {
+    /// None when `from` is (nearly) inside the ball.
+    fn new(from: DVec3, centre: DVec3, radius: f64) -> Option<Self> {
         let to_centre = centre - from;
         let distance = to_centre.length();
         if !(distance > radius * (1.0 + ROUNDING)) {
-            return false;
+            return None;
         }
-        // The ball's tangent cone meets the plane through its centre across
-        // the axis in a circle of radius d tan α; the square around it, a
-        // little wider, spans a pyramid that holds the cone.
+        // Every segment lies in the ball's tangent cone (sin α = R / d):
+        // inside the square pyramid whose sides have slope tan α, a little
+        // steeper.
         let axis = to_centre / distance;
-        let half = distance * radius / ((distance - radius) * (distance + radius)).sqrt() * (1.0 + 1e-9);
-        let (u, v) = axis.any_orthonormal_pair();
-        let corners = [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)]
-            .map(|(a, b)| centre + (u * a + v * b) * half);
-        let Some(cone) = Cone::around(from, corners.into_iter()) else {
-            return false;
-        };
-        let deepest = (to_centre.dot(cone.axis()) + radius) * (1.0 + ROUNDING) + ROUNDING * distance;
-        candidates.iter().all(|&slot| {
-            let relative = self.corners[slot as usize].map(|p| p - from);
-            let size = relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
-            let slack = ROUNDING * size;
-            let nearest = relative
-                .iter()
-                .fold(f64::INFINITY, |m, p| m.min(p.dot(cone.axis())));
-            cone.misses(&relative, slack)
-                || nearest - slack > deepest
-                || apart_by_plane(&relative, to_centre, radius, size)
+        let slope = radius / ((distance - radius) * (distance + radius)).sqrt() * (1.0 + 1e-9);
+        Some(Self {
+            from,
+            centre: to_centre,
+            radius,
+            pyramid: Cone::square(from, axis, slope),
+            axis,
+            deepest: (distance + radius) * (1.0 + ROUNDING),
         })
+    }
+
+    /// False only when the triangle meets no segment from the point to the ball.
+    fn may_meet(&self, corners: &[DVec3; 3]) -> bool {
+        let relative = corners.map(|p| p - self.from);
+        let size = relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+        let slack = ROUNDING * size;
+        !(self.apart_by_plane(&relative, size)
+            || self.pyramid.misses(&relative, slack)
+            || relative.iter().all(|p| p.dot(self.axis) - slack > self.deepest))
+    }
+
+    /// Whether the point (0) and the whole ball lie strictly on one side
+    /// of the triangle's plane (corners `relative` to the point).
+    fn apart_by_plane(&self, relative: &[DVec3; 3], size: f64) -> bool {
+        let [a, b, c] = *relative;
+        let m = (b - a).cross(c - a);
+        let length = m.length();
+        // Both products are rounded to ~10⁻¹⁶ of |m| times the lengths involved.
+        let tol = ROUNDING * length * (size + self.centre.abs().max_element());
+        let origin_side = -m.dot(a);
+        let centre_side = m.dot(self.centre - a);
+        let clearance = self.radius * length * (1.0 + ROUNDING) + tol;
+        (origin_side > tol && centre_side > clearance) || (origin_side < -tol && centre_side < -clearance)
     }
 }
 
@@ -135,20 +167,6 @@ fn near_capsule(node: &CwBvhNode, a: DVec3, b: DVec3, reach: f64, oct_inv4: u32)
     hit_mask
 }
 
-/// Whether the origin (0) and the whole ball (`centre`, `radius`, relative
-/// to the origin) lie strictly on one side of the triangle's plane.
-fn apart_by_plane(relative: &[DVec3; 3], centre: DVec3, radius: f64, size: f64) -> bool {
-    let [a, b, c] = *relative;
-    let m = (b - a).cross(c - a);
-    let length = m.length();
-    // Both products are rounded to ~10⁻¹⁶ of |m| times the lengths involved.
-    let tol = ROUNDING * length * (size + centre.abs().max_element());
-    let origin_side = -m.dot(a);
-    let centre_side = m.dot(centre - a);
-    let clearance = radius * length * (1.0 + ROUNDING) + tol;
-    (origin_side > tol && centre_side > clearance) || (origin_side < -tol && centre_side < -clearance)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -175,12 +193,13 @@ mod tests {
         }
     }
 
-    /// Whenever `clear_towards_ball` says no segment to the ball can be
-    /// blocked, none of many segments to its points and its surface is, by
-    /// brute force; from points lifted off the ground and off spheres, under
-    /// balls that straddle occluders, their planes and their horizons.
+    /// The gathered occluders block exactly the segments that brute force
+    /// finds blocked (none is left out that blocks one), to points of the
+    /// ball, its surface and its rim; from points lifted off the ground and
+    /// off spheres, under balls that straddle occluders, their planes and
+    /// their horizons. An empty list then means that no segment is blocked.
     #[test]
-    fn a_clear_ball_has_no_blocked_segment() {
+    fn gathered_occluders_block_what_brute_force_blocks() {
         let rng = &mut Rng::new(5, 0, 0);
         let ground = [[-4.0, 4.0], [4.0, 4.0], [4.0, -4.0], [-4.0, -4.0]].map(|[x, z]| DVec3::new(x, 0.0, z));
         let mut tris = vec![
@@ -224,12 +243,12 @@ mod tests {
         let (mut clear, mut blocked) = (0, 0);
         for case in 0..1000 {
             // Off the ground or off a sphere's triangle, on its front side.
-            let [a, b, c] = tris[if case % 2 == 0 {
-                case % 2
+            let index = if case % 2 == 0 {
+                (case / 2) % 2
             } else {
                 2 + case % (tris.len() - 62)
-            }]
-            .corners;
+            };
+            let [a, b, c] = tris[index].corners;
             let p = a.lerp(b, rng.next_f64()).lerp(c, rng.next_f64());
             let n = (b - a).cross(c - a).normalize();
             let from = p + n * 1e-9 * p.abs().max_element().max(1.0);
@@ -240,12 +259,18 @@ mod tests {
             );
             let radius = 0.05 + 0.8 * rng.next_f64();
             assert!(bvh.gather_near_ball(from, centre, radius, usize::MAX, &mut candidates));
-            let says_clear = bvh.clear_towards_ball(&candidates, from, centre, radius);
-            let any_blocked = (0..300).any(|_| {
-                let target = in_ball(rng, from, centre, radius);
-                occluded_brute_force(&tris, from, target - from, 0.0, 1.0 - 1e-9)
-            });
-            assert!(!(says_clear && any_blocked), "case {case}: a segment is blocked");
+            let says_clear = candidates.is_empty();
+            let mut any_blocked = false;
+            for _ in 0..300 {
+                let d = in_ball(rng, from, centre, radius) - from;
+                let expected = occluded_brute_force(&tris, from, d, 0.0, 1.0 - 1e-9);
+                assert_eq!(
+                    bvh.blocked_by(&candidates, from, d, 1.0 - 1e-9),
+                    expected,
+                    "case {case}"
+                );
+                any_blocked |= expected;
+            }
             clear += usize::from(says_clear);
             blocked += usize::from(any_blocked);
         }

@@ -84,6 +84,19 @@ impl Cone {
         })
     }
 
+    /// The square pyramid from `apex` about the unit `axis` whose four
+    /// sides rise at `slope` from it (tan of their angle to the axis),
+    /// widened by the rounding of its planes.
+    pub fn square(apex: DVec3, axis: DVec3, slope: f64) -> Self {
+        let (u, v) = axis.any_orthonormal_pair();
+        let s = slope * (1.0 + ROUNDING) + ROUNDING;
+        Self {
+            apex,
+            planes: [u + axis * s, axis * s - u, v + axis * s, axis * s - v],
+            axis,
+        }
+    }
+
     pub fn axis(&self) -> DVec3 {
         self.axis
     }
