@@ -238,6 +238,34 @@ fn an_unoccluded_sphere_light_is_the_closed_form_without_noise() {
 }
 
 #[test]
+fn a_specular_lobe_under_an_unoccluded_sphere_light_keeps_the_same_mean_with_less_noise() {
+    // Only the lobe is sampled where nothing blocks the light: the same
+    // integral as sampling everything, within both noise estimates.
+    let q = Vec3::new(0.2, 2.0, -1.5);
+    let mut settings = lambert_settings(Vec3::new(0.0, 2.0, 3.0), Vec3::ZERO, 50.0, (24, 16), q);
+    (settings.material.k, settings.material.m) = (0.8, 20.0);
+    settings.light.radius_m = 0.4;
+    let scene = plane_scene(None);
+    let split = render_with(&scene, &settings, 256, 1, false);
+    let sampled = render_with(&scene, &settings, 256, 2, true);
+    let (mut z2, mut split_var, mut sampled_var) = (0.0, 0.0, 0.0);
+    for at in 0..split.pixel_count() {
+        let (a, b) = (luminance(split.radiance[at]), luminance(sampled.radiance[at]));
+        let (sa, sb) = (split.noise[at] as f64, sampled.noise[at] as f64);
+        assert!(sa > 0.0 && sb > 0.0, "pixel {at}: σ {sa:e}, {sb:e}");
+        z2 += (a - b).powi(2) / (sa * sa + sb * sb);
+        (split_var, sampled_var) = (split_var + sa * sa, sampled_var + sb * sb);
+    }
+    let rms_z = (z2 / split.pixel_count() as f64).sqrt();
+    assert!(rms_z < 1.5, "RMS of difference / σ: {rms_z}");
+    assert!(
+        split_var < 0.8 * sampled_var,
+        "variance {split_var:e} vs {sampled_var:e}"
+    );
+    assert_eq!(split.stats.shadow_rays, 0);
+}
+
+#[test]
 fn a_sphere_light_cut_by_the_horizon_matches_the_closed_form() {
     // The light's centre 0.1 m above the plane with R = 0.3: part of it lies
     // below every point's horizon (shadows off, so the plane hides nothing).
