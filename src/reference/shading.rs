@@ -526,7 +526,9 @@ fn unoccluded_sphere(setup: &Setup, s: &Surface, rng: &mut Rng, y: &mut Vec<f64>
     let to_centre = q - s.p;
     let d2 = to_centre.length_squared();
     let d = d2.sqrt();
-    if !(d > radius && d >= MIN_LIGHT_DISTANCE_M) {
+    // False for NaN too.
+    let outside = d > radius && d >= MIN_LIGHT_DISTANCE_M;
+    if !outside {
         return None;
     }
     // blinn_phong is zero for a viewer below the shading normal's horizon.

@@ -96,7 +96,9 @@ impl BallCone {
     fn new(from: DVec3, centre: DVec3, radius: f64) -> Option<Self> {
         let to_centre = centre - from;
         let distance = to_centre.length();
-        if !(distance > radius * (1.0 + ROUNDING)) {
+        // False for NaN too.
+        let outside = distance > radius * (1.0 + ROUNDING);
+        if !outside {
             return None;
         }
         // Every segment lies in the ball's tangent cone (sin α = R / d):
