@@ -1,26 +1,23 @@
 //! A sphere light's shadow rays from one shading point: every segment from
-//! the point to the ball lies in the capsule of its radius around the
-//! segment to its centre, and in the cone the ball subtends. The occluders
-//! near that capsule are gathered once; each ray is then tested against
-//! those few, and when none of them can meet the cone, no ray needs a test.
+//! the point to the ball lies in the cone the ball subtends. The occluders
+//! that may meet that cone are gathered once, by the packets' cone walk;
+//! each ray is then tested against those few, and when there is none, no
+//! ray needs a test.
 
-use super::packet::{Cone, ROUNDING};
-use super::{PAD, TRAVERSAL, TriangleBvh};
+use super::TriangleBvh;
+use super::lanes::Lines;
+use super::packet::{Cone, ROUNDING, Rays};
 use crate::reference::intersect::ShearedRay;
-// `UVec2` is named inside obvhs's `traverse!` macro.
-use glam::{DVec3, UVec2};
-use obvhs::cwbvh::node::CwBvhNode;
+use glam::DVec3;
 
 impl TriangleBvh {
     /// The occluders that may block a segment from `from` to any point of
     /// the ball (`centre`, `radius`), e.g. every shadow ray of a sphere light
     /// from one shading point: into `out`, as indices for [`Self::blocked_by`].
-    /// Such segments lie in the capsule of that radius around the segment
-    /// from `from` to `centre`; a BVH node is kept when its bounding sphere
-    /// (padded) reaches the capsule. Of its occluders, those that cannot
-    /// meet the ball's cone are left out (see [`BallCone`]), so an empty
-    /// list means no segment is blocked. False, with `out` unfinished, when
-    /// more than `limit` are found: cast each ray through the BVH instead.
+    /// Conservative (see [`BallCone`]): an empty list means no segment is
+    /// blocked. False, with `out` unfinished, when more than `limit` are
+    /// found or `from` lies (nearly) in the ball: cast each ray through the
+    /// BVH instead.
     pub fn gather_near_ball(
         &self,
         from: DVec3,
@@ -30,39 +27,19 @@ impl TriangleBvh {
         out: &mut Vec<u32>,
     ) -> bool {
         out.clear();
-        let Some(bvh) = self.bvh.as_ref() else {
-            return true;
+        let Some(ball) = BallCone::new(from, centre, radius) else {
+            return false;
         };
-        let cone = BallCone::new(from, centre, radius);
-        let to_frame = |p: DVec3| (p - self.centre) * self.per_scale;
-        let (a, b) = (to_frame(from), to_frame(centre));
-        let reach = radius * self.per_scale + 4.0 * PAD;
-        let mut fits = true;
-        TRAVERSAL.with_borrow_mut(|state| {
-            state.reinit((b - a).as_vec3a());
-            let mut node;
-            obvhs::traverse!(
-                bvh,
-                node,
-                state,
-                near_capsule(node, a, b, reach, state.oct_inv4),
-                {
-                    let slot = state.primitive_id;
-                    if self.occludes[slot as usize]
-                        && cone
-                            .as_ref()
-                            .is_none_or(|c| c.may_meet(&self.corners[slot as usize]))
-                    {
-                        if out.len() == limit {
-                            fits = false;
-                            break;
-                        }
-                        out.push(slot);
-                    }
-                }
-            );
-        });
-        fits
+        let mut gather = Gather {
+            limits: [ball.deepest],
+            lines: Lines::default(),
+            ball: &ball,
+            out,
+            limit,
+            fits: true,
+        };
+        self.walk_cone(&ball.pyramid, &mut gather);
+        gather.fits
     }
 
     /// Whether one of the gathered occluders (see [`Self::gather_near_ball`])
@@ -75,18 +52,17 @@ impl TriangleBvh {
     }
 }
 
-/// Every segment from a point to a ball, as a filter of the triangles that
-/// may meet one. Conservative: a triangle is ruled out only when it lies
-/// outside a pyramid from the point around the ball, or wholly beyond the
-/// ball, or when the point and the whole ball lie on one side of its plane
-/// (the surface the point was lifted off, a wall facing away).
+/// Every segment from a point to a ball: they lie in a square pyramid from
+/// the point around the ball, no deeper along its axis than the ball's far
+/// side. The cone walk keeps the occluders that meet the pyramid within
+/// that depth; of those, a triangle is left out when the point and the
+/// whole ball lie on one side of its plane (the surface the point was
+/// lifted off, a wall facing away).
 struct BallCone {
-    from: DVec3,
-    /// The ball's centre and radius, relative to `from`.
+    /// The ball's centre and radius, relative to the point.
     centre: DVec3,
     radius: f64,
     pyramid: Cone,
-    axis: DVec3,
     /// The greatest depth along the axis of a point of the ball.
     deepest: f64,
 }
@@ -104,32 +80,20 @@ impl BallCone {
         // Every segment lies in the ball's tangent cone (sin α = R / d):
         // inside the square pyramid whose sides have slope tan α, a little
         // steeper.
-        let axis = to_centre / distance;
         let slope = radius / ((distance - radius) * (distance + radius)).sqrt() * (1.0 + 1e-9);
         Some(Self {
-            from,
             centre: to_centre,
             radius,
-            pyramid: Cone::square(from, axis, slope),
-            axis,
+            pyramid: Cone::square(from, to_centre / distance, slope),
             deepest: (distance + radius) * (1.0 + ROUNDING),
         })
     }
 
-    /// False only when the triangle meets no segment from the point to the ball.
-    fn may_meet(&self, corners: &[DVec3; 3]) -> bool {
-        let relative = corners.map(|p| p - self.from);
-        let size = relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
-        let slack = ROUNDING * size;
-        !(self.apart_by_plane(&relative, size)
-            || self.pyramid.misses(&relative, slack)
-            || relative.iter().all(|p| p.dot(self.axis) - slack > self.deepest))
-    }
-
     /// Whether the point (0) and the whole ball lie strictly on one side
     /// of the triangle's plane (corners `relative` to the point).
-    fn apart_by_plane(&self, relative: &[DVec3; 3], size: f64) -> bool {
+    fn apart_by_plane(&self, relative: &[DVec3; 3]) -> bool {
         let [a, b, c] = *relative;
+        let size = relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
         let m = (b - a).cross(c - a);
         let length = m.length();
         // Both products are rounded to ~10⁻¹⁶ of |m| times the lengths involved.
@@ -141,32 +105,46 @@ impl BallCone {
     }
 }
 
-/// The hit mask (obvhs's layout) of the children of `node` whose boxes'
-/// bounding spheres come within `reach` of the segment a–b (frame units).
-#[inline(always)]
-fn near_capsule(node: &CwBvhNode, a: DVec3, b: DVec3, reach: f64, oct_inv4: u32) -> u32 {
-    let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
-    let ab = b - a;
-    let length2 = ab.length_squared();
-    let mut hit_mask = 0;
-    for child in 0..8 {
-        let child_box = node.child_aabb(child);
-        let (lo, hi) = (child_box.min.as_dvec3(), child_box.max.as_dvec3());
-        let c = 0.5 * (lo + hi);
-        let r = 0.5 * (hi - lo).length();
-        // The point of a–b nearest to the box's centre.
-        let s = if length2 > 0.0 {
-            ((c - a).dot(ab) / length2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let gap = (a + ab * s - c).length();
-        if gap <= r + reach {
-            hit_mask |= obvhs::cwbvh::node::extract_byte64(child_bits8, child)
-                << obvhs::cwbvh::node::extract_byte64(bit_index8, child);
-        }
+/// The cone walk's visitor: no ray, a list of the occluders it keeps.
+struct Gather<'a> {
+    /// [the ball's far depth] until the list overflows, then [−1]: the walk stops.
+    limits: [f64; 1],
+    lines: Lines,
+    ball: &'a BallCone,
+    out: &'a mut Vec<u32>,
+    limit: usize,
+    fits: bool,
+}
+
+impl Rays for Gather<'_> {
+    fn limits(&self) -> &[f64] {
+        &self.limits
     }
-    hit_mask
+
+    fn lines(&self) -> &Lines {
+        &self.lines
+    }
+
+    fn takes(&self, bvh: &TriangleBvh, slot: usize) -> bool {
+        bvh.occludes[slot]
+    }
+
+    /// Never called (no ray): as `test`.
+    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], _: usize) -> bool {
+        self.test(bvh, slot, relative, 0.0)
+    }
+
+    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], _: f64) -> bool {
+        if !self.takes(bvh, slot) || self.ball.apart_by_plane(relative) {
+            return false;
+        }
+        if self.out.len() == self.limit {
+            (self.fits, self.limits) = (false, [-1.0]);
+            return true;
+        }
+        self.out.push(slot as u32);
+        false
+    }
 }
 
 #[cfg(test)]
@@ -260,7 +238,11 @@ mod tests {
                 4.0 * rng.next_f64() - 2.0,
             );
             let radius = 0.05 + 0.8 * rng.next_f64();
-            assert!(bvh.gather_near_ball(from, centre, radius, usize::MAX, &mut candidates));
+            if !bvh.gather_near_ball(from, centre, radius, usize::MAX, &mut candidates) {
+                // Only from inside the ball: each ray then goes through the BVH.
+                assert!((centre - from).length() <= radius * (1.0 + 1e-9), "case {case}");
+                continue;
+            }
             let says_clear = candidates.is_empty();
             let mut any_blocked = false;
             for _ in 0..300 {
