@@ -5,8 +5,7 @@
 //! ray needs a test.
 
 use super::TriangleBvh;
-use super::lanes::Lines;
-use super::packet::{Cone, ROUNDING, Rays};
+use super::packet::{Cone, ROUNDING, Visitor};
 use crate::reference::intersect::ShearedRay;
 use glam::DVec3;
 
@@ -30,16 +29,19 @@ impl TriangleBvh {
         let Some(ball) = BallCone::new(from, centre, radius) else {
             return false;
         };
-        let mut gather = Gather {
-            limits: [ball.deepest],
-            lines: Lines::default(),
-            ball: &ball,
-            out,
-            limit,
-            fits: true,
+        let mut fits = true;
+        let keep = |slot: usize, relative: &[DVec3; 3]| {
+            if !self.occludes[slot] || ball.apart_by_plane(relative) {
+                return true;
+            }
+            fits = out.len() < limit;
+            if fits {
+                out.push(slot as u32);
+            }
+            fits
         };
-        self.walk_cone(&ball.pyramid, &mut gather);
-        gather.fits
+        self.walk_cone(&ball.pyramid, &mut Visitor::new(ball.deepest, keep));
+        fits
     }
 
     /// Whether one of the gathered occluders (see [`Self::gather_near_ball`])
@@ -102,48 +104,6 @@ impl BallCone {
         let centre_side = m.dot(self.centre - a);
         let clearance = self.radius * length * (1.0 + ROUNDING) + tol;
         (origin_side > tol && centre_side > clearance) || (origin_side < -tol && centre_side < -clearance)
-    }
-}
-
-/// The cone walk's visitor: no ray, a list of the occluders it keeps.
-struct Gather<'a> {
-    /// [the ball's far depth] until the list overflows, then [−1]: the walk stops.
-    limits: [f64; 1],
-    lines: Lines,
-    ball: &'a BallCone,
-    out: &'a mut Vec<u32>,
-    limit: usize,
-    fits: bool,
-}
-
-impl Rays for Gather<'_> {
-    fn limits(&self) -> &[f64] {
-        &self.limits
-    }
-
-    fn lines(&self) -> &Lines {
-        &self.lines
-    }
-
-    fn takes(&self, bvh: &TriangleBvh, slot: usize) -> bool {
-        bvh.occludes[slot]
-    }
-
-    /// Never called (no ray): as `test`.
-    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], _: usize) -> bool {
-        self.test(bvh, slot, relative, 0.0)
-    }
-
-    fn test(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], _: f64) -> bool {
-        if !self.takes(bvh, slot) || self.ball.apart_by_plane(relative) {
-            return false;
-        }
-        if self.out.len() == self.limit {
-            (self.fits, self.limits) = (false, [-1.0]);
-            return true;
-        }
-        self.out.push(slot as u32);
-        false
     }
 }
 

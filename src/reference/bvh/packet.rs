@@ -214,9 +214,15 @@ impl TriangleBvh {
     /// only background). The walk's own filters, stopped at the first
     /// triangle they keep.
     pub fn meets_cone(&self, cone: &Cone) -> bool {
-        let mut probe = Probe::default();
-        self.walk_cone(cone, &mut probe);
-        probe.found
+        let mut found = false;
+        self.walk_cone(
+            cone,
+            &mut Visitor::new(f64::INFINITY, |_, _| {
+                found = true;
+                false
+            }),
+        );
+        found
     }
 
     /// The closest hit, t > 0, of each ray from the cone's apex along
@@ -269,25 +275,27 @@ impl TriangleBvh {
     }
 }
 
-/// No ray, only whether the walk keeps a triangle (see [`TriangleBvh::meets_cone`]).
-struct Probe {
-    /// [∞] until a triangle is kept, then [−1]: the walk stops.
+/// No ray: each triangle the walk keeps (slot, corners relative to the
+/// apex) goes to `visit`, which says whether the walk goes on.
+pub struct Visitor<F> {
+    /// [deepest] while the walk goes on, then [−1]: it stops.
     limits: [f64; 1],
-    found: bool,
     lines: Lines,
+    visit: F,
 }
 
-impl Default for Probe {
-    fn default() -> Self {
+impl<F: FnMut(usize, &[DVec3; 3]) -> bool> Visitor<F> {
+    /// A visitor of the triangles no deeper along the cone than `deepest`.
+    pub fn new(deepest: f64, visit: F) -> Self {
         Self {
-            limits: [f64::INFINITY],
-            found: false,
+            limits: [deepest],
             lines: Lines::default(),
+            visit,
         }
     }
 }
 
-impl Rays for Probe {
+impl<F: FnMut(usize, &[DVec3; 3]) -> bool> Rays for Visitor<F> {
     fn limits(&self) -> &[f64] {
         &self.limits
     }
@@ -296,13 +304,16 @@ impl Rays for Probe {
         &self.lines
     }
 
-    /// Never called (the probe has no rays): as `test`.
+    /// Never called (a visitor has no rays): as `test`.
     fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], _: usize) -> bool {
         self.test(bvh, slot, relative, 0.0)
     }
 
-    fn test(&mut self, _: &TriangleBvh, _: usize, _: &[DVec3; 3], _: f64) -> bool {
-        (self.found, self.limits) = (true, [-1.0]);
+    fn test(&mut self, _: &TriangleBvh, slot: usize, relative: &[DVec3; 3], _: f64) -> bool {
+        if (self.visit)(slot, relative) {
+            return false;
+        }
+        self.limits = [-1.0];
         true
     }
 }
