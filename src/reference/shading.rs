@@ -8,7 +8,9 @@
 //! sampled uniformly in solid angle over N strata; with Ω = 2π (1 − cos α) and
 //! L_e = Φ / (4π² R²), L = c · colour · (Ω / N) Σ (f_d + f_s)(l_i) L_e V_i cos⁺θ_i.
 //! It converges to the penumbra as N grows; unoccluded and above the horizon
-//! its E-part equals `sphere_irradiance` (the point light's E).
+//! its E-part equals `sphere_irradiance` (the point light's E). Where no
+//! shadow ray can be blocked, the diffuse part is that closed form itself
+//! and only a specular lobe is sampled (`unoccluded_sphere`).
 //!
 //! Shadow rays: from p moved off the surface by ε = [`SHADOW_OFFSET_REL`] ×
 //! the largest |coordinate| of the hit triangle, along the geometric normal on
