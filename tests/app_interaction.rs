@@ -5,12 +5,13 @@
 
 mod app_support;
 mod common;
-use app_support::{harness_with, primary_button, step_until};
+use app_support::{harness_preloaded, harness_with, primary_button, step_until};
 use egui::Event;
 use egui_kittest::Harness;
-use lumlab::app::{DragDevice, LabApp, LaunchOptions};
+use lumlab::app::{DragDevice, LabApp, LaunchOptions, Preloaded};
 use lumlab::gpu::{Renderer, ShadeOptions};
 use lumlab::presets::Half;
+use lumlab::scene::simplify::THRESHOLD_TRIANGLES;
 
 /// The size (pixels) of half A's last rendered image.
 fn rendered_size(harness: &Harness<'_, LabApp>) -> (u32, u32) {
@@ -199,6 +200,91 @@ fn both_halves_of_the_split_view_get_drag_frames_from_the_drag_device() {
         assert!(
             size.0 < full.0 && size.1 < full.1,
             "{half:?} shows {size:?} of {full:?} while dragging"
+        );
+    }
+}
+
+/// On a scene above the threshold, drag frames draw its simplified meshes
+/// once they are built (on either device), and the frame after the drag
+/// draws the full ones: the very image a renderer gives that never had
+/// simplified meshes.
+#[test]
+fn drag_frames_draw_a_large_scene_simplified_and_the_still_frame_after_draws_it_whole() {
+    let scene = lumlab::scene::stress::sphere_field(THRESHOLD_TRIANGLES + 1);
+    let full_triangles = scene.triangle_count();
+    for device in [DragDevice::Same, DragDevice::Own] {
+        let options = LaunchOptions {
+            drag_device: device,
+            ..LaunchOptions::default()
+        };
+        let preloaded = Preloaded {
+            scene: Some(("sphere-field.glb".into(), scene.clone())),
+            ..Preloaded::default()
+        };
+        let mut harness = harness_preloaded(None, &options, preloaded);
+        step_until(&mut harness, "the simplified meshes", |app| {
+            app.simplified_meshes().is_some()
+        });
+        let (simplified, full) = harness.state().simplified_meshes().expect("built");
+        assert!(
+            full >= full_triangles && simplified < full / 2,
+            "{simplified} of {full}"
+        );
+        assert_eq!(
+            harness.state().report().and_then(|r| r.simplified_triangles),
+            None,
+            "{device:?}: the still frame before the drag"
+        );
+        let from = harness.state().viewport_rect().center();
+        harness.event(Event::PointerMoved(from));
+        harness.step();
+        primary_button(&mut harness, from, true);
+        harness.step();
+        let mut to = from;
+        for _ in 0..3 {
+            let renders = harness.state().renders();
+            to += egui::vec2(20.0, 0.0);
+            harness.event(Event::PointerMoved(to));
+            harness.step();
+            step_until(&mut harness, "a drag frame", |app| app.renders() > renders);
+            assert_eq!(
+                harness.state().report().and_then(|r| r.simplified_triangles),
+                Some(simplified),
+                "{device:?}: a drag frame"
+            );
+        }
+        let renders = harness.state().renders();
+        primary_button(&mut harness, to, false);
+        harness.step();
+        let full_size = harness.state().viewport_size();
+        let shown_size = |harness: &Harness<'_, LabApp>| {
+            harness
+                .state()
+                .shown_image(Half::A)
+                .map(|(_, image)| image.dimensions())
+        };
+        step_until(&mut harness, "the full frame", |app| {
+            app.renders() > renders
+                && app.shown_image(Half::A).map(|(_, i)| i.dimensions()) == Some(full_size)
+        });
+        assert_eq!(shown_size(&harness), Some(full_size));
+        assert_eq!(
+            harness.state().report().and_then(|r| r.simplified_triangles),
+            None,
+            "{device:?}: the still frame after the drag draws the full meshes"
+        );
+        let (drawn, shown) = harness.state().shown_image(Half::A).expect("an image is shown");
+        let gpu = common::gpu();
+        let mut renderer = Renderer::new(
+            &gpu.adapter,
+            &gpu.device,
+            &gpu.queue,
+            harness.state().drawn_scene(),
+        );
+        renderer.render(&drawn, full_size);
+        assert!(
+            renderer.read_display() == shown,
+            "{device:?}: the still frame is the full meshes' image, byte for byte"
         );
     }
 }
