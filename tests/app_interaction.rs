@@ -23,6 +23,43 @@ fn rendered_size(harness: &Harness<'_, LabApp>) -> (u32, u32) {
     (texture.width(), texture.height())
 }
 
+/// Presses the viewport at its centre; returns where.
+fn press_viewport(harness: &mut Harness<'_, LabApp>) -> egui::Pos2 {
+    let from = harness.state().viewport_rect().center();
+    harness.event(Event::PointerMoved(from));
+    harness.step();
+    primary_button(harness, from, true);
+    harness.step();
+    from
+}
+
+/// Drags the pressed pointer from `at` 20 points right and steps until the
+/// view shows a new image; returns where the pointer is.
+fn drag_to_next_image(harness: &mut Harness<'_, LabApp>, at: egui::Pos2) -> egui::Pos2 {
+    let renders = harness.state().renders();
+    let to = at + egui::vec2(20.0, 0.0);
+    harness.event(Event::PointerMoved(to));
+    harness.step();
+    step_until(harness, "a drag frame", |app| app.renders() > renders);
+    to
+}
+
+/// The size (pixels) of the image half A shows.
+fn shown_size(app: &LabApp) -> Option<(u32, u32)> {
+    app.shown_image(Half::A).map(|(_, image)| image.dimensions())
+}
+
+/// A renderer of its own on the scene the lab draws.
+fn renderer_of_drawn_scene(harness: &Harness<'_, LabApp>) -> Renderer {
+    let gpu = common::gpu();
+    Renderer::new(
+        &gpu.adapter,
+        &gpu.device,
+        &gpu.queue,
+        harness.state().drawn_scene(),
+    )
+}
+
 /// The lab with drag frames on `device`, warmed up (the first frames' GPU
 /// times size the interaction scale) and the viewport pressed at its
 /// centre: the press's position.
@@ -42,11 +79,7 @@ fn pressed_lab(device: DragDevice) -> (Harness<'static, LabApp>, egui::Pos2) {
         .shown_image(Half::A)
         .map(|(_, image)| image.dimensions());
     assert_eq!(shown, Some(full), "idle: full resolution");
-    let from = harness.state().viewport_rect().center();
-    harness.event(Event::PointerMoved(from));
-    harness.step();
-    primary_button(&mut harness, from, true);
-    harness.step();
+    let from = press_viewport(&mut harness);
     (harness, from)
 }
 
@@ -114,21 +147,11 @@ fn drag_frames_on_a_device_of_their_own_show_what_that_device_renders() {
     let (mut harness, from) = pressed_lab(DragDevice::Own);
     assert!(harness.state().has_drag_device());
     let full = harness.state().viewport_size();
-    let gpu = common::gpu();
-    let mut renderer = Renderer::new(
-        &gpu.adapter,
-        &gpu.device,
-        &gpu.queue,
-        harness.state().drawn_scene(),
-    );
+    let mut renderer = renderer_of_drawn_scene(&harness);
     renderer.set_shade_options(ShadeOptions::INTERACTION);
     let mut to = from;
     for _ in 0..3 {
-        let renders = harness.state().renders();
-        to += egui::vec2(20.0, 0.0);
-        harness.event(Event::PointerMoved(to));
-        harness.step();
-        step_until(&mut harness, "a drag frame", |app| app.renders() > renders);
+        to = drag_to_next_image(&mut harness, to);
         let (drawn, shown) = harness.state().shown_image(Half::A).expect("an image is shown");
         // The drawn camera's field of view is fitted to the viewport.
         let camera = harness.state().settings().camera;
@@ -152,24 +175,26 @@ fn drag_frames_on_a_device_of_their_own_show_what_that_device_renders() {
     primary_button(&mut harness, to, false);
     harness.step();
     step_until(&mut harness, "the full frame", |app| app.renders() > renders);
-    let shown_size = |harness: &Harness<'_, LabApp>| {
-        harness
-            .state()
-            .shown_image(Half::A)
-            .map(|(_, image)| image.dimensions())
-    };
-    if shown_size(&harness) != Some(full) {
+    if shown_size(harness.state()) != Some(full) {
         // The release frame showed the last drag frame: the full one follows.
         let renders = harness.state().renders();
         step_until(&mut harness, "the full frame", |app| app.renders() > renders);
     }
-    assert_eq!(shown_size(&harness), Some(full), "released: full resolution");
+    assert_eq!(
+        shown_size(harness.state()),
+        Some(full),
+        "released: full resolution"
+    );
     let settled = harness.state().renders();
     for _ in 0..10 {
         std::thread::sleep(std::time::Duration::from_millis(30));
         harness.step();
     }
-    assert_eq!(shown_size(&harness), Some(full), "no late drag frame replaces it");
+    assert_eq!(
+        shown_size(harness.state()),
+        Some(full),
+        "no late drag frame replaces it"
+    );
     assert_eq!(
         harness.state().renders(),
         settled,
@@ -235,18 +260,9 @@ fn drag_frames_draw_a_large_scene_simplified_and_the_still_frame_after_draws_it_
             None,
             "{device:?}: the still frame before the drag"
         );
-        let from = harness.state().viewport_rect().center();
-        harness.event(Event::PointerMoved(from));
-        harness.step();
-        primary_button(&mut harness, from, true);
-        harness.step();
-        let mut to = from;
+        let mut to = press_viewport(&mut harness);
         for _ in 0..3 {
-            let renders = harness.state().renders();
-            to += egui::vec2(20.0, 0.0);
-            harness.event(Event::PointerMoved(to));
-            harness.step();
-            step_until(&mut harness, "a drag frame", |app| app.renders() > renders);
+            to = drag_to_next_image(&mut harness, to);
             assert_eq!(
                 harness.state().report().and_then(|r| r.simplified_triangles),
                 Some(simplified),
@@ -257,30 +273,16 @@ fn drag_frames_draw_a_large_scene_simplified_and_the_still_frame_after_draws_it_
         primary_button(&mut harness, to, false);
         harness.step();
         let full_size = harness.state().viewport_size();
-        let shown_size = |harness: &Harness<'_, LabApp>| {
-            harness
-                .state()
-                .shown_image(Half::A)
-                .map(|(_, image)| image.dimensions())
-        };
         step_until(&mut harness, "the full frame", |app| {
-            app.renders() > renders
-                && app.shown_image(Half::A).map(|(_, i)| i.dimensions()) == Some(full_size)
+            app.renders() > renders && shown_size(app) == Some(full_size)
         });
-        assert_eq!(shown_size(&harness), Some(full_size));
         assert_eq!(
             harness.state().report().and_then(|r| r.simplified_triangles),
             None,
             "{device:?}: the still frame after the drag draws the full meshes"
         );
         let (drawn, shown) = harness.state().shown_image(Half::A).expect("an image is shown");
-        let gpu = common::gpu();
-        let mut renderer = Renderer::new(
-            &gpu.adapter,
-            &gpu.device,
-            &gpu.queue,
-            harness.state().drawn_scene(),
-        );
+        let mut renderer = renderer_of_drawn_scene(&harness);
         renderer.render(&drawn, full_size);
         assert!(
             renderer.read_display() == shown,
