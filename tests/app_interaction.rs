@@ -5,12 +5,13 @@
 
 mod app_support;
 mod common;
-use app_support::{harness_with, primary_button, step_until};
+use app_support::{harness_preloaded, harness_with, primary_button, step_until};
 use egui::Event;
 use egui_kittest::Harness;
-use lumlab::app::{DragDevice, LabApp, LaunchOptions};
+use lumlab::app::{DragDevice, LabApp, LaunchOptions, Preloaded};
 use lumlab::gpu::{Renderer, ShadeOptions};
 use lumlab::presets::Half;
+use lumlab::scene::simplify::THRESHOLD_TRIANGLES;
 
 /// The size (pixels) of half A's last rendered image.
 fn rendered_size(harness: &Harness<'_, LabApp>) -> (u32, u32) {
@@ -20,6 +21,43 @@ fn rendered_size(harness: &Harness<'_, LabApp>) -> (u32, u32) {
         .and_then(|r| r.display_texture())
         .expect("a frame was rendered");
     (texture.width(), texture.height())
+}
+
+/// Presses the viewport at its centre; returns where.
+fn press_viewport(harness: &mut Harness<'_, LabApp>) -> egui::Pos2 {
+    let from = harness.state().viewport_rect().center();
+    harness.event(Event::PointerMoved(from));
+    harness.step();
+    primary_button(harness, from, true);
+    harness.step();
+    from
+}
+
+/// Drags the pressed pointer from `at` 20 points right and steps until the
+/// view shows a new image; returns where the pointer is.
+fn drag_to_next_image(harness: &mut Harness<'_, LabApp>, at: egui::Pos2) -> egui::Pos2 {
+    let renders = harness.state().renders();
+    let to = at + egui::vec2(20.0, 0.0);
+    harness.event(Event::PointerMoved(to));
+    harness.step();
+    step_until(harness, "a drag frame", |app| app.renders() > renders);
+    to
+}
+
+/// The size (pixels) of the image half A shows.
+fn shown_size(app: &LabApp) -> Option<(u32, u32)> {
+    app.shown_image(Half::A).map(|(_, image)| image.dimensions())
+}
+
+/// A renderer of its own on the scene the lab draws.
+fn renderer_of_drawn_scene(harness: &Harness<'_, LabApp>) -> Renderer {
+    let gpu = common::gpu();
+    Renderer::new(
+        &gpu.adapter,
+        &gpu.device,
+        &gpu.queue,
+        harness.state().drawn_scene(),
+    )
 }
 
 /// The lab with drag frames on `device`, warmed up (the first frames' GPU
@@ -41,11 +79,7 @@ fn pressed_lab(device: DragDevice) -> (Harness<'static, LabApp>, egui::Pos2) {
         .shown_image(Half::A)
         .map(|(_, image)| image.dimensions());
     assert_eq!(shown, Some(full), "idle: full resolution");
-    let from = harness.state().viewport_rect().center();
-    harness.event(Event::PointerMoved(from));
-    harness.step();
-    primary_button(&mut harness, from, true);
-    harness.step();
+    let from = press_viewport(&mut harness);
     (harness, from)
 }
 
@@ -113,21 +147,11 @@ fn drag_frames_on_a_device_of_their_own_show_what_that_device_renders() {
     let (mut harness, from) = pressed_lab(DragDevice::Own);
     assert!(harness.state().has_drag_device());
     let full = harness.state().viewport_size();
-    let gpu = common::gpu();
-    let mut renderer = Renderer::new(
-        &gpu.adapter,
-        &gpu.device,
-        &gpu.queue,
-        harness.state().drawn_scene(),
-    );
+    let mut renderer = renderer_of_drawn_scene(&harness);
     renderer.set_shade_options(ShadeOptions::INTERACTION);
     let mut to = from;
     for _ in 0..3 {
-        let renders = harness.state().renders();
-        to += egui::vec2(20.0, 0.0);
-        harness.event(Event::PointerMoved(to));
-        harness.step();
-        step_until(&mut harness, "a drag frame", |app| app.renders() > renders);
+        to = drag_to_next_image(&mut harness, to);
         let (drawn, shown) = harness.state().shown_image(Half::A).expect("an image is shown");
         // The drawn camera's field of view is fitted to the viewport.
         let camera = harness.state().settings().camera;
@@ -151,24 +175,26 @@ fn drag_frames_on_a_device_of_their_own_show_what_that_device_renders() {
     primary_button(&mut harness, to, false);
     harness.step();
     step_until(&mut harness, "the full frame", |app| app.renders() > renders);
-    let shown_size = |harness: &Harness<'_, LabApp>| {
-        harness
-            .state()
-            .shown_image(Half::A)
-            .map(|(_, image)| image.dimensions())
-    };
-    if shown_size(&harness) != Some(full) {
+    if shown_size(harness.state()) != Some(full) {
         // The release frame showed the last drag frame: the full one follows.
         let renders = harness.state().renders();
         step_until(&mut harness, "the full frame", |app| app.renders() > renders);
     }
-    assert_eq!(shown_size(&harness), Some(full), "released: full resolution");
+    assert_eq!(
+        shown_size(harness.state()),
+        Some(full),
+        "released: full resolution"
+    );
     let settled = harness.state().renders();
     for _ in 0..10 {
         std::thread::sleep(std::time::Duration::from_millis(30));
         harness.step();
     }
-    assert_eq!(shown_size(&harness), Some(full), "no late drag frame replaces it");
+    assert_eq!(
+        shown_size(harness.state()),
+        Some(full),
+        "no late drag frame replaces it"
+    );
     assert_eq!(
         harness.state().renders(),
         settled,
@@ -199,6 +225,68 @@ fn both_halves_of_the_split_view_get_drag_frames_from_the_drag_device() {
         assert!(
             size.0 < full.0 && size.1 < full.1,
             "{half:?} shows {size:?} of {full:?} while dragging"
+        );
+    }
+}
+
+/// On a scene above the threshold, drag frames draw its simplified meshes
+/// once they are built (on either device), and the frame after the drag
+/// draws the full ones: the very image a renderer gives that never had
+/// simplified meshes.
+#[test]
+fn drag_frames_draw_a_large_scene_simplified_and_the_still_frame_after_draws_it_whole() {
+    let scene = lumlab::scene::stress::sphere_field(THRESHOLD_TRIANGLES + 1);
+    let full_triangles = scene.triangle_count();
+    for device in [DragDevice::Same, DragDevice::Own] {
+        let options = LaunchOptions {
+            drag_device: device,
+            ..LaunchOptions::default()
+        };
+        let preloaded = Preloaded {
+            scene: Some(("sphere-field.glb".into(), scene.clone())),
+            ..Preloaded::default()
+        };
+        let mut harness = harness_preloaded(None, &options, preloaded);
+        step_until(&mut harness, "the simplified meshes", |app| {
+            app.simplified_meshes().is_some()
+        });
+        let (simplified, full) = harness.state().simplified_meshes().expect("built");
+        assert!(
+            full >= full_triangles && simplified < full / 2,
+            "{simplified} of {full}"
+        );
+        assert_eq!(
+            harness.state().report().and_then(|r| r.simplified_triangles),
+            None,
+            "{device:?}: the still frame before the drag"
+        );
+        let mut to = press_viewport(&mut harness);
+        for _ in 0..3 {
+            to = drag_to_next_image(&mut harness, to);
+            assert_eq!(
+                harness.state().report().and_then(|r| r.simplified_triangles),
+                Some(simplified),
+                "{device:?}: a drag frame"
+            );
+        }
+        let renders = harness.state().renders();
+        primary_button(&mut harness, to, false);
+        harness.step();
+        let full_size = harness.state().viewport_size();
+        step_until(&mut harness, "the full frame", |app| {
+            app.renders() > renders && shown_size(app) == Some(full_size)
+        });
+        assert_eq!(
+            harness.state().report().and_then(|r| r.simplified_triangles),
+            None,
+            "{device:?}: the still frame after the drag draws the full meshes"
+        );
+        let (drawn, shown) = harness.state().shown_image(Half::A).expect("an image is shown");
+        let mut renderer = renderer_of_drawn_scene(&harness);
+        renderer.render(&drawn, full_size);
+        assert!(
+            renderer.read_display() == shown,
+            "{device:?}: the still frame is the full meshes' image, byte for byte"
         );
     }
 }

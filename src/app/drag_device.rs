@@ -14,7 +14,8 @@
 //! Only drag frames go there: full frames, the probe's and the error
 //! statistics' readbacks stay on the window's device. A frame that arrives
 //! after its drag ended is dropped. The worker keeps its own copy of the
-//! scene's GPU buffers (uploaded when the scene changes) and compiles the
+//! scene's GPU buffers (uploaded when the scene changes, and a large
+//! scene's simplified meshes once they are built) and compiles the
 //! next drag's pipeline ahead after each full frame, as the window's
 //! renderer did before.
 
@@ -22,6 +23,7 @@ use crate::gpu::timing::PassTimes;
 use crate::gpu::{ComparisonImage, FrameReport, Renderer, ShadeOptions};
 use crate::presets::Half;
 use crate::scene::Scene;
+use crate::scene::simplify::SimplifiedMeshes;
 use crate::settings::Settings;
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
@@ -81,6 +83,8 @@ pub struct DragFrame<T> {
 
 enum Message<T> {
     Scene(Arc<Scene>),
+    /// The current scene's simplified meshes, which drag frames draw.
+    Simplified(Arc<SimplifiedMeshes>),
     Split(bool),
     Comparison(Half, Option<Arc<ComparisonImage>>),
     /// Compile the pipeline a drag from these settings will need.
@@ -135,6 +139,10 @@ impl<T: Send + 'static> DragRenderer<T> {
 
     pub fn set_scene(&self, scene: Arc<Scene>) {
         self.send(Message::Scene(scene));
+    }
+
+    pub fn set_simplified(&self, meshes: Arc<SimplifiedMeshes>) {
+        self.send(Message::Simplified(meshes));
     }
 
     pub fn set_split(&self, on: bool) {
@@ -253,6 +261,11 @@ impl Worker {
             Message::Scene(scene) => {
                 if let Some(a) = &mut self.halves[Half::A as usize] {
                     a.set_scene(&scene);
+                }
+            }
+            Message::Simplified(meshes) => {
+                if let Some(a) = &mut self.halves[Half::A as usize] {
+                    a.set_simplified(&meshes);
                 }
             }
             Message::Split(on) => self.set_split(on),

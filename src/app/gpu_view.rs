@@ -16,8 +16,10 @@ use crate::gpu::{Capabilities, ShadeOptions};
 use crate::gpu::{ComparisonImage, FloatTarget, FrameReport, PendingScale, Renderer};
 use crate::presets::Half;
 use crate::scene::Scene;
+use crate::scene::simplify::{SimplifiedMeshes, simplify_in_background};
 use crate::settings::Settings;
 use std::sync::Arc;
+use std::sync::mpsc::{Receiver, TryRecvError};
 use std::time::{Duration, Instant};
 
 /// What a frame was rendered from: when it is unchanged, so is the image.
@@ -95,6 +97,11 @@ pub struct GpuViews {
     image_pipeline: ImagePipeline,
     /// Where drag frames render when not on the window's device.
     drag: Option<DragRenderer<DragTag>>,
+    /// The scene's simplified meshes on their way (a large scene's: drag
+    /// frames draw them once they are uploaded).
+    simplifying: Option<Receiver<SimplifiedMeshes>>,
+    /// Triangles of the simplified meshes and of the full ones, once uploaded.
+    pub simplified: Option<(usize, usize)>,
 }
 
 impl GpuViews {
@@ -121,6 +128,8 @@ impl GpuViews {
             frame_scale: 1.0,
             image_pipeline,
             drag,
+            simplifying: simplify_in_background(scene),
+            simplified: None,
         }
     }
 
@@ -152,6 +161,36 @@ impl GpuViews {
         }
         for h in self.halves.iter_mut().flatten() {
             h.scene_generation = self.scene_generation;
+        }
+        // The last scene's meshes, if still on their way, are dropped with
+        // their receiver.
+        self.simplifying = simplify_in_background(scene);
+        self.simplified = None;
+    }
+
+    /// Whether the scene's simplified meshes are still being built.
+    pub fn simplifying(&self) -> bool {
+        self.simplifying.is_some()
+    }
+
+    /// Uploads the simplified meshes once built, for the renderers that draw
+    /// drag frames (A's, which B shares, and the drag device's).
+    fn take_simplified(&mut self) {
+        let meshes = match self.simplifying.as_ref().map(Receiver::try_recv) {
+            Some(Ok(meshes)) => meshes,
+            Some(Err(TryRecvError::Disconnected)) => {
+                self.simplifying = None;
+                return;
+            }
+            _ => return,
+        };
+        self.simplifying = None;
+        if let Some(a) = &mut self.halves[Half::A as usize] {
+            a.renderer.set_simplified(&meshes);
+        }
+        self.simplified = Some((meshes.triangles, meshes.full_triangles));
+        if let Some(drag) = &self.drag {
+            drag.set_simplified(Arc::new(meshes));
         }
     }
 
@@ -317,6 +356,7 @@ impl GpuViews {
 
     /// Collects timings and scales without blocking; true while some are still on their way.
     pub fn poll(&mut self) -> bool {
+        self.take_simplified();
         let mut waiting = false;
         for (i, h) in self.halves.iter_mut().enumerate() {
             let Some(h) = h else { continue };

@@ -310,6 +310,17 @@ impl LabApp {
         &self.scene
     }
 
+    /// What half A's last image drew (see `FrameReport`).
+    pub fn report(&self) -> Option<&crate::gpu::FrameReport> {
+        self.gpu.as_ref()?.half(Half::A).map(|h| &h.report)
+    }
+
+    /// Triangles of the scene's simplified meshes and of its full ones, once
+    /// built and uploaded (large scenes only).
+    pub fn simplified_meshes(&self) -> Option<(usize, usize)> {
+        self.gpu.as_ref()?.simplified
+    }
+
     /// Whether drag frames render on a device of their own.
     pub fn has_drag_device(&self) -> bool {
         self.gpu.as_ref().is_some_and(GpuViews::has_drag_device)
@@ -525,6 +536,8 @@ impl eframe::App for LabApp {
                 gpu_ms: a.and_then(|h| h.times).map_or(0.0, |t| t.total_ms()),
                 shadow_ms: a.and_then(|h| h.times?.shadow_ms).unwrap_or(0.0),
                 images: a.map_or(0, |h| h.renders),
+                simplifying: gpu.is_some_and(GpuViews::simplifying),
+                simplified: a.is_some_and(|h| h.report.simplified_triangles.is_some()),
             };
             bench.inject(raw_input, target, before);
         }

@@ -5,6 +5,7 @@ use super::gpu_view::GpuViews;
 use super::render_scale::{MIN_SCALE, RenderScale, TARGET_FPS};
 use super::widgets::{number, value_row};
 use crate::presets::Half;
+use crate::scene::simplify::THRESHOLD_TRIANGLES;
 use crate::tr;
 use egui::RichText;
 use std::time::Instant;
@@ -36,8 +37,9 @@ impl FrameClock {
     }
 }
 
-/// The render scale and the frame rate while dragging.
-fn interaction_rows(ui: &mut egui::Ui, scale: &RenderScale, own_device: bool) {
+/// The render scale, the frame rate and the meshes while dragging.
+fn interaction_rows(ui: &mut egui::Ui, gpu: &GpuViews) {
+    let scale = &gpu.render_scale;
     egui::Grid::new("interaction")
         .num_columns(2)
         .striped(true)
@@ -70,12 +72,30 @@ fn interaction_rows(ui: &mut egui::Ui, scale: &RenderScale, own_device: bool) {
             value_row(
                 ui,
                 &tr!("timings-drag-device"),
-                &if own_device {
+                &if gpu.has_drag_device() {
                     tr!("timings-drag-device-own")
                 } else {
                     tr!("timings-drag-device-window")
                 },
                 &tr!("timings-drag-device-tip"),
+            );
+            let thousands = |n: usize| number((n as f64 / 1e3).round());
+            value_row(
+                ui,
+                &tr!("timings-drag-meshes"),
+                &match gpu.simplified {
+                    Some((drawn, full)) => tr!(
+                        "timings-drag-meshes-simplified",
+                        drawn = thousands(drawn),
+                        full = thousands(full)
+                    ),
+                    None if gpu.simplifying() => tr!("timings-drag-meshes-building"),
+                    None => tr!("timings-drag-meshes-full"),
+                },
+                &tr!(
+                    "timings-drag-meshes-tip",
+                    threshold = thousands(THRESHOLD_TRIANGLES)
+                ),
             );
         });
 }
@@ -106,7 +126,7 @@ pub fn ui(ui: &mut egui::Ui, clock: &FrameClock, gpu: Option<&GpuViews>) {
         return;
     };
     let caps = gpu.capabilities();
-    interaction_rows(ui, &gpu.render_scale, gpu.has_drag_device());
+    interaction_rows(ui, gpu);
     for half in [Half::A, Half::B] {
         let Some(h) = gpu.half(half) else { continue };
         if gpu.half(Half::B).is_some() {

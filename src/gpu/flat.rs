@@ -105,9 +105,10 @@ pub(super) fn time_flat_pass(
         });
         pass.set_pipeline(&pipeline);
         pass.set_bind_group(0, &group, &[]);
-        scene.bind_buffers(&mut pass);
+        let meshes = scene.meshes(false);
+        meshes.bind(&mut pass);
         for object in 0..scene.bounds.len() {
-            scene.draw(&mut pass, object);
+            meshes.draw(&mut pass, object);
         }
     }
     if let Some(q) = &queries {

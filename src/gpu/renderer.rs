@@ -55,6 +55,9 @@ pub struct FrameReport {
     pub resolution_note: Option<String>,
     /// Camera near and far planes (m), fitted to the scene.
     pub camera_near_far: (f64, f64),
+    /// The triangles drawn when the frame drew the simplified meshes (None:
+    /// the full ones).
+    pub simplified_triangles: Option<usize>,
 }
 
 impl FrameReport {
@@ -159,6 +162,12 @@ impl Renderer {
         lock(&self.shared).set_scene(scene);
     }
 
+    /// Uploads the simplified meshes of the current scene, for every view
+    /// that shares it: frames with [`ShadeOptions::simplified`] draw them.
+    pub fn set_simplified(&mut self, meshes: &crate::scene::simplify::SimplifiedMeshes) {
+        lock(&self.shared).scene.set_simplified(&self.device, meshes);
+    }
+
     /// Shadow maps drawn so far by every view sharing this one's scene.
     pub fn shadow_draws(&self) -> u64 {
         lock(&self.shared).shadow_draws
@@ -251,16 +260,26 @@ impl Renderer {
             .fold(Aabb::EMPTY, |b, &i| b.union(&shared.scene.bounds[i]));
 
         let light = settings.light.position.as_dvec3();
+        let simplified = self.shade_options.simplified && settings.shadow.visibility == Visibility::ShadowMap;
         let mut report = FrameReport {
             size,
             visible_objects: visible.len(),
             casters_total: shared.scene.caster_bounds.iter().flatten().count(),
             camera_near_far: (near, far),
+            simplified_triangles: shared.scene.simplified_triangles().filter(|_| simplified),
             ..Default::default()
         };
         let apex = shadow_apex(light, &shared.scene.scene_bounds());
         report.shadow_map_unused = !reads_shadow_map(settings);
-        let prepared = shared.prepare_shadows(self.view, settings, apex, &visible_bounds, &mut report);
+        let simplified = report.simplified_triangles.is_some();
+        let prepared = shared.prepare_shadows(
+            self.view,
+            settings,
+            apex,
+            &visible_bounds,
+            simplified,
+            &mut report,
+        );
         self.queue
             .write_buffer(&self.shadow_uniform, 0, bytemuck::bytes_of(&prepared.raw));
 
@@ -324,14 +343,7 @@ impl Renderer {
         {
             shared.encode_shadow(&mut encoder, &prepared, settings, layout, self.timer.as_mut());
         }
-        self.encode_views(
-            &mut encoder,
-            &shared,
-            prepared.slot,
-            settings,
-            &visible,
-            report.layout.as_ref(),
-        );
+        self.encode_views(&mut encoder, &shared, prepared.slot, settings, &visible, &report);
         drop(shared);
         let timed = self.timer.as_mut().is_some_and(|t| t.end_frame(&mut encoder));
         self.queue.submit([encoder.finish()]);
@@ -341,7 +353,8 @@ impl Renderer {
         report
     }
 
-    /// The camera pass, the display pass and the frustum overlay.
+    /// The camera pass, the display pass and the frustum overlay of the
+    /// frame `report` describes (its shadow map's layout, its meshes).
     fn encode_views(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
@@ -349,8 +362,10 @@ impl Renderer {
         slot: usize,
         settings: &Settings,
         visible: &[usize],
-        layout: Option<&ShadowLayout>,
+        report: &FrameReport,
     ) {
+        let layout = report.layout.as_ref();
+        let meshes = shared.scene.meshes(report.simplified_triangles.is_some());
         let targets = self
             .targets
             .as_ref()
@@ -378,7 +393,7 @@ impl Renderer {
                 .as_mut()
                 .and_then(|t| t.writes(Pass::Shade, true, false));
             self.shade
-                .encode_depth(encoder, &shared.scene, &targets.depth_view, visible, writes);
+                .encode_depth(encoder, meshes, &targets.depth_view, visible, writes);
         }
         let writes = self
             .timer
@@ -387,7 +402,7 @@ impl Renderer {
         self.shade.encode(
             encoder,
             specialisation,
-            &shared.scene,
+            meshes,
             &shadow_group,
             raytrace_group,
             &targets.quantity_view,

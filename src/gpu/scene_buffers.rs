@@ -1,9 +1,12 @@
 //! A scene uploaded to the GPU: one vertex and one index buffer for every
 //! object, the materials as a storage buffer and the base-colour textures as
-//! one texture array.
+//! one texture array; once they are built, the simplified meshes that drag
+//! frames of a large scene draw ([`crate::scene::simplify`]), as a second
+//! index buffer over the same vertices.
 
 use super::bvh::{FlatBvh, GpuBvh};
 use super::uniforms::MaterialRaw;
+use crate::scene::simplify::SimplifiedMeshes;
 use crate::scene::{Aabb, Material, Scene};
 use bytemuck::{Pod, Zeroable};
 use wgpu::util::DeviceExt;
@@ -54,6 +57,38 @@ pub struct Draw {
     pub base_vertex: i32,
 }
 
+/// What a pass draws: the scene's vertices through one index buffer, an
+/// object a range of it (the full meshes, or the simplified ones).
+#[derive(Clone, Copy)]
+pub struct Meshes<'a> {
+    vertices: &'a wgpu::Buffer,
+    indices: &'a wgpu::Buffer,
+    draws: &'a [Draw],
+}
+
+impl Meshes<'_> {
+    pub fn bind(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_vertex_buffer(0, self.vertices.slice(..));
+        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
+    }
+
+    /// Draws object `i` (the pass has the buffers bound).
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, i: usize) {
+        let d = self.draws[i];
+        if d.index_count > 0 {
+            pass.draw_indexed(d.first_index..d.first_index + d.index_count, d.base_vertex, 0..1);
+        }
+    }
+}
+
+/// The simplified meshes on the GPU: their indices into the scene's
+/// vertices and each object's range.
+struct SimplifiedBuffers {
+    indices: wgpu::Buffer,
+    draws: Vec<Draw>,
+    triangles: usize,
+}
+
 /// What decides the materials' colours: the illuminant (None: RGB) and,
 /// under one, the colour model.
 pub type ColourKey = (Option<crate::colour::Illuminant>, crate::colour::ColourModel);
@@ -81,6 +116,8 @@ pub struct GpuScene {
     pub triangle_count: usize,
     /// The shadow casters' BVH, for the ray-traced visibility.
     pub bvh: GpuBvh,
+    /// Set by [`Self::set_simplified`] (large scenes only).
+    simplified: Option<SimplifiedBuffers>,
 }
 
 impl GpuScene {
@@ -207,6 +244,63 @@ impl GpuScene {
             textures,
             triangle_count: scene.triangle_count(),
             bvh: GpuBvh::new(device, &FlatBvh::of_scene(scene)),
+            simplified: None,
+        }
+    }
+
+    /// Uploads the simplified meshes of this scene (built from the same
+    /// `Scene`: one index list per object); ignored when they have another
+    /// count of objects.
+    pub fn set_simplified(&mut self, device: &wgpu::Device, meshes: &SimplifiedMeshes) {
+        if meshes.indices.len() != self.draws.len() {
+            return;
+        }
+        let mut first_index = 0;
+        let draws = self
+            .draws
+            .iter()
+            .zip(&meshes.indices)
+            .map(|(full, indices)| {
+                let draw = Draw {
+                    first_index,
+                    index_count: indices.len() as u32,
+                    base_vertex: full.base_vertex,
+                };
+                first_index += draw.index_count;
+                draw
+            })
+            .collect();
+        let indices: Vec<u32> = meshes.indices.concat();
+        self.simplified = Some(SimplifiedBuffers {
+            indices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("simplified scene indices"),
+                contents: bytemuck::cast_slice(if indices.is_empty() { &[0u32] } else { &indices }),
+                usage: wgpu::BufferUsages::INDEX,
+            }),
+            draws,
+            triangles: meshes.triangles,
+        });
+    }
+
+    /// The triangles of the simplified meshes, once uploaded.
+    pub fn simplified_triangles(&self) -> Option<usize> {
+        self.simplified.as_ref().map(|s| s.triangles)
+    }
+
+    /// The simplified meshes when `simplified` and they are uploaded, else
+    /// the full ones.
+    pub fn meshes(&self, simplified: bool) -> Meshes<'_> {
+        match &self.simplified {
+            Some(s) if simplified => Meshes {
+                vertices: &self.vertices,
+                indices: &s.indices,
+                draws: &s.draws,
+            },
+            _ => Meshes {
+                vertices: &self.vertices,
+                indices: &self.indices,
+                draws: &self.draws,
+            },
         }
     }
 
@@ -238,19 +332,6 @@ impl GpuScene {
     /// Bounds of every object.
     pub fn scene_bounds(&self) -> Aabb {
         self.bounds.iter().fold(Aabb::EMPTY, |b, o| b.union(o))
-    }
-
-    /// Draws object `i` (the pass has the buffers bound).
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>, i: usize) {
-        let d = self.draws[i];
-        if d.index_count > 0 {
-            pass.draw_indexed(d.first_index..d.first_index + d.index_count, d.base_vertex, 0..1);
-        }
-    }
-
-    pub fn bind_buffers(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_vertex_buffer(0, self.vertices.slice(..));
-        pass.set_index_buffer(self.indices.slice(..), wgpu::IndexFormat::Uint32);
     }
 }
 

@@ -2,7 +2,7 @@
 //! quantity and the aux target (V, texel density, cos θ, coverage).
 
 use super::binding;
-use super::scene_buffers::{GpuScene, Vertex};
+use super::scene_buffers::{GpuScene, Meshes, Vertex};
 use super::shaders::Shader;
 use super::shadow::ShadowTextures;
 use super::specialise::{Specialisation, camera_depth_test};
@@ -233,7 +233,7 @@ impl ShadePass {
     pub fn encode_depth(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        scene: &GpuScene,
+        meshes: Meshes<'_>,
         depth: &wgpu::TextureView,
         visible: &[usize],
         timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
@@ -251,9 +251,9 @@ impl ShadePass {
         };
         pass.set_pipeline(&self.depth_pipeline);
         pass.set_bind_group(0, scene_group, &[]);
-        scene.bind_buffers(&mut pass);
+        meshes.bind(&mut pass);
         for &object in visible {
-            scene.draw(&mut pass, object);
+            meshes.draw(&mut pass, object);
         }
     }
 
@@ -267,7 +267,7 @@ impl ShadePass {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         specialisation: Specialisation,
-        scene: &GpuScene,
+        meshes: Meshes<'_>,
         shadow_group: &wgpu::BindGroup,
         raytrace_group: &wgpu::BindGroup,
         quantity: &wgpu::TextureView,
@@ -304,9 +304,9 @@ impl ShadePass {
         pass.set_bind_group(0, scene_group, &[]);
         pass.set_bind_group(1, shadow_group, &[]);
         pass.set_bind_group(2, raytrace_group, &[]);
-        scene.bind_buffers(&mut pass);
+        meshes.bind(&mut pass);
         for &object in visible {
-            scene.draw(&mut pass, object);
+            meshes.draw(&mut pass, object);
         }
     }
 }

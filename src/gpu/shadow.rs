@@ -4,7 +4,7 @@
 
 use super::binding;
 use super::light_frustum::ShadowLayout;
-use super::scene_buffers::{GpuScene, Vertex};
+use super::scene_buffers::{Meshes, Vertex};
 use super::shaders::Shader;
 use super::timing::{GpuTimer, Pass};
 use super::uniforms::{BlurParamsRaw, DYNAMIC_STRIDE, ShadowRaw, uniform_buffer};
@@ -289,7 +289,7 @@ impl ShadowPass {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         encoder: &mut wgpu::CommandEncoder,
-        scene: &GpuScene,
+        meshes: Meshes<'_>,
         layout: &ShadowLayout,
         casters: &[Vec<usize>],
         textures: &ShadowTextures,
@@ -332,9 +332,9 @@ impl ShadowPass {
                 &self.depth_pipeline
             });
             pass.set_bind_group(0, &self.bind_group, &[(layer as u64 * DYNAMIC_STRIDE) as u32]);
-            scene.bind_buffers(&mut pass);
+            meshes.bind(&mut pass);
             for &object in &casters[layer] {
-                scene.draw(&mut pass, object);
+                meshes.draw(&mut pass, object);
             }
         }
         if let Some(moments) = &textures.moments

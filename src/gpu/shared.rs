@@ -36,6 +36,9 @@ struct ShadowKey {
     kind: MapKind,
     blur_texels: u32,
     scene_generation: u64,
+    /// Drawn from the simplified meshes (a drag's map): a full frame never
+    /// reads it.
+    simplified: bool,
 }
 
 /// One view's shadow map and what it was drawn for (None: not drawn yet).
@@ -144,13 +147,15 @@ impl SharedScene {
 
     /// Fits the light's layers, picks casters, finds a slot that already
     /// holds this map or takes the view's own to redraw (unless
-    /// `report.shadow_map_unused`); returns the shadow uniforms with that choice.
+    /// `report.shadow_map_unused`); returns the shadow uniforms with that
+    /// choice. `simplified`: the map is drawn from the simplified meshes.
     pub(super) fn prepare_shadows(
         &mut self,
         view: usize,
         settings: &Settings,
         light: DVec3,
         visible_bounds: &Aabb,
+        simplified: bool,
         report: &mut FrameReport,
     ) -> PreparedShadow {
         let s = &settings.shadow;
@@ -209,6 +214,7 @@ impl SharedScene {
                 0
             },
             scene_generation: self.generation,
+            simplified,
         };
         // The view's own slot first, so that a view alone behaves as before.
         let holding = std::iter::once(view).chain(0..self.slots.len()).find(|&i| {
@@ -308,7 +314,7 @@ impl SharedScene {
             &self.device,
             &self.queue,
             encoder,
-            &self.scene,
+            self.scene.meshes(key.simplified),
             layout,
             &key.casters,
             &slot.textures,

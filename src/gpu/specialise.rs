@@ -29,15 +29,22 @@ pub struct ShadeOptions {
     /// It pays for itself on large images (less CPU on lavapipe at 1000 ×
     /// 680), not on the app's small interaction frames, which skip it.
     pub depth_prepass: bool,
+    /// Draw the scene's simplified meshes, in the camera pass and the shadow
+    /// map, where it has them (large scenes, [`crate::scene::simplify`]) and
+    /// V comes from the shadow map (rays would meet the full meshes): the
+    /// app's drag frames, an approximation nobody reads back.
+    pub simplified: bool,
 }
 
 impl ShadeOptions {
     /// The app's interaction frames (a drag): read back by nobody, so no aux
-    /// target, and small, so no depth pre-pass.
+    /// target and simplified meshes where the scene has them, and small, so
+    /// no depth pre-pass.
     pub const INTERACTION: Self = Self {
         specialised: true,
         aux: false,
         depth_prepass: false,
+        simplified: true,
     };
 }
 
@@ -47,6 +54,7 @@ impl Default for ShadeOptions {
             specialised: true,
             aux: true,
             depth_prepass: true,
+            simplified: false,
         }
     }
 }

@@ -14,6 +14,7 @@ pub mod lecture_scene;
 pub mod plausibility;
 pub mod scale;
 pub mod shapes;
+pub mod simplify;
 pub mod stress;
 
 pub use bounds::Aabb;

@@ -25,6 +25,16 @@ pub fn harness_with(
     storage: Option<&dyn eframe::Storage>,
     options: &LaunchOptions,
 ) -> Harness<'static, LabApp> {
+    harness_preloaded(storage, options, Preloaded::default())
+}
+
+/// The lab as `harness_with`, with what `preloaded` gives (a scene built
+/// in code) instead of reading files.
+pub fn harness_preloaded(
+    storage: Option<&dyn eframe::Storage>,
+    options: &LaunchOptions,
+    preloaded: Preloaded,
+) -> Harness<'static, LabApp> {
     let mut setup = egui_wgpu::WgpuSetupCreateNew::without_display_handle();
     setup.instance_descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
     setup.device_descriptor = Arc::new(lumlab::gpu::context::device_descriptor);
@@ -36,7 +46,7 @@ pub fn harness_with(
         Some(render_state.clone()),
         storage,
         options,
-        Preloaded::default(),
+        preloaded,
         Arc::default(),
     )
     .expect("the app starts on a wgpu device");

@@ -76,6 +76,11 @@ pub(super) struct FrameBefore {
     pub shadow_ms: f64,
     /// Images the view has shown so far.
     pub images: u64,
+    /// The scene's simplified meshes are being built: the warm-up waits
+    /// for them, so that every measured frame draws what a drag draws.
+    pub simplifying: bool,
+    /// The view's last image drew the simplified meshes.
+    pub simplified: bool,
 }
 
 pub(super) struct DragBench {
@@ -96,6 +101,8 @@ pub(super) struct DragBench {
     shadow_ms: Vec<f64>,
     /// When the view showed a new image, over the measured frames.
     image_times: Vec<Instant>,
+    /// Measured frames whose image drew the simplified meshes.
+    simplified_frames: usize,
     /// The view's image count at the frame before.
     images: u64,
     /// CPU time (process, UI thread) when the measured frames began (s).
@@ -125,6 +132,7 @@ impl DragBench {
             gpu_ms: Vec::new(),
             shadow_ms: Vec::new(),
             image_times: Vec::new(),
+            simplified_frames: 0,
             images: 0,
             cpu_start: None,
             cpu_spent: None,
@@ -148,6 +156,9 @@ impl DragBench {
         let now = Instant::now();
         let new_image = before.images > self.images;
         self.images = before.images;
+        if before.simplifying && self.start.is_none() {
+            return;
+        }
         let k = self.frame;
         self.frame += 1;
         if k < WARM_UP_FRAMES || self.released || self.missing {
@@ -194,6 +205,7 @@ impl DragBench {
                 self.ui_ms.push(before.ui_ms);
                 self.gpu_ms.push(before.gpu_ms);
                 self.shadow_ms.push(before.shadow_ms);
+                self.simplified_frames += before.simplified as usize;
                 if new_image {
                     self.image_times.push(now);
                 }
@@ -241,12 +253,13 @@ impl DragBench {
             .map(|w| (w[1] - w[0]).as_secs_f64())
             .collect();
         Some(format!(
-            "{}; {}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms (shadow {:.1}){cpu}",
+            "{}; {}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms (shadow {:.1}){cpu}; simplified meshes in {} of {n} frames",
             summary(self.target, &self.intervals_s, &self.scales, viewport),
             image_summary(&images),
             median(&self.ui_ms),
             median(&self.gpu_ms),
             median(&self.shadow_ms),
+            self.simplified_frames,
         ))
     }
 }
