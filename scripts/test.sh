@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every lumlab test, as CI does. On a fresh Debian machine it first
 # installs what the tests need: Mesa's software Vulkan driver (lavapipe, the
-# GPU of machines without one) and Xvfb (for the window test).
+# GPU of machines without one), Xvfb (for the window test) and a C++ compiler.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -9,6 +9,8 @@ need=()
 ldconfig -p 2>/dev/null | grep -q 'libvulkan.so.1' || need+=(libvulkan1)
 ls /usr/share/vulkan/icd.d/lvp_icd*.json >/dev/null 2>&1 || need+=(mesa-vulkan-drivers)
 command -v xvfb-run >/dev/null 2>&1 || need+=(xvfb)
+# meshoptimizer (the drag frames' simplified meshes) is C++, built by the meshopt crate.
+command -v c++ >/dev/null 2>&1 || need+=(g++)
 if [ ${#need[@]} -gt 0 ]; then
   echo "installing: ${need[*]}"
   sudo=""
