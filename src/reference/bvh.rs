@@ -28,7 +28,6 @@ use glam::{DVec3, UVec2, Vec3A};
 use obvhs::cwbvh::Traversal;
 use obvhs::ray::Ray;
 use obvhs::{aabb::Aabb, cwbvh::CwBvh};
-use rayon::prelude::*;
 
 /// Padding of every triangle's box in the normalized frame (scene extent = 1).
 pub const PAD: f64 = 1e-5;
@@ -89,25 +88,19 @@ impl TriangleBvh {
     /// [`Self::new`] built in parallel in groups of `min_group` triangles
     /// or more (see `bvh/build.rs`).
     fn in_groups(triangles: &[BvhTriangle], min_group: usize) -> Self {
-        // Each pass below is split over the thread pool (serial, they
-        // showed in profiles of million-triangle scenes).
         let usable: Vec<usize> = (0..triangles.len())
-            .into_par_iter()
             .filter(|&i| {
                 let [a, b, c] = triangles[i].corners;
                 a.is_finite() && b.is_finite() && c.is_finite() && (b - a).cross(c - a).length_squared() > 0.0
             })
             .collect();
-        let (min, max) = usable
-            .par_iter()
-            .map(|&i| {
-                let [a, b, c] = triangles[i].corners;
-                (a.min(b).min(c), a.max(b).max(c))
-            })
-            .reduce(
-                || (DVec3::INFINITY, DVec3::NEG_INFINITY),
-                |(lo, hi), (l, h)| (lo.min(l), hi.max(h)),
-            );
+        let (mut min, mut max) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for &i in &usable {
+            for p in triangles[i].corners {
+                min = min.min(p);
+                max = max.max(p);
+            }
+        }
         if usable.is_empty() {
             return Self {
                 bvh: None,
@@ -125,7 +118,7 @@ impl TriangleBvh {
         let to_frame = |p: DVec3| (p - centre) / scale;
         // Each triangle's padded box in the normalized frame.
         let boxes: Vec<Aabb> = usable
-            .par_iter()
+            .iter()
             .map(|&i| {
                 let [a, b, c] = triangles[i].corners.map(to_frame);
                 let lo = a.min(b).min(c) - DVec3::splat(PAD);
@@ -136,13 +129,13 @@ impl TriangleBvh {
         let bvh = build::build_cwbvh(&boxes, min_group);
         let original: Vec<usize> = bvh
             .primitive_indices
-            .par_iter()
+            .iter()
             .map(|&slot| usable[slot as usize])
             .collect();
         let pad_world = DVec3::splat(PAD * scale);
         Self {
-            corners: original.par_iter().map(|&i| triangles[i].corners).collect(),
-            occludes: original.par_iter().map(|&i| triangles[i].occludes).collect(),
+            corners: original.iter().map(|&i| triangles[i].corners).collect(),
+            occludes: original.iter().map(|&i| triangles[i].occludes).collect(),
             original,
             bvh: Some(bvh),
             centre,

@@ -40,7 +40,6 @@ use crate::scene::{Material, Scene};
 use crate::settings::{Settings, SettingsError};
 use bvh::{BvhTriangle, TriangleBvh};
 use glam::{DVec3, Vec2, Vec3};
-use rayon::prelude::*;
 use sampling::Rng;
 use shading::Setup;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -177,7 +176,7 @@ impl Reference {
                 occludes: scene.objects[t.object].casts_shadows,
             })
             .collect();
-        // The BVH beside the shading data (both split over the pool).
+        // The BVH (built on one thread) beside the shading data.
         let (bvh, triangles) = rayon::join(
             || TriangleBvh::new(&bvh_triangles),
             || mesh_triangles(scene).map(|t| t.info(scene)).collect(),
@@ -230,13 +229,12 @@ struct MeshTriangle {
     corners: [Vec3; 3],
 }
 
-/// Every triangle of the scene whose indices lie inside its mesh, in
-/// order (rayon's `collect` keeps it), split over the thread pool.
-fn mesh_triangles(scene: &Scene) -> impl ParallelIterator<Item = MeshTriangle> + '_ {
-    scene.objects.par_iter().enumerate().flat_map(|(object, o)| {
+/// Every triangle of the scene whose indices lie inside its mesh, in order.
+fn mesh_triangles(scene: &Scene) -> impl Iterator<Item = MeshTriangle> + '_ {
+    scene.objects.iter().enumerate().flat_map(|(object, o)| {
         let mesh = &o.mesh;
         mesh.indices
-            .par_chunks_exact(3)
+            .chunks_exact(3)
             .enumerate()
             .filter_map(move |(index, ids)| {
                 let ids = [ids[0] as usize, ids[1] as usize, ids[2] as usize];

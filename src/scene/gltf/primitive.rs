@@ -7,7 +7,6 @@ use crate::scene::{LoadProblem, Mesh};
 use glam::{Vec2, Vec3};
 use gltf::json::mesh::{Mode, Primitive, Semantic};
 use gltf::json::validation::Checked;
-use rayon::prelude::*;
 
 /// What a primitive draws.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -256,48 +255,34 @@ fn usable(n: Vec3) -> bool {
 /// how a flat region around it was split into triangles. A vertex no
 /// triangle uses gets +Y.
 pub(super) fn vertex_normals(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {
-    // The corners' angles in parallel (their `atan2`s are most of the cost
-    // on large meshes); then the face normals weighted by them, summed in
-    // triangle order, so the sums do not depend on the thread count.
-    let face = |t: &[u32]| {
-        let p = [0, 1, 2].map(|k| positions[t[k] as usize]);
-        (p, (p[1] - p[0]).cross(p[2] - p[0]))
-    };
-    let angles: Vec<[f32; 3]> = indices
-        .par_chunks_exact(3)
-        .map(|t| {
-            let (p, _) = face(t);
-            [0, 1, 2].map(|k| {
-                let e1 = p[(k + 1) % 3] - p[k];
-                let e2 = p[(k + 2) % 3] - p[k];
-                // atan2 of |e1 × e2| and e1 · e2 stays accurate for thin corners.
-                e1.cross(e2).length().atan2(e1.dot(e2))
-            })
-        })
-        .collect();
     let mut sum = vec![Vec3::ZERO; positions.len()];
-    for (t, angle) in indices.chunks_exact(3).zip(&angles) {
-        let (_, normal) = face(t);
+    for t in indices.chunks_exact(3) {
+        let p = [0, 1, 2].map(|k| positions[t[k] as usize]);
+        let face = (p[1] - p[0]).cross(p[2] - p[0]);
         for k in 0..3 {
-            sum[t[k] as usize] += normal * angle[k];
+            let e1 = p[(k + 1) % 3] - p[k];
+            let e2 = p[(k + 2) % 3] - p[k];
+            // atan2 of |e1 × e2| and e1 · e2 stays accurate for thin corners.
+            let angle = e1.cross(e2).length().atan2(e1.dot(e2));
+            sum[t[k] as usize] += face * angle;
         }
     }
-    let mut normals: Vec<Option<Vec3>> = sum.par_iter().map(|s| s.try_normalize()).collect();
     // Where opposite faces cancel (a vertex shared by both sides of a
     // sheet), the first face that uses the vertex decides.
-    if normals.contains(&None) {
-        let mut decided: Vec<bool> = normals.iter().map(Option::is_some).collect();
-        for t in indices.chunks_exact(3) {
-            let unit = face(t).1.normalize_or_zero();
-            for &v in t {
-                if !decided[v as usize] && unit != Vec3::ZERO {
-                    decided[v as usize] = true;
-                    normals[v as usize] = unit.try_normalize();
-                }
+    let mut fallback = vec![Vec3::ZERO; positions.len()];
+    for t in indices.chunks_exact(3) {
+        let p = [0, 1, 2].map(|k| positions[t[k] as usize]);
+        let face = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+        for &v in t {
+            if fallback[v as usize] == Vec3::ZERO {
+                fallback[v as usize] = face;
             }
         }
     }
-    normals.into_iter().map(|n| n.unwrap_or(Vec3::Y)).collect()
+    sum.iter()
+        .zip(&fallback)
+        .map(|(s, f)| s.try_normalize().or_else(|| f.try_normalize()).unwrap_or(Vec3::Y))
+        .collect()
 }
 
 /// The mesh without its non-finite vertices (no kept triangle uses them).
