@@ -10,7 +10,7 @@
 //! It converges to the penumbra as N grows; unoccluded and above the horizon
 //! its E-part equals `sphere_irradiance` (the point light's E). Where no
 //! shadow ray can be blocked, the diffuse part is that closed form itself
-//! and only a specular lobe is sampled (`unoccluded_sphere`).
+//! and only a specular lobe is sampled (`closed_form_diffuse`).
 //!
 //! Shadow rays: from p moved off the surface by ε = [`SHADOW_OFFSET_REL`] ×
 //! the largest |coordinate| of the hit triangle, along the geometric normal on
@@ -433,19 +433,29 @@ impl Reference {
             && self
                 .bvh
                 .gather_near_ball(s.shadow_origin, q, radius, MAX_CANDIDATES, candidates);
-        // No shadow ray can be blocked: the diffuse part in closed form.
-        let clear = !s.shadowed || gathered && candidates.is_empty();
-        if clear
-            && !setup.sample_everywhere
-            && let Some(estimate) = unoccluded_sphere(setup, s, rng, y)
-        {
-            return estimate;
-        }
         let le = sphere_radiance(setup.power_w, radius);
         let to_centre = q - s.p;
         let d2 = to_centre.length_squared();
         let d = d2.sqrt();
         let inside = d <= radius;
+        // No shadow ray can be blocked: the diffuse part in closed form, and
+        // only a specular lobe left to sample.
+        let clear = !s.shadowed || gathered && candidates.is_empty();
+        let closed = if clear && !setup.sample_everywhere {
+            closed_form_diffuse(setup, s, to_centre, d)
+        } else {
+            None
+        };
+        if let Some(diffuse) = closed
+            && s.brdf.k >= 1.0
+        {
+            return LightEstimate {
+                scaled_radiance: diffuse,
+                visibility: 1.0,
+                std_error: Some(0.0),
+                shadow_rays: 0,
+            };
+        }
         let cone = if inside {
             // Inside the light: emission from every direction of the hemisphere.
             Cone::hemisphere(s.n)
@@ -462,7 +472,7 @@ impl Reference {
             let l = sample.direction;
             let cos = s.n.dot(l).max(0.0);
             let mut v = 1.0;
-            if cos > 0.0 && s.shadowed {
+            if cos > 0.0 && s.shadowed && closed.is_none() {
                 // Distance along l to the sphere: the near root outside it,
                 // the far one inside; R² − d² sin²θ is the half-chord squared.
                 let b = if inside {
@@ -492,14 +502,17 @@ impl Reference {
             cos_sum += cos;
             visible_cos_sum += v * cos;
             let f = if v * cos > 0.0 {
-                blinn_phong(s.n, l, s.o, &s.brdf).total()
+                blinn_phong(s.n, l, s.o, &s.brdf)
             } else {
-                0.0
+                BrdfTerms::default()
             };
-            y.push(weight * f * v * cos);
+            y.push(match closed {
+                Some(diffuse) => diffuse + weight * f.specular * cos,
+                None => weight * f.total() * v * cos,
+            });
         }
         let n = y.len() as f64;
-        let visibility = if !s.shadowed {
+        let visibility = if !s.shadowed || closed.is_some() {
             1.0
         } else if cos_sum > 0.0 {
             visible_cos_sum / cos_sum
@@ -515,55 +528,23 @@ impl Reference {
     }
 }
 
-/// The sphere light's contribution where no shadow ray can be blocked
-/// (V = 1 over the whole cone), None inside the light or nearer than
-/// [`MIN_LIGHT_DISTANCE_M`]. The diffuse part k/π · E is the closed form
-/// `sphere_irradiance` (Snyder's, the horizon included): no noise. Only the
-/// specular lobe, when there is one, is still sampled over the strata, each
-/// sample carrying the diffuse part too (same mean, and the noise estimate
-/// sees only the lobe's spread). The expectation is the sampled estimator's
-/// with every V = 1, the same integral; only its variance changes.
-fn unoccluded_sphere(setup: &Setup, s: &Surface, rng: &mut Rng, y: &mut Vec<f64>) -> Option<LightEstimate> {
-    let (q, radius) = (setup.light_position, setup.radius_m);
-    let to_centre = q - s.p;
-    let d2 = to_centre.length_squared();
-    let d = d2.sqrt();
+/// k/π · E of the sphere light where no shadow ray can be blocked (V = 1
+/// over the whole cone): E is the closed form `sphere_irradiance` (Snyder's,
+/// the horizon included), exact and without noise. None inside the light or
+/// nearer than [`MIN_LIGHT_DISTANCE_M`], where the light is sampled. The
+/// sampled estimator's expectation with every V = 1 is the same integral;
+/// only its variance changes. `to_centre`: from the surface point to the
+/// light's centre, `d` its length.
+fn closed_form_diffuse(setup: &Setup, s: &Surface, to_centre: DVec3, d: f64) -> Option<f64> {
     // False for NaN too.
-    let outside = d > radius && d >= MIN_LIGHT_DISTANCE_M;
+    let outside = d > setup.radius_m && d >= MIN_LIGHT_DISTANCE_M;
     if !outside {
         return None;
     }
     // blinn_phong is zero for a viewer below the shading normal's horizon.
-    let diffuse = if s.n.dot(s.o) > 0.0 {
-        s.brdf.k / PI * sphere_irradiance(setup.power_w, radius, s.n.dot(to_centre) / d, d)
+    Some(if s.n.dot(s.o) > 0.0 {
+        s.brdf.k / PI * sphere_irradiance(setup.power_w, setup.radius_m, s.n.dot(to_centre) / d, d)
     } else {
         0.0
-    };
-    let mut estimate = LightEstimate {
-        scaled_radiance: diffuse,
-        visibility: 1.0,
-        std_error: Some(0.0),
-        shadow_rays: 0,
-    };
-    if s.brdf.k >= 1.0 {
-        return Some(estimate);
-    }
-    let cone = Cone::new(to_centre / d, radius * radius / d2);
-    let weight = cone.solid_angle() * sphere_radiance(setup.power_w, radius);
-    y.clear();
-    for stratum in setup.light_strata.cells() {
-        let l = cone
-            .direction(setup.light_strata.jittered(stratum, rng))
-            .direction;
-        let cos = s.n.dot(l).max(0.0);
-        let specular = if cos > 0.0 {
-            blinn_phong(s.n, l, s.o, &s.brdf).specular
-        } else {
-            0.0
-        };
-        y.push(diffuse + weight * specular * cos);
-    }
-    estimate.scaled_radiance = y.iter().sum::<f64>() / y.len() as f64;
-    estimate.std_error = collapsed_strata_variance(y).map(f64::sqrt);
-    Some(estimate)
+    })
 }
