@@ -260,13 +260,14 @@ impl Renderer {
             .fold(Aabb::EMPTY, |b, &i| b.union(&shared.scene.bounds[i]));
 
         let light = settings.light.position.as_dvec3();
-        let simplified = self.shade_options.simplified && settings.shadow.visibility == Visibility::ShadowMap;
+        let may_simplify =
+            self.shade_options.simplified && settings.shadow.visibility == Visibility::ShadowMap;
         let mut report = FrameReport {
             size,
             visible_objects: visible.len(),
             casters_total: shared.scene.caster_bounds.iter().flatten().count(),
             camera_near_far: (near, far),
-            simplified_triangles: shared.scene.simplified_triangles().filter(|_| simplified),
+            simplified_triangles: shared.scene.simplified_triangles().filter(|_| may_simplify),
             ..Default::default()
         };
         let apex = shadow_apex(light, &shared.scene.scene_bounds());

@@ -170,17 +170,7 @@ impl GpuScene {
             }));
         }
         let buffer = |label: &str, contents: &[u8], usage: wgpu::BufferUsages| {
-            // wgpu refuses empty bindings; an empty scene still gets 4 bytes.
-            let contents = if contents.is_empty() {
-                &[0u8; 4][..]
-            } else {
-                contents
-            };
-            device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
+            buffer_init(device, label, contents, usage)
         };
         let (textures, layer_of) = upload_textures(device, queue, scene, caps);
         let materials: Vec<MaterialRaw> = scene
@@ -255,28 +245,30 @@ impl GpuScene {
         if meshes.indices.len() != self.draws.len() {
             return;
         }
-        let mut first_index = 0;
+        // As `new` lays out the full meshes: each object's indices after
+        // the last, over that object's own vertices.
+        let mut indices: Vec<u32> = Vec::new();
         let draws = self
             .draws
             .iter()
             .zip(&meshes.indices)
-            .map(|(full, indices)| {
+            .map(|(full, object)| {
                 let draw = Draw {
-                    first_index,
-                    index_count: indices.len() as u32,
+                    first_index: indices.len() as u32,
+                    index_count: object.len() as u32,
                     base_vertex: full.base_vertex,
                 };
-                first_index += draw.index_count;
+                indices.extend_from_slice(object);
                 draw
             })
             .collect();
-        let indices: Vec<u32> = meshes.indices.concat();
         self.simplified = Some(SimplifiedBuffers {
-            indices: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("simplified scene indices"),
-                contents: bytemuck::cast_slice(if indices.is_empty() { &[0u32] } else { &indices }),
-                usage: wgpu::BufferUsages::INDEX,
-            }),
+            indices: buffer_init(
+                device,
+                "simplified scene indices",
+                bytemuck::cast_slice(&indices),
+                wgpu::BufferUsages::INDEX,
+            ),
             draws,
             triangles: meshes.triangles,
         });
@@ -333,6 +325,26 @@ impl GpuScene {
     pub fn scene_bounds(&self) -> Aabb {
         self.bounds.iter().fold(Aabb::EMPTY, |b, o| b.union(o))
     }
+}
+
+/// A buffer holding `contents`: wgpu refuses empty bindings, so an empty
+/// list (an empty scene) still gets 4 bytes.
+fn buffer_init(
+    device: &wgpu::Device,
+    label: &str,
+    contents: &[u8],
+    usage: wgpu::BufferUsages,
+) -> wgpu::Buffer {
+    let contents = if contents.is_empty() {
+        &[0u8; 4][..]
+    } else {
+        contents
+    };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents,
+        usage,
+    })
 }
 
 /// Every base-colour texture resampled to one square size as a layer of an
