@@ -16,7 +16,7 @@ use crate::gpu::{Capabilities, ShadeOptions};
 use crate::gpu::{ComparisonImage, FloatTarget, FrameReport, PendingScale, Renderer};
 use crate::presets::Half;
 use crate::scene::Scene;
-use crate::scene::simplify::{SimplifiedMeshes, simplify_in_background};
+use crate::scene::simplify::{SimplifiedMeshes, TriangleCounts, simplify_in_background};
 use crate::settings::Settings;
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, TryRecvError};
@@ -101,7 +101,7 @@ pub struct GpuViews {
     /// frames draw them once they are uploaded).
     simplifying: Option<Receiver<SimplifiedMeshes>>,
     /// Triangles of the simplified meshes and of the full ones, once uploaded.
-    pub simplified: Option<(usize, usize)>,
+    pub simplified: Option<TriangleCounts>,
 }
 
 impl GpuViews {
@@ -188,7 +188,7 @@ impl GpuViews {
         if let Some(a) = &mut self.halves[Half::A as usize] {
             a.renderer.set_simplified(&meshes);
         }
-        self.simplified = Some((meshes.triangles, meshes.full_triangles));
+        self.simplified = Some(meshes.counts);
         if let Some(drag) = &self.drag {
             drag.set_simplified(Arc::new(meshes));
         }

@@ -317,7 +317,7 @@ impl LabApp {
 
     /// Triangles of the scene's simplified meshes and of its full ones, once
     /// built and uploaded (large scenes only).
-    pub fn simplified_meshes(&self) -> Option<(usize, usize)> {
+    pub fn simplified_meshes(&self) -> Option<crate::scene::simplify::TriangleCounts> {
         self.gpu.as_ref()?.simplified
     }
 

@@ -84,10 +84,11 @@ fn interaction_rows(ui: &mut egui::Ui, gpu: &GpuViews) {
                 ui,
                 &tr!("timings-drag-meshes"),
                 &match gpu.simplified {
-                    Some((drawn, full)) => tr!(
+                    Some(counts) => tr!(
                         "timings-drag-meshes-simplified",
-                        drawn = thousands(drawn),
-                        full = thousands(full)
+                        drawn = thousands(counts.camera),
+                        casters = thousands(counts.casters),
+                        full = thousands(counts.full)
                     ),
                     None if gpu.simplifying() => tr!("timings-drag-meshes-building"),
                     None => tr!("timings-drag-meshes-full"),

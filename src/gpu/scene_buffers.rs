@@ -81,11 +81,18 @@ impl Meshes<'_> {
     }
 }
 
-/// The simplified meshes on the GPU: their indices into the scene's
-/// vertices and each object's range.
+/// One simplified copy on the GPU: its indices into the scene's vertices
+/// and each object's range.
 struct SimplifiedBuffers {
     indices: wgpu::Buffer,
     draws: Vec<Draw>,
+}
+
+/// The simplified meshes on the GPU: the camera pass's copy and the
+/// shadow pass's coarser one.
+struct Simplified {
+    camera: SimplifiedBuffers,
+    casters: SimplifiedBuffers,
     triangles: usize,
 }
 
@@ -117,7 +124,7 @@ pub struct GpuScene {
     /// The shadow casters' BVH, for the ray-traced visibility.
     pub bvh: GpuBvh,
     /// Set by [`Self::set_simplified`] (large scenes only).
-    simplified: Option<SimplifiedBuffers>,
+    simplified: Option<Simplified>,
 }
 
 impl GpuScene {
@@ -239,60 +246,76 @@ impl GpuScene {
     }
 
     /// Uploads the simplified meshes of this scene (built from the same
-    /// `Scene`: one index list per object); ignored when they have another
-    /// count of objects.
+    /// `Scene`: one index list per object in each copy); ignored when they
+    /// have another count of objects.
     pub fn set_simplified(&mut self, device: &wgpu::Device, meshes: &SimplifiedMeshes) {
-        if meshes.indices.len() != self.draws.len() {
+        if meshes.indices.len() != self.draws.len() || meshes.casters.len() != self.draws.len() {
             return;
         }
         // As `new` lays out the full meshes: each object's indices after
         // the last, over that object's own vertices.
-        let mut indices: Vec<u32> = Vec::new();
-        let draws = self
-            .draws
-            .iter()
-            .zip(&meshes.indices)
-            .map(|(full, object)| {
-                let draw = Draw {
-                    first_index: indices.len() as u32,
-                    index_count: object.len() as u32,
-                    base_vertex: full.base_vertex,
-                };
-                indices.extend_from_slice(object);
-                draw
-            })
-            .collect();
-        self.simplified = Some(SimplifiedBuffers {
-            indices: buffer_init(
-                device,
-                "simplified scene indices",
-                bytemuck::cast_slice(&indices),
-                wgpu::BufferUsages::INDEX,
-            ),
-            draws,
-            triangles: meshes.triangles,
+        let upload = |label: &str, lists: &[Vec<u32>]| {
+            let mut indices: Vec<u32> = Vec::new();
+            let draws = self
+                .draws
+                .iter()
+                .zip(lists)
+                .map(|(full, object)| {
+                    let draw = Draw {
+                        first_index: indices.len() as u32,
+                        index_count: object.len() as u32,
+                        base_vertex: full.base_vertex,
+                    };
+                    indices.extend_from_slice(object);
+                    draw
+                })
+                .collect();
+            SimplifiedBuffers {
+                indices: buffer_init(
+                    device,
+                    label,
+                    bytemuck::cast_slice(&indices),
+                    wgpu::BufferUsages::INDEX,
+                ),
+                draws,
+            }
+        };
+        self.simplified = Some(Simplified {
+            camera: upload("simplified scene indices", &meshes.indices),
+            casters: upload("simplified caster indices", &meshes.casters),
+            triangles: meshes.counts.camera,
         });
     }
 
-    /// The triangles of the simplified meshes, once uploaded.
+    /// The triangles of the camera's simplified meshes, once uploaded.
     pub fn simplified_triangles(&self) -> Option<usize> {
         self.simplified.as_ref().map(|s| s.triangles)
     }
 
-    /// The simplified meshes when `simplified` and they are uploaded, else
-    /// the full ones.
+    /// What the camera pass draws: the simplified meshes when `simplified`
+    /// and they are uploaded, else the full ones.
     pub fn meshes(&self, simplified: bool) -> Meshes<'_> {
-        match &self.simplified {
-            Some(s) if simplified => Meshes {
-                vertices: &self.vertices,
-                indices: &s.indices,
-                draws: &s.draws,
-            },
-            _ => Meshes {
-                vertices: &self.vertices,
-                indices: &self.indices,
-                draws: &self.draws,
-            },
+        self.drawn(self.simplified.as_ref().filter(|_| simplified).map(|s| &s.camera))
+    }
+
+    /// What the shadow pass draws: the casters' coarser copy when
+    /// `simplified` and it is uploaded, else the full meshes.
+    pub fn caster_meshes(&self, simplified: bool) -> Meshes<'_> {
+        self.drawn(
+            self.simplified
+                .as_ref()
+                .filter(|_| simplified)
+                .map(|s| &s.casters),
+        )
+    }
+
+    /// The scene's vertices through `copy`'s indices, or the full ones.
+    fn drawn<'a>(&'a self, copy: Option<&'a SimplifiedBuffers>) -> Meshes<'a> {
+        let (indices, draws) = copy.map_or((&self.indices, &self.draws[..]), |c| (&c.indices, &c.draws[..]));
+        Meshes {
+            vertices: &self.vertices,
+            indices,
+            draws,
         }
     }
 

@@ -314,7 +314,7 @@ impl SharedScene {
             &self.device,
             &self.queue,
             encoder,
-            self.scene.meshes(key.simplified),
+            self.scene.caster_meshes(key.simplified),
             layout,
             &key.casters,
             &slot.textures,
