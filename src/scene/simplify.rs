@@ -48,6 +48,7 @@ pub const CASTER_TARGET_TRIANGLES: usize = 3_000;
 /// The largest error a collapse may introduce, as a fraction of the model's
 /// bounding diagonal: the simplifier stops there even above the target.
 pub const MAX_ERROR: f32 = 2e-2;
+
 /// How one copy is made.
 struct Recipe {
     /// Triangles aimed at, all objects together.
