@@ -494,7 +494,7 @@ visibility-ray-traced-tip = Ray traced on the GPU through a BVH: a shadow ray fr
 visibility-label = Visibility
 visibility-label-tip = Where V(p, q) ∈ [0, 1] comes from: L = f_r · E · V
 visibility-rays = rays / frame
-visibility-rays-tip = S: shadow rays per pixel and frame towards a sphere light, on nx × ny strata of its solid angle (squares stratify best); a point light needs one
+visibility-rays-tip = S: shadow rays per pixel and frame towards a sphere light, on nx × ny strata of its solid angle (squares stratify best); a point light needs one. While you drag, each frame sends one (the still frame after the drag sends S again and starts its average anew)
 visibility-frames = frames
 visibility-frames-tip = N: frames averaged while nothing changes under a sphere light; the noise of V falls as 1/√(N·S), then the image holds. A point light is exact after one frame
 visibility-exact = exact
@@ -522,7 +522,7 @@ timings-drag-meshes = drag meshes
 timings-drag-meshes-simplified = simplified, { $drawn } k / { $full } k triangles (shadow map { $casters } k)
 timings-drag-meshes-building = full (simplifying…)
 timings-drag-meshes-full = full
-timings-drag-meshes-tip = On a scene of more than { $threshold } k triangles, drag frames draw a simplified copy of each mesh (built once per scene on a thread of its own; borders and seams kept), and their shadow map a coarser one, welded along the seams since depth needs no normals: an approximation shown only while dragging. Still frames, the probe, the error statistics, the reference and exported images always use the full meshes
+timings-drag-meshes-tip = On a scene of more than { $threshold } k triangles, drag frames draw a simplified copy of each mesh (built once per scene on a thread of its own; borders and seams kept), and their shadow map a coarser one, welded along the seams since depth needs no normals; under ray-traced visibility their shadow rays meet the simplified copy they draw, through a BVH of its own: an approximation shown only while dragging. Still frames, the probe, the error statistics, the reference and exported images always use the full meshes
 timings-ui-pass = UI pass
 timings-ui-pass-tip = CPU time of the last UI frame, rendering calls included
 timings-since-previous = since previous

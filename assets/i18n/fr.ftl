@@ -500,7 +500,7 @@ visibility-ray-traced-tip = Lancer de rayons sur le GPU à travers un BVH : un r
 visibility-label = Visibilité
 visibility-label-tip = D'où vient V(p, q) ∈ [0, 1] : L = f_r · E · V
 visibility-rays = rayons / image
-visibility-rays-tip = S : rayons d'ombre par pixel et par image vers une lumière sphérique, sur nx × ny strates de son angle solide (les carrés stratifient le mieux) ; une lumière ponctuelle n'en demande qu'un
+visibility-rays-tip = S : rayons d'ombre par pixel et par image vers une lumière sphérique, sur nx × ny strates de son angle solide (les carrés stratifient le mieux) ; une lumière ponctuelle n'en demande qu'un. Pendant un glissement, chaque image n'en envoie qu'un (l'image fixe qui suit en envoie de nouveau S et recommence sa moyenne)
 visibility-frames = images
 visibility-frames-tip = N : images moyennées tant que rien ne change sous une lumière sphérique ; le bruit de V décroît en 1/√(N·S), puis l'image reste fixe. Une lumière ponctuelle est exacte dès la première image
 visibility-exact = exact
@@ -528,7 +528,7 @@ timings-drag-meshes = maillages (glissement)
 timings-drag-meshes-simplified = simplifiés, { $drawn } k / { $full } k triangles (carte d'ombre { $casters } k)
 timings-drag-meshes-building = complets (simplification…)
 timings-drag-meshes-full = complets
-timings-drag-meshes-tip = Sur une scène de plus de { $threshold } k triangles, les images d'un glissement dessinent une copie simplifiée de chaque maillage (construite une fois par scène dans un fil d'exécution à part ; bords et coutures gardés), et leur carte d'ombre une copie plus grossière, soudée le long des coutures puisque la profondeur n'a pas besoin des normales : une approximation montrée seulement pendant le glissement. Les images fixes, la sonde, les statistiques d'erreur, la référence et les images exportées utilisent toujours les maillages complets
+timings-drag-meshes-tip = Sur une scène de plus de { $threshold } k triangles, les images d'un glissement dessinent une copie simplifiée de chaque maillage (construite une fois par scène dans un fil d'exécution à part ; bords et coutures gardés), et leur carte d'ombre une copie plus grossière, soudée le long des coutures puisque la profondeur n'a pas besoin des normales ; en visibilité par lancer de rayons, leurs rayons d'ombre rencontrent la copie simplifiée qu'elles dessinent, à travers un BVH qui lui est propre : une approximation montrée seulement pendant le glissement. Les images fixes, la sonde, les statistiques d'erreur, la référence et les images exportées utilisent toujours les maillages complets
 timings-ui-pass = passe d'interface
 timings-ui-pass-tip = Temps CPU de la dernière image de l'interface, appels de rendu compris
 timings-since-previous = depuis la précédente

@@ -46,7 +46,7 @@ pub struct BvhTriangleRaw {
 }
 
 /// A BVH flattened for upload.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct FlatBvh {
     /// Empty when nothing casts shadows.
     pub nodes: Vec<BvhNodeRaw>,
@@ -58,13 +58,20 @@ impl FlatBvh {
     /// index out of range, a non-finite corner or zero area are left out
     /// (they block nothing, as in the reference).
     pub fn of_scene(scene: &Scene) -> Self {
+        Self::of_casters(scene, scene.objects.iter().map(|o| &o.mesh.indices[..]))
+    }
+
+    /// As [`Self::of_scene`], each object's triangles given by its list in
+    /// `indices` (one per object, into its vertices): a simplified copy.
+    pub fn of_casters<'a>(scene: &Scene, indices: impl IntoIterator<Item = &'a [u32]>) -> Self {
         let triangles: Vec<[Vec3; 3]> = scene
             .objects
             .iter()
-            .filter(|o| o.casts_shadows)
-            .flat_map(|o| {
+            .zip(indices)
+            .filter(|(o, _)| o.casts_shadows)
+            .flat_map(|(o, indices)| {
                 let p = &o.mesh.positions;
-                o.mesh.indices.chunks_exact(3).filter_map(move |ids| {
+                indices.chunks_exact(3).filter_map(move |ids| {
                     Some([
                         *p.get(ids[0] as usize)?,
                         *p.get(ids[1] as usize)?,

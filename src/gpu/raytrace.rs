@@ -8,7 +8,7 @@
 
 use super::binding;
 use super::bvh::GpuBvh;
-use super::scene_buffers::GpuScene;
+use super::shared::SharedScene;
 use crate::settings::{Settings, Visibility};
 use bytemuck::{Pod, Zeroable};
 use wgpu::ShaderStages;
@@ -71,6 +71,17 @@ struct Key {
     settings: Settings,
     size: (u32, u32),
     scene_generation: u64,
+    drag: DragRays,
+}
+
+/// How a frame's rays may differ from what the settings say: a drag frame's
+/// (see [`super::ShadeOptions`]), never folded into a still frame's mean.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DragRays {
+    /// Against the BVH of the scene's simplified meshes, where it has them.
+    pub simplified: bool,
+    /// One ray a pixel towards a sphere light.
+    pub one_light_sample: bool,
 }
 
 /// The previous frame's quantity and aux targets.
@@ -80,6 +91,8 @@ struct History {
     aux: wgpu::Texture,
     group: wgpu::BindGroup,
     scene_generation: u64,
+    /// The group binds the simplified meshes' BVH.
+    simplified_bvh: bool,
 }
 
 pub struct RayTracePass {
@@ -120,26 +133,21 @@ impl RayTracePass {
         queue: &wgpu::Queue,
         settings: &Settings,
         size: (u32, u32),
-        scene: &GpuScene,
-        scene_generation: u64,
+        shared: &SharedScene,
+        drag: DragRays,
     ) -> &wgpu::BindGroup {
-        if self
-            .history
-            .as_ref()
-            .is_none_or(|h| h.size != size || h.scene_generation != scene_generation)
-        {
+        let scene_generation = shared.generation;
+        let bvh = shared.scene.bvh(drag.simplified);
+        if self.history.as_ref().is_none_or(|h| {
+            h.size != size || h.scene_generation != scene_generation || h.simplified_bvh != drag.simplified
+        }) {
             let target = Target {
                 size,
                 format: self.format,
                 scene_generation,
+                simplified_bvh: drag.simplified,
             };
-            self.history = Some(History::new(
-                device,
-                &self.layout,
-                &self.uniform,
-                &scene.bvh,
-                target,
-            ));
+            self.history = Some(History::new(device, &self.layout, &self.uniform, bvh, target));
             self.key = None;
         }
         let s = &settings.shadow;
@@ -148,6 +156,7 @@ impl RayTracePass {
             settings: settings.clone(),
             size,
             scene_generation,
+            drag,
         };
         if !traced || self.key.as_ref() != Some(&key) {
             self.frames = 0;
@@ -163,8 +172,12 @@ impl RayTracePass {
         };
         self.frame_seed = self.frame_seed.wrapping_add(1);
         let sphere = settings.light.is_sphere();
-        let (strata_x, strata_y) = strata(s.rt_light_samples);
-        let rays_per_frame = settings.ray_traced_rays_per_frame();
+        let (samples, rays_per_frame) = if drag.one_light_sample {
+            (1, 1)
+        } else {
+            (s.rt_light_samples, settings.ray_traced_rays_per_frame())
+        };
+        let (strata_x, strata_y) = strata(samples);
         self.status = traced.then(|| Accumulation {
             frames: self.frames,
             max_frames,
@@ -181,7 +194,7 @@ impl RayTracePass {
             strata_x,
             strata_y,
             shadows: s.enabled as u32,
-            node_count: scene.bvh.node_count,
+            node_count: bvh.node_count,
             frame_seed: self.frame_seed,
             _padding: 0,
         };
@@ -210,6 +223,7 @@ struct Target {
     size: (u32, u32),
     format: wgpu::TextureFormat,
     scene_generation: u64,
+    simplified_bvh: bool,
 }
 
 /// The strata nx × ny of n light samples: the divisor pair of n nearest a
@@ -236,6 +250,7 @@ impl History {
             size,
             format,
             scene_generation,
+            simplified_bvh,
         } = target;
         let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
         let texture = |label: &str| super::targets::image_texture(device, label, size, format, usage);
@@ -259,6 +274,7 @@ impl History {
             aux,
             group,
             scene_generation,
+            simplified_bvh,
         }
     }
 }

@@ -10,7 +10,7 @@ use super::display::{DisplayInputs, DisplayPass};
 use super::flat::{FlatTargets, time_flat_pass};
 use super::light_frustum::{Frustum, LayoutKind, ShadowLayout, shadow_apex};
 use super::lines::FrustumOverlay;
-use super::raytrace::{Accumulation, RayTracePass};
+use super::raytrace::{Accumulation, DragRays, RayTracePass};
 use super::readback::{PendingRead, read_texture};
 use super::shade::ShadePass;
 use super::shared::SharedScene;
@@ -260,14 +260,15 @@ impl Renderer {
             .fold(Aabb::EMPTY, |b, &i| b.union(&shared.scene.bounds[i]));
 
         let light = settings.light.position.as_dvec3();
-        let may_simplify =
-            self.shade_options.simplified && settings.shadow.visibility == Visibility::ShadowMap;
         let mut report = FrameReport {
             size,
             visible_objects: visible.len(),
             casters_total: shared.scene.caster_bounds.iter().flatten().count(),
             camera_near_far: (near, far),
-            simplified_triangles: shared.scene.simplified_triangles().filter(|_| may_simplify),
+            simplified_triangles: shared
+                .scene
+                .simplified_triangles()
+                .filter(|_| self.shade_options.simplified),
             ..Default::default()
         };
         let apex = shadow_apex(light, &shared.scene.scene_bounds());
@@ -383,8 +384,11 @@ impl Renderer {
             &self.queue,
             settings,
             targets.size,
-            &shared.scene,
-            shared.generation,
+            shared,
+            DragRays {
+                simplified: report.simplified_triangles.is_some(),
+                one_light_sample: self.shade_options.one_light_sample,
+            },
         );
         // The pre-pass and the camera pass are timed as one span: the cost of shading.
         let prepass = specialisation.prepassed;

@@ -88,11 +88,12 @@ struct SimplifiedBuffers {
     draws: Vec<Draw>,
 }
 
-/// The simplified meshes on the GPU: the camera pass's copy and the
-/// shadow pass's coarser one.
+/// The simplified meshes on the GPU: the camera pass's copy, the
+/// shadow pass's coarser one, and the BVH of the camera's copy.
 struct Simplified {
     camera: SimplifiedBuffers,
     casters: SimplifiedBuffers,
+    bvh: GpuBvh,
     triangles: usize,
 }
 
@@ -122,7 +123,7 @@ pub struct GpuScene {
     pub texture_view: wgpu::TextureView,
     pub triangle_count: usize,
     /// The shadow casters' BVH, for the ray-traced visibility.
-    pub bvh: GpuBvh,
+    bvh: GpuBvh,
     /// Set by [`Self::set_simplified`] (large scenes only).
     simplified: Option<Simplified>,
 }
@@ -283,6 +284,7 @@ impl GpuScene {
         self.simplified = Some(Simplified {
             camera: upload("simplified scene indices", &meshes.indices),
             casters: upload("simplified caster indices", &meshes.casters),
+            bvh: GpuBvh::new(device, &meshes.bvh),
             triangles: meshes.counts.camera,
         });
     }
@@ -307,6 +309,16 @@ impl GpuScene {
                 .filter(|_| simplified)
                 .map(|s| &s.casters),
         )
+    }
+
+    /// The shadow rays' BVH: that of the camera's simplified copy when
+    /// `simplified` and it is uploaded (the triangles [`Self::meshes`]
+    /// draws then), else the full meshes'.
+    pub fn bvh(&self, simplified: bool) -> &GpuBvh {
+        self.simplified
+            .as_ref()
+            .filter(|_| simplified)
+            .map_or(&self.bvh, |s| &s.bvh)
     }
 
     /// The scene's vertices through `copy`'s indices, or the full ones.

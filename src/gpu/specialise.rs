@@ -30,21 +30,28 @@ pub struct ShadeOptions {
     /// 680), not on the app's small interaction frames, which skip it.
     pub depth_prepass: bool,
     /// Draw the scene's simplified meshes, in the camera pass and the shadow
-    /// map, where it has them (large scenes, [`crate::scene::simplify`]) and
-    /// V comes from the shadow map (rays would meet the full meshes): the
-    /// app's drag frames, an approximation nobody reads back.
+    /// map, where it has them (large scenes, [`crate::scene::simplify`]);
+    /// under ray-traced V the rays meet the same simplified triangles,
+    /// through a BVH of their own: the app's drag frames, an approximation
+    /// nobody reads back.
     pub simplified: bool,
+    /// Under ray-traced V, trace one shadow ray a pixel towards a sphere
+    /// light, whatever the settings' samples: the app's drag frames, which
+    /// a change ends after a frame or two (the still frame after it traces
+    /// them all, and its accumulation starts anew).
+    pub one_light_sample: bool,
 }
 
 impl ShadeOptions {
     /// The app's interaction frames (a drag): read back by nobody, so no aux
-    /// target and simplified meshes where the scene has them, and small, so
-    /// no depth pre-pass.
+    /// target, simplified meshes where the scene has them and one ray a
+    /// pixel towards a sphere light, and small, so no depth pre-pass.
     pub const INTERACTION: Self = Self {
         specialised: true,
         aux: false,
         depth_prepass: false,
         simplified: true,
+        one_light_sample: true,
     };
 }
 
@@ -55,6 +62,7 @@ impl Default for ShadeOptions {
             aux: true,
             depth_prepass: true,
             simplified: false,
+            one_light_sample: false,
         }
     }
 }

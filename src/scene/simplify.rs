@@ -29,11 +29,18 @@
 //! while the light moves; the still frame after the drag draws the full
 //! meshes in both passes.
 //!
+//! Under ray-traced visibility a drag frame's shadow rays meet the camera's
+//! copy, the very triangles the frame shades, through a BVH of its own
+//! ([`SimplifiedMeshes::bvh`], built on the same thread): against the full
+//! meshes a simplified surface would shadow itself wherever it sank below
+//! them.
+//!
 //! Still frames, the probe, the error statistics, the CPU reference and
 //! every exported image keep the full meshes: the simplified ones are an
 //! approximation shown only while the user drags.
 
 use super::Scene;
+use crate::gpu::bvh::FlatBvh;
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, channel};
 
@@ -88,6 +95,11 @@ pub struct SimplifiedMeshes {
     /// What the shadow pass draws: welded by position, then simplified
     /// towards [`CASTER_TARGET_TRIANGLES`] within the same error bound.
     pub casters: Vec<Vec<u32>>,
+    /// The shadow casters of the camera's copy as the GPU ray tracer's BVH:
+    /// drag frames under ray-traced visibility send their rays against the
+    /// very triangles they shade (against the full meshes, a simplified
+    /// surface would shadow itself wherever it sank below them).
+    pub bvh: FlatBvh,
     pub counts: TriangleCounts,
 }
 
@@ -137,6 +149,7 @@ impl SimplifiedMeshes {
         let casters = simplify_to(scene, &CASTERS);
         let count = |lists: &[Vec<u32>]| lists.iter().map(|i| i.len() / 3).sum();
         Self {
+            bvh: FlatBvh::of_casters(scene, indices.iter().map(|i| &i[..])),
             counts: TriangleCounts {
                 camera: count(&indices),
                 casters: count(&casters),
