@@ -17,16 +17,34 @@ struct RayTrace {
     // Strata of the sphere light's cone per pixel and frame.
     strata_x: u32,
     strata_y: u32,
-    // Shadows on (0: V = 1).
-    shadows: u32,
     // Nodes of the BVH (0: nothing casts shadows).
     node_count: u32,
     // Changes every frame: a new stream of random numbers.
     frame_seed: u32,
-    _padding: u32,
+    _padding0: u32,
+    _padding1: u32,
 }
 
 @group(2) @binding(0) var<uniform> rt: RayTrace;
+
+// Pipeline-overridable constants (gpu::specialise), SPECIALISE_ANY to read
+// the uniforms. A software rasterizer runs the code of a branch the uniforms
+// skip under an empty mask: a point light's pipeline compiles none of the
+// cone's sampling, and a frame that starts the mean none of the history's
+// loads. The light is a sphere (1) or a point (0):
+override SPECIALISED_SPHERE_LIGHT: u32 = SPECIALISE_ANY;
+// This frame is folded into the history (1) or starts it (0):
+override SPECIALISED_ACCUMULATING: u32 = SPECIALISE_ANY;
+
+fn sphere_light() -> bool {
+    let radius_read = u32(globals.light_radius_m > 0.0);
+    return select(SPECIALISED_SPHERE_LIGHT, radius_read, SPECIALISED_SPHERE_LIGHT == SPECIALISE_ANY) != 0u;
+}
+
+fn accumulating() -> bool {
+    let history_read = u32(rt.frames_before > 0u);
+    return select(SPECIALISED_ACCUMULATING, history_read, SPECIALISED_ACCUMULATING == SPECIALISE_ANY) != 0u;
+}
 // The previous frame's targets (quantity, aux): the running mean so far.
 @group(2) @binding(3) var history_quantity: texture_2d<f32>;
 @group(2) @binding(4) var history_aux: texture_2d<f32>;
@@ -61,7 +79,7 @@ fn rt_blocked(origin_rel: vec3<f32>, d: vec3<f32>) -> bool {
 // V at the point p = eye + rel with shading normal n and facet normal n_geo
 // (on the viewer's side).
 fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: vec2<f32>) -> f32 {
-    if rt.shadows == 0u {
+    if !shadows_enabled() {
         return 1.0;
     }
     let p = rel + globals.eye;
@@ -69,7 +87,7 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
     let origin = rel + n_geo * offset;
     let to_centre = globals.light_rel - rel;
     let radius = globals.light_radius_m;
-    if radius <= 0.0 {
+    if !sphere_light() {
         // Attached shadow: the light below the surface's horizon.
         if dot(n, to_centre) <= 0.0 {
             return 0.0;
@@ -123,7 +141,7 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
 // (visibility_mode(): a pipeline specialised to the shadow map compiles
 // none of it; a software rasterizer would load the history texels anyway.)
 fn accumulated(quantity: vec4<f32>, aux: vec4<f32>, pixel: vec2<f32>) -> array<vec4<f32>, 2> {
-    if visibility_mode() != VISIBILITY_RAY_TRACED || rt.frames_before == 0u {
+    if visibility_mode() != VISIBILITY_RAY_TRACED || !accumulating() {
         return array<vec4<f32>, 2>(quantity, aux);
     }
     let texel = vec2<i32>(pixel);

@@ -1,4 +1,5 @@
-//! The camera pass specialised per view × filter × bias × map layout (one pipeline each, the
+//! The camera pass specialised per view × filter × bias × map layout, and
+//! under ray-traced V per light and accumulation (one pipeline each, the
 //! other cases compiled away) gives the pixels of the generic pipeline that
 //! branches on the uniforms, and the pipeline without the aux target gives
 //! the same quantity and displayed image. Every specialisation is compiled
@@ -10,7 +11,7 @@ mod common;
 use common::*;
 use lumlab::gpu::light_frustum::LayoutKind;
 use lumlab::gpu::{Renderer, ShadeOptions};
-use lumlab::settings::{BiasMode, DebugView, Filter};
+use lumlab::settings::{BiasMode, DebugView, Filter, Visibility};
 
 /// Largest |a − b| / max(1, |b|) over every channel: the targets are
 /// half floats (relative step 2⁻¹¹), so equal shading agrees to a few of those.
@@ -115,6 +116,38 @@ fn every_bias_mode_and_map_layout_specialisation_matches_the_generic_pipeline() 
                 assert!(worst_difference(&q1, &q0) < 2e-3, "{what}: quantity");
                 assert!(worst_difference(&a1, &a0) < 2e-3, "{what}: aux");
             }
+        }
+    }
+}
+
+/// Under ray-traced V the pipeline is also specialised to the light (a
+/// point or a sphere) and to the frame (starting the mean or folding in the
+/// frames before): each gives the generic pipeline's pixels, frame after
+/// frame (the same random numbers: both renderers count their frames alike).
+#[test]
+fn every_ray_traced_specialisation_matches_the_generic_pipeline() {
+    let (mut generic, mut specialised) = generic_and_specialised();
+    specialised.set_shade_options(ShadeOptions::default());
+    let size = (64, 48);
+    for radius_m in [0.0, 0.3] {
+        let mut s = lumlab::settings::Settings::default();
+        s.shadow.visibility = Visibility::RayTraced;
+        s.light.radius_m = radius_m;
+        for frame in 1..=3 {
+            generic.render(&s, size);
+            specialised.render(&s, size);
+            let what = format!("R = {radius_m} m, frame {frame}");
+            let (a0, a1) = (generic.read_aux(), specialised.read_aux());
+            assert!(a0.iter().any(|t| t[3] > 0.0 && t[0] < 0.5), "{what}: some shadow");
+            let (q0, q1) = (generic.read_quantity(), specialised.read_quantity());
+            assert!(worst_difference(&q1, &q0) < 2e-3, "{what}: quantity");
+            assert!(worst_difference(&a1, &a0) < 2e-3, "{what}: aux");
+            let frames = if radius_m > 0.0 { frame } else { 1 };
+            assert_eq!(
+                specialised.accumulation().map(|a| a.frames),
+                Some(frames),
+                "{what}"
+            );
         }
     }
 }

@@ -21,10 +21,9 @@ pub struct RayTraceRaw {
     pub weight: f32,
     pub strata_x: u32,
     pub strata_y: u32,
-    pub shadows: u32,
     pub node_count: u32,
     pub frame_seed: u32,
-    pub _padding: u32,
+    pub _padding: [u32; 2],
 }
 
 /// Where the accumulation stands after a frame.
@@ -126,7 +125,10 @@ impl RayTracePass {
         self.status
     }
 
-    /// Sets this frame's uniforms and returns the bind group the camera pass uses.
+    /// Sets this frame's uniforms and returns the bind group the camera pass
+    /// uses, and whether the frame folds in the history of the frames before
+    /// (a sphere light's mean under way; a point light's one frame is exact,
+    /// and the same again).
     pub fn prepare(
         &mut self,
         device: &wgpu::Device,
@@ -135,7 +137,7 @@ impl RayTracePass {
         size: (u32, u32),
         shared: &SharedScene,
         drag: DragRays,
-    ) -> &wgpu::BindGroup {
+    ) -> (&wgpu::BindGroup, bool) {
         let scene_generation = shared.generation;
         let bvh = shared.scene.bvh(drag.simplified);
         if self.history.as_ref().is_none_or(|h| {
@@ -193,13 +195,13 @@ impl RayTracePass {
             weight,
             strata_x,
             strata_y,
-            shadows: s.enabled as u32,
             node_count: bvh.node_count,
             frame_seed: self.frame_seed,
-            _padding: 0,
+            _padding: [0; 2],
         };
         queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&raw));
-        &self.history.as_ref().expect("made above").group
+        let accumulating = traced && sphere && frames_before > 0;
+        (&self.history.as_ref().expect("made above").group, accumulating)
     }
 
     /// Keeps this frame's targets as the history of the next (ray traced only).

@@ -210,7 +210,8 @@ impl Renderer {
     /// as in the last frame): the app asks for a drag's pipeline after each
     /// full frame, so the drag's first frame does not wait for it.
     pub fn compile_ahead(&mut self, settings: &Settings, options: ShadeOptions) {
-        let specialisation = Specialisation::for_frame(settings, self.layout_kind, options);
+        // A drag's first frame starts its mean, if V is ray traced.
+        let specialisation = Specialisation::for_frame(settings, self.layout_kind, options, false);
         self.shade.compile_ahead(&self.device, specialisation);
     }
 
@@ -377,9 +378,7 @@ impl Renderer {
             .shade
             .shadow_group(&self.device, shadow_textures, &shared.dummy_moments);
         self.layout_kind = layout.map(|l| l.kind);
-        let specialisation = Specialisation::for_frame(settings, self.layout_kind, self.shade_options);
-        self.shade.prepare(&self.device, specialisation);
-        let raytrace_group = self.raytrace.prepare(
+        let (raytrace_group, accumulating) = self.raytrace.prepare(
             &self.device,
             &self.queue,
             settings,
@@ -390,6 +389,9 @@ impl Renderer {
                 one_light_sample: self.shade_options.one_light_sample,
             },
         );
+        let specialisation =
+            Specialisation::for_frame(settings, self.layout_kind, self.shade_options, accumulating);
+        self.shade.prepare(&self.device, specialisation);
         // The pre-pass and the camera pass are timed as one span: the cost of shading.
         let prepass = specialisation.prepassed;
         if prepass {

@@ -2,7 +2,8 @@
 //! shaders/shade.wgsl and shadow_map.wgsl read their mode through
 //! pipeline-overridable constants (`SPECIALISED_VIEW`, `SPECIALISED_FILTER`,
 //! `SPECIALISED_VISIBILITY`, `SPECIALISED_BIAS`, `SPECIALISED_CUBE`: the
-//! shadow map's layout, `SPECIALISED_SHADOWS`: shadows on or off); a
+//! shadow map's layout, `SPECIALISED_SHADOWS`: shadows on or off, and under
+//! ray-traced V `SPECIALISED_SPHERE_LIGHT` and `SPECIALISED_ACCUMULATING`); a
 //! pipeline given one value keeps only that case of each `switch` (the
 //! compiler folds the rest away), the default
 //! value `SPECIALISE_ANY` reads the uniforms: the generic pipeline the tests
@@ -80,6 +81,14 @@ pub struct Specialisation {
     pub bias: Option<BiasMode>,
     /// The shadow map's layout (None also when no map is drawn).
     pub layout: Option<LayoutKind>,
+    /// Under ray-traced V only: the light is a sphere (its cone sampled)
+    /// or a point (one ray), and the frame folds in the history of the
+    /// frames before or starts it (`SPECIALISED_SPHERE_LIGHT`,
+    /// `SPECIALISED_ACCUMULATING`). lavapipe runs a branch the uniforms
+    /// skip under an empty mask: without these a point light's frame ran
+    /// the cone's code and every frame the history's loads.
+    pub sphere_light: Option<bool>,
+    pub accumulating: Option<bool>,
     /// Writes the aux target beside the quantity.
     pub aux: bool,
     /// Follows the depth pre-pass (depth test Equal, no writes).
@@ -88,9 +97,15 @@ pub struct Specialisation {
 
 impl Specialisation {
     /// The pipeline a frame with `settings` and a shadow map laid out as
-    /// `layout` uses.
-    pub fn for_frame(settings: &Settings, layout: Option<LayoutKind>, options: ShadeOptions) -> Self {
+    /// `layout` uses; `accumulating`: it folds in a ray-traced history.
+    pub fn for_frame(
+        settings: &Settings,
+        layout: Option<LayoutKind>,
+        options: ShadeOptions,
+        accumulating: bool,
+    ) -> Self {
         let on = options.specialised;
+        let traced = on && settings.shadow.visibility == Visibility::RayTraced;
         Self {
             view: on.then_some(settings.view.mode),
             // Without shadows the filter never runs: one pipeline serves all,
@@ -105,6 +120,8 @@ impl Specialisation {
             visibility: on.then_some(settings.shadow.visibility),
             bias: on.then_some(settings.shadow.bias.mode),
             layout: layout.filter(|_| on),
+            sphere_light: traced.then_some(settings.light.is_sphere()),
+            accumulating: traced.then_some(accumulating),
             aux: options.aux,
             prepassed: options.depth_prepass,
         }
@@ -134,6 +151,12 @@ impl Specialisation {
         if let Some(layout) = self.layout {
             let cube = layout == LayoutKind::Cube;
             constants.push(("SPECIALISED_CUBE", f64::from(u8::from(cube))));
+        }
+        if let Some(sphere) = self.sphere_light {
+            constants.push(("SPECIALISED_SPHERE_LIGHT", f64::from(u8::from(sphere))));
+        }
+        if let Some(accumulating) = self.accumulating {
+            constants.push(("SPECIALISED_ACCUMULATING", f64::from(u8::from(accumulating))));
         }
         constants
     }
