@@ -208,11 +208,20 @@ impl Renderer {
     /// Starts compiling, on a thread of its own, the camera pass that a
     /// frame with `settings` and `options` will need (the shadow map laid out
     /// as in the last frame): the app asks for a drag's pipeline after each
-    /// full frame, so the drag's first frame does not wait for it.
+    /// full frame, so the drag's first frame does not wait for it. Under
+    /// ray-traced V the other light's too: the radius slider turns a point
+    /// light into a sphere, or back, during its drag.
     pub fn compile_ahead(&mut self, settings: &Settings, options: ShadeOptions) {
         // A drag's first frame starts its mean, if V is ray traced.
         let specialisation = Specialisation::for_frame(settings, self.layout_kind, options, false);
         self.shade.compile_ahead(&self.device, specialisation);
+        if let Some(sphere) = specialisation.sphere_light {
+            let other = Specialisation {
+                sphere_light: Some(!sphere),
+                ..specialisation
+            };
+            self.shade.compile_ahead(&self.device, other);
+        }
     }
 
     /// How many camera-pass pipelines in use were compiled ahead.
