@@ -17,6 +17,7 @@ pub mod context;
 pub mod delta_e;
 pub mod display;
 pub mod flat;
+pub mod frame_report;
 pub mod light_frustum;
 pub mod lines;
 pub mod raytrace;
@@ -35,6 +36,7 @@ pub mod uniforms;
 
 pub use capabilities::Capabilities;
 pub use context::{GpuContext, GpuError};
-pub use renderer::{ComparisonImage, FrameReport, Renderer};
+pub use frame_report::FrameReport;
+pub use renderer::{ComparisonImage, Renderer};
 pub use specialise::ShadeOptions;
 pub use targets::{FloatTarget, PendingScale, PendingTexels};

@@ -8,7 +8,8 @@
 use super::capabilities::Capabilities;
 use super::display::{DisplayInputs, DisplayPass};
 use super::flat::{FlatTargets, time_flat_pass};
-use super::light_frustum::{Frustum, LayoutKind, ShadowLayout, shadow_apex};
+use super::frame_report::FrameReport;
+use super::light_frustum::{Frustum, LayoutKind, shadow_apex};
 use super::lines::FrustumOverlay;
 use super::raytrace::{Accumulation, DragRays, RayTracePass};
 use super::readback::{PendingRead, read_texture};
@@ -29,46 +30,6 @@ pub struct ComparisonImage {
     pub width: u32,
     pub height: u32,
     pub texels: Vec<[f32; 4]>,
-}
-
-/// What a frame did, for the timings panel, the report and the tests.
-#[derive(Clone, Debug, Default)]
-pub struct FrameReport {
-    pub size: (u32, u32),
-    /// This frame drew its shadow map (otherwise it read one already drawn,
-    /// by this view or by another that shares the scene).
-    pub shadow_redrawn: bool,
-    /// Nothing this frame reads the shadow map (ray-traced visibility, any
-    /// view but `depth`): it was neither drawn nor looked for.
-    pub shadow_map_unused: bool,
-    /// The light's layers; None when shadows are off or nothing is drawn.
-    pub layout: Option<ShadowLayout>,
-    /// Casters drawn per layer by the current shadow map.
-    pub casters_per_layer: Vec<usize>,
-    /// Objects that cast shadows at all.
-    pub casters_total: usize,
-    /// Objects inside the camera's frustum.
-    pub visible_objects: usize,
-    /// Shadow-map resolution in use (texels per side).
-    pub resolution: u32,
-    /// Why the resolution is below the requested one, if it is.
-    pub resolution_note: Option<String>,
-    /// Camera near and far planes (m), fitted to the scene.
-    pub camera_near_far: (f64, f64),
-    /// The triangles drawn when the frame drew the simplified meshes (None:
-    /// the full ones).
-    pub simplified_triangles: Option<usize>,
-}
-
-impl FrameReport {
-    /// "single frustum" or "cube, k of 6 faces".
-    pub fn layout_summary(&self) -> String {
-        match &self.layout {
-            None => "no shadow map".into(),
-            Some(l) if l.kind == LayoutKind::Single => "one frustum fitted to the scene".into(),
-            Some(l) => format!("cube map, {} of 6 faces drawn", l.active_mask().count_ones()),
-        }
-    }
 }
 
 /// Index of a variant in its enum's declaration order: the shaders' constants.

@@ -6,8 +6,9 @@
 //! N(m), the view or the filter of a depth map draws the map once.
 
 use super::capabilities::Capabilities;
+use super::frame_report::FrameReport;
 use super::light_frustum::{LayoutKind, ShadowLayout, select_casters};
-use super::renderer::{FrameReport, code};
+use super::renderer::code;
 use super::scene_buffers::GpuScene;
 use super::shadow::{MAX_FILTER_RADIUS_TEXELS, MapKind, ShadowPass, ShadowTextures, allowed_resolution};
 use super::timing::GpuTimer;
