@@ -45,6 +45,7 @@ fn accumulating() -> bool {
     let history_read = u32(rt.frames_before > 0u);
     return select(SPECIALISED_ACCUMULATING, history_read, SPECIALISED_ACCUMULATING == SPECIALISE_ANY) != 0u;
 }
+
 // The previous frame's targets (quantity, aux): the running mean so far.
 @group(2) @binding(3) var history_quantity: texture_2d<f32>;
 @group(2) @binding(4) var history_aux: texture_2d<f32>;
