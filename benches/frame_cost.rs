@@ -6,7 +6,8 @@
 //! has them.
 //!
 //! A second table (`cargo bench --bench frame_cost -- interaction` prints it
-//! alone) gives what the lab's viewport costs while the user orbits: the
+//! alone) gives what the lab's viewport costs while the user orbits, under
+//! the shadow map (two filters) and ray-traced V (a point and a sphere light): the
 //! generic and the specialised camera pass against a minimal flat-colour pass
 //! over the same geometry (their ratio), and the frame rate at the render
 //! scales the app drops to during interaction. Ratios are taken within one
@@ -17,7 +18,7 @@
 //! still holds) and after a light drag (drawn again).
 
 use lumlab::gpu::{GpuContext, Renderer, ShadeOptions};
-use lumlab::settings::{DebugView, Filter, Settings};
+use lumlab::settings::{DebugView, Filter, Settings, Visibility};
 use std::time::{Duration, Instant};
 
 /// The lab's viewport in its default 1600×900 window, side panels open (0.68 Mpixel).
@@ -97,8 +98,34 @@ fn scaled(size: (u32, u32), scale: f64) -> (u32, u32) {
     (side(size.0), side(size.1))
 }
 
+/// The interaction table's rows: the default settings, PCSS, and ray-traced
+/// V under a point light and a sphere light (drag frames send it one ray a
+/// pixel, full frames the settings' samples).
+fn interaction_cases() -> Vec<(String, Settings)> {
+    let with = |change: &dyn Fn(&mut Settings)| {
+        let mut s = Settings::default();
+        change(&mut s);
+        s
+    };
+    let traced = |radius_m: f32| {
+        with(&|s: &mut Settings| {
+            s.shadow.visibility = Visibility::RayTraced;
+            s.light.radius_m = radius_m;
+        })
+    };
+    vec![
+        (Settings::default().shadow.filter.to_string(), Settings::default()),
+        (
+            Filter::Pcss.to_string(),
+            with(&|s| s.shadow.filter = Filter::Pcss),
+        ),
+        ("ray traced, point light".into(), traced(0.0)),
+        ("ray traced, sphere light R = 0.2 m".into(), traced(0.2)),
+    ]
+}
+
 /// The interaction table: camera pass against the flat pass, and frames
-/// per second at each render scale, for the default settings and two filters.
+/// per second at each render scale, for the rows of [`interaction_cases`].
 fn interaction(renderer: &mut Renderer) {
     println!(
         "viewport {}×{} ({:.2} Mpixel), default scene, medians of {FRAMES} orbiting frames; median (min–max) of {RUNS} runs\n",
@@ -107,7 +134,7 @@ fn interaction(renderer: &mut Renderer) {
         (VIEWPORT.0 * VIEWPORT.1) as f64 / 1e6
     );
     let mut header = String::from(
-        "| filter | flat pass (ms) | shading, generic (ms) | shading, specialised (ms) | specialised / flat | generic / flat |",
+        "| visibility | flat pass (ms) | shading, generic (ms) | shading, specialised (ms) | specialised / flat | generic / flat |",
     );
     let mut rule = String::from("|---|---|---|---|---|---|");
     for scale in SCALES {
@@ -115,11 +142,10 @@ fn interaction(renderer: &mut Renderer) {
         rule += "---|";
     }
     println!("{header}\n{rule}");
-    for filter in [Settings::default().shadow.filter, Filter::Pcss] {
+    for (label, case) in interaction_cases() {
         let mut columns: Vec<Vec<f64>> = vec![Vec::new(); 5 + 2 * SCALES.len()];
         for _ in 0..RUNS {
-            let mut settings = Settings::default();
-            settings.shadow.filter = filter;
+            let mut settings = case.clone();
             renderer.set_shade_options(ShadeOptions {
                 specialised: false,
                 ..ShadeOptions::default()
@@ -145,7 +171,7 @@ fn interaction(renderer: &mut Renderer) {
             }
             renderer.set_shade_options(ShadeOptions::default());
         }
-        let mut row = format!("| {filter} |");
+        let mut row = format!("| {label} |");
         for column in &columns[..5] {
             row += &format!(" {} |", spread(column));
         }
