@@ -498,7 +498,10 @@ visibility-rays-tip = S: shadow rays per pixel and frame towards a sphere light,
 visibility-frames = frames
 visibility-frames-tip = N: frames averaged while nothing changes under a sphere light; the noise of V falls as 1/√(N·S), then the image holds. A point light is exact after one frame
 visibility-exact = exact
-visibility-accumulation = { $frames } / { $max } frames × { $rays } rays, { $noise }
+visibility-accumulation = { $frames } / { $max } frames × { $rays } { $rays ->
+        [one] ray
+       *[other] rays
+    }, { $noise }
 probe-v-gpu-traced = V (GPU ray traced)
 probe-v-gpu-traced-tip = Visibility traced on the GPU in f32 through the BVH: exact for a point light, the mean of the accumulated frames' samples for a sphere light
 probe-xyz-tip = CIE 1931 XYZ of L (linear sRGB → XYZ, IEC 61966-2-1); under a spectral light the reference integrated S(λ) R(λ) against x̄, ȳ, z̄

@@ -504,7 +504,10 @@ visibility-rays-tip = S : rayons d'ombre par pixel et par image vers une lumièr
 visibility-frames = images
 visibility-frames-tip = N : images moyennées tant que rien ne change sous une lumière sphérique ; le bruit de V décroît en 1/√(N·S), puis l'image reste fixe. Une lumière ponctuelle est exacte dès la première image
 visibility-exact = exact
-visibility-accumulation = { $frames } / { $max } images × { $rays } rayons, { $noise }
+visibility-accumulation = { $frames } / { $max } images × { $rays } { $rays ->
+        [one] rayon
+       *[other] rayons
+    }, { $noise }
 probe-v-gpu-traced = V (lancer de rayons GPU)
 probe-v-gpu-traced-tip = Visibilité tracée sur le GPU en f32 à travers le BVH : exacte pour une lumière ponctuelle, moyenne des échantillons des images accumulées pour une lumière sphérique
 probe-xyz-tip = XYZ CIE 1931 de L (sRGB linéaire → XYZ, IEC 61966-2-1) ; sous une lumière spectrale, la référence a intégré S(λ) R(λ) contre x̄, ȳ, z̄

@@ -209,5 +209,18 @@ mod tests {
         assert_eq!(more(1, Language::En), "Impossible set-up: x (+1 more)");
         assert_eq!(more(1, Language::Fr), "Configuration impossible : x (+1 autre)");
         assert_eq!(more(3, Language::Fr), "Configuration impossible : x (+3 autres)");
+        let rays = |n: u32, language| {
+            let args = [
+                ("frames", FluentValue::from(1)),
+                ("max", FluentValue::from(64)),
+                ("rays", FluentValue::from(n)),
+                ("noise", FluentValue::from("σ")),
+            ];
+            translate(language, "visibility-accumulation", &args)
+        };
+        assert_eq!(rays(1, Language::En), "1 / 64 frames × 1 ray, σ");
+        assert_eq!(rays(4, Language::En), "1 / 64 frames × 4 rays, σ");
+        assert_eq!(rays(1, Language::Fr), "1 / 64 images × 1 rayon, σ");
+        assert_eq!(rays(4, Language::Fr), "1 / 64 images × 4 rayons, σ");
     }
 }
