@@ -102,23 +102,17 @@ fn scaled(size: (u32, u32), scale: f64) -> (u32, u32) {
 /// V under a point light and a sphere light (drag frames send it one ray a
 /// pixel, full frames the settings' samples).
 fn interaction_cases() -> Vec<(String, Settings)> {
-    let with = |change: &dyn Fn(&mut Settings)| {
-        let mut s = Settings::default();
-        change(&mut s);
-        s
-    };
+    let mut pcss = Settings::default();
+    pcss.shadow.filter = Filter::Pcss;
     let traced = |radius_m: f32| {
-        with(&|s: &mut Settings| {
-            s.shadow.visibility = Visibility::RayTraced;
-            s.light.radius_m = radius_m;
-        })
+        let mut s = Settings::default();
+        s.shadow.visibility = Visibility::RayTraced;
+        s.light.radius_m = radius_m;
+        s
     };
     vec![
         (Settings::default().shadow.filter.to_string(), Settings::default()),
-        (
-            Filter::Pcss.to_string(),
-            with(&|s| s.shadow.filter = Filter::Pcss),
-        ),
+        (Filter::Pcss.to_string(), pcss),
         ("ray traced, point light".into(), traced(0.0)),
         ("ray traced, sphere light R = 0.2 m".into(), traced(0.2)),
     ]

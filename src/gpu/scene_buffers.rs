@@ -297,28 +297,25 @@ impl GpuScene {
     /// What the camera pass draws: the simplified meshes when `simplified`
     /// and they are uploaded, else the full ones.
     pub fn meshes(&self, simplified: bool) -> Meshes<'_> {
-        self.drawn(self.simplified.as_ref().filter(|_| simplified).map(|s| &s.camera))
+        self.drawn(self.drag_copy(simplified).map(|s| &s.camera))
     }
 
     /// What the shadow pass draws: the casters' coarser copy when
     /// `simplified` and it is uploaded, else the full meshes.
     pub fn caster_meshes(&self, simplified: bool) -> Meshes<'_> {
-        self.drawn(
-            self.simplified
-                .as_ref()
-                .filter(|_| simplified)
-                .map(|s| &s.casters),
-        )
+        self.drawn(self.drag_copy(simplified).map(|s| &s.casters))
     }
 
     /// The shadow rays' BVH: that of the camera's simplified copy when
     /// `simplified` and it is uploaded (the triangles [`Self::meshes`]
     /// draws then), else the full meshes'.
     pub fn bvh(&self, simplified: bool) -> &GpuBvh {
-        self.simplified
-            .as_ref()
-            .filter(|_| simplified)
-            .map_or(&self.bvh, |s| &s.bvh)
+        self.drag_copy(simplified).map_or(&self.bvh, |s| &s.bvh)
+    }
+
+    /// The simplified meshes when `simplified` and they are uploaded.
+    fn drag_copy(&self, simplified: bool) -> Option<&Simplified> {
+        self.simplified.as_ref().filter(|_| simplified)
     }
 
     /// The scene's vertices through `copy`'s indices, or the full ones.
