@@ -174,7 +174,9 @@ impl Renderer {
     /// light into a sphere, or back, during its drag.
     pub fn compile_ahead(&mut self, settings: &Settings, options: ShadeOptions) {
         // A drag's first frame starts its mean, if V is ray traced.
-        let specialisation = Specialisation::for_frame(settings, self.layout_kind, options, false);
+        let simplified = options.simplified && lock(&self.shared).scene.simplified_triangles().is_some();
+        let specialisation =
+            Specialisation::for_frame(settings, self.layout_kind, options, false, simplified);
         self.shade.compile_ahead(&self.device, specialisation);
         if let Some(sphere) = specialisation.sphere_light {
             let other = Specialisation {
@@ -359,8 +361,13 @@ impl Renderer {
                 one_light_sample: self.shade_options.one_light_sample,
             },
         );
-        let specialisation =
-            Specialisation::for_frame(settings, self.layout_kind, self.shade_options, accumulating);
+        let specialisation = Specialisation::for_frame(
+            settings,
+            self.layout_kind,
+            self.shade_options,
+            accumulating,
+            report.simplified_triangles.is_some(),
+        );
         self.shade.prepare(&self.device, specialisation);
         // The pre-pass and the camera pass are timed as one span: the cost of shading.
         let prepass = specialisation.prepassed;
