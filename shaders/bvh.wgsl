@@ -2,13 +2,22 @@
 // ray-traced visibility. Portable: storage buffers and a loop with a small
 // stack, no ray-query extension.
 
+// A child of an inner node: its box and its link.
 struct BvhNode {
     min: vec3<f32>,
     // Triangles in this leaf; 0: an inner node.
     count: u32,
     max: vec3<f32>,
-    // Inner node: first child (the second follows it); leaf: first triangle.
+    // Inner node: its pair's index; leaf: BVH_LEAF | count << 28 | first
+    // triangle.
     first: u32,
+}
+
+// An inner node: its two children (gpu::bvh, `FlatBvh::pairs`). Pair 0
+// holds the root's children.
+struct BvhPair {
+    a: BvhNode,
+    b: BvhNode,
 }
 
 // Corner v0 and the edges e1 = v1 − v0, e2 = v2 − v0 (m, world).
@@ -18,13 +27,18 @@ struct BvhTriangle {
     e2: vec3<f32>,
 }
 
-@group(2) @binding(1) var<storage, read> bvh_nodes: array<BvhNode>;
+@group(2) @binding(1) var<storage, read> bvh_pairs: array<BvhPair>;
 @group(2) @binding(2) var<storage, read> bvh_triangles: array<BvhTriangle>;
 
 // Nodes waiting to be visited: far more than a BVH of millions of triangles
 // is deep. A deeper (degenerate) tree does not lose nodes: a ray whose stack
 // overflows and finds no hit in the nodes it kept tests every triangle.
 const BVH_STACK_SIZE: u32 = 64u;
+// A child's `first` that names a leaf, and its fields.
+const BVH_LEAF: u32 = 0x80000000u;
+const BVH_COUNT_SHIFT: u32 = 28u;
+const BVH_COUNT_MASK: u32 = 7u;
+const BVH_FIRST_MASK: u32 = 0x0fffffffu;
 // Barycentric slack of the triangle test: triangles grow by 2·10⁻⁶ of their
 // size, so that a ray through an edge shared by two triangles hits one of
 // them despite f32 rounding (no light leaking through a closed mesh).
@@ -64,54 +78,71 @@ fn bvh_hits_box(node: BvhNode, o: vec3<f32>, inv_d: vec3<f32>, t_max: f32) -> bo
 }
 
 // Whether any caster meets o + t d for 0 < t < t_max (d need not be unit).
-fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, node_count: u32) -> bool {
+// The item visited is a pair (its index), or a leaf: BVH_LEAF, its count
+// (bits 28–30) and its first triangle (bits 0–27), as a child's `first`
+// holds them, so that a leaf's step reads no node.
+fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32) -> bool {
     // A zero component becomes a tiny one: its slabs then span ±∞, never NaN.
     let safe_d = select(d, vec3<f32>(1e-30), abs(d) < vec3<f32>(1e-30));
     let inv_d = 1.0 / safe_d;
-    if node_count == 0u || !bvh_hits_box(bvh_nodes[0], o, inv_d, t_max) {
+    if pair_count == 0u {
         return false;
     }
     var stack: array<u32, BVH_STACK_SIZE>;
     var depth = 0u;
-    var index = 0u;
+    var item = 0u;
     var overflowed = false;
+    var done = false;
     loop {
-        let node = bvh_nodes[index];
-        if node.count > 0u {
-            for (var i = node.first; i < node.first + node.count; i++) {
-                if bvh_hits_triangle(bvh_triangles[i], o, d, t_max) {
-                    return true;
-                }
+        // Down the inner nodes until a leaf, or nothing is left: lanes
+        // reach their leaves together, and test them together.
+        loop {
+            if (item & BVH_LEAF) != 0u {
+                break;
             }
-        } else {
-            let a = node.first;
-            let b = node.first + 1u;
-            let hit_a = bvh_hits_box(bvh_nodes[a], o, inv_d, t_max);
-            let hit_b = bvh_hits_box(bvh_nodes[b], o, inv_d, t_max);
+            let pair = bvh_pairs[item];
+            let hit_a = bvh_hits_box(pair.a, o, inv_d, t_max);
+            let hit_b = bvh_hits_box(pair.b, o, inv_d, t_max);
             if hit_a && hit_b {
                 if depth < BVH_STACK_SIZE {
-                    stack[depth] = b;
+                    stack[depth] = pair.b.first;
                     depth += 1u;
                 } else {
                     overflowed = true;
                 }
-                index = a;
+                item = pair.a.first;
                 continue;
             }
             if hit_a {
-                index = a;
+                item = pair.a.first;
                 continue;
             }
             if hit_b {
-                index = b;
+                item = pair.b.first;
                 continue;
+            }
+            if depth == 0u {
+                done = true;
+                break;
+            }
+            depth -= 1u;
+            item = stack[depth];
+        }
+        if done {
+            break;
+        }
+        let first = item & BVH_FIRST_MASK;
+        let end = first + ((item >> BVH_COUNT_SHIFT) & BVH_COUNT_MASK);
+        for (var i = first; i < end; i++) {
+            if bvh_hits_triangle(bvh_triangles[i], o, d, t_max) {
+                return true;
             }
         }
         if depth == 0u {
             break;
         }
         depth -= 1u;
-        index = stack[depth];
+        item = stack[depth];
     }
     if overflowed {
         // Subtrees were left out: the slow, exact answer.

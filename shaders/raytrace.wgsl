@@ -18,7 +18,7 @@ struct RayTrace {
     strata_x: u32,
     strata_y: u32,
     // Nodes of the BVH (0: nothing casts shadows).
-    node_count: u32,
+    pair_count: u32,
     // Changes every frame: a new stream of random numbers.
     frame_seed: u32,
     _padding0: u32,
@@ -74,7 +74,7 @@ fn rt_random(state: ptr<function, u32>) -> f32 {
 // Whether the segment from `origin_rel` along d (both relative to the eye)
 // is blocked before its end.
 fn rt_blocked(origin_rel: vec3<f32>, d: vec3<f32>) -> bool {
-    return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, rt.node_count);
+    return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, rt.pair_count);
 }
 
 // V at the point p = eye + rel with shading normal n and facet normal n_geo

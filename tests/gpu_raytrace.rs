@@ -101,7 +101,7 @@ fn trace(gpu: &GpuContext, flat: &FlatBvh, rays: &[[f32; 4]]) -> Vec<[u32; 2]> {
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let counts = [n as u32, bvh.node_count, bvh.triangle_count, 0];
+    let counts = [n as u32, bvh.pair_count, bvh.triangle_count, 0];
     let counts = storage(
         gpu,
         "counts",
@@ -130,7 +130,7 @@ fn trace(gpu: &GpuContext, flat: &FlatBvh, rays: &[[f32; 4]]) -> Vec<[u32; 2]> {
         })
     };
     let rays_group = group(0, &[&ray_buffer, &answers, &counts], 0);
-    let bvh_group = group(2, &[&bvh.nodes, &bvh.triangles], 1);
+    let bvh_group = group(2, &[&bvh.pairs, &bvh.triangles], 1);
     let mut encoder = device.create_command_encoder(&Default::default());
     {
         let mut pass = encoder.begin_compute_pass(&Default::default());
@@ -422,9 +422,10 @@ fn accumulate_needs_ray_traced_visibility_and_renders_n_frames() {
 
 /// A caterpillar BVH as deep as it has triangles (node 0 the root, an
 /// inner node's children at `first` and `first + 1`): each inner node's
-/// first child is the rest of the chain, its second a leaf of one triangle.
-/// Every box is the whole scene's, so the traversal visits every node and
-/// keeps one pending leaf per level: far more than its stack holds.
+/// first child is the rest of the chain, its second an inner node whose
+/// children are both triangle k's leaf. Every box is the whole scene's, so
+/// the traversal visits every node and keeps one pending inner node per
+/// level (it tests leaves as it meets them): far more than its stack holds.
 fn caterpillar(triangles: &[[Vec3; 3]]) -> FlatBvh {
     let (lo, hi) = triangles
         .iter()
@@ -439,15 +440,16 @@ fn caterpillar(triangles: &[[Vec3; 3]]) -> FlatBvh {
         first,
     };
     let n = triangles.len() as u32;
-    // Inner node k at 2k (k = 0 … n − 2), its children at 2k + 2 (the next
-    // inner node, or the last triangle's leaf) and 2k + 3 (triangle k's
-    // leaf); node 1 is unused.
-    let mut nodes = vec![node(0, 0); 2 * n as usize];
+    let mut nodes = vec![node(0, 0)];
+    let mut chain = 0;
     for k in 0..n - 1 {
-        nodes[2 * k as usize].first = 2 * k + 2;
-        nodes[2 * k as usize + 3] = node(1, k);
+        let first = nodes.len();
+        nodes[chain].first = first as u32;
+        let side_first = first as u32 + 2;
+        nodes.extend([node(0, 0), node(0, side_first), node(1, k), node(1, k)]);
+        chain = first;
     }
-    nodes[2 * (n - 1) as usize] = node(1, n - 1);
+    nodes[chain] = node(1, n - 1);
     let triangles = triangles
         .iter()
         .map(|[a, b, c]| BvhTriangleRaw {

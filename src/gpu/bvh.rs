@@ -3,10 +3,23 @@
 //! into two storage buffers. Rebuilt with the scene buffers whenever the
 //! geometry changes (`GpuScene::new`).
 //!
-//! Layout: node 0 is the root; an inner node (`count` = 0) has its children at
-//! `first` and `first + 1`; a leaf holds triangles `first .. first + count`,
-//! stored in leaf order. Each triangle is kept as v0 and its two edges, what
-//! the Möller–Trumbore test reads.
+//! Layout built: node 0 is the root; an inner node (`count` = 0) has its
+//! children at `first` and `first + 1`; a leaf holds triangles
+//! `first .. first + count`, stored in leaf order. Each triangle is kept as v0
+//! and its two edges, what the Möller–Trumbore test reads.
+//!
+//! Layout uploaded ([`FlatBvh::pairs`]): one entry per inner node, holding
+//! both children's boxes and links: an inner child's entry, or a leaf's
+//! count and first triangle packed in one u32, so that a leaf's step reads
+//! no node and an inner node's step one entry (the nodes themselves took
+//! three loads a step: the node, then its two children for their boxes).
+//! With the traversal's inner nodes walked before each leaf ("while-while",
+//! Aila & Laine 2009: on lavapipe's SIMD lanes the leaves are then tested
+//! together), lavapipe's compiled shading ran 574.6 → 505.5 M instructions
+//! over four drag frames of the default scene and 544.0 → 467.4 M over six
+//! of the engine model's simplified copy (callgrind). Testing a pair's
+//! leaves inline instead ran 697.7 M; visiting the nearer child first
+//! changed nothing (506.6 M).
 
 use crate::scene::Scene;
 use bytemuck::{Pod, Zeroable};
@@ -31,6 +44,14 @@ pub struct BvhNodeRaw {
     pub max: [f32; 3],
     /// Inner node: index of the first child; leaf: of the first triangle.
     pub first: u32,
+}
+
+/// `BvhPair` of shaders/bvh.wgsl: an inner node's two children, each a box
+/// and its link (a [`BvhNodeRaw`] whose inner `first` is the child's pair).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct BvhPairRaw {
+    pub children: [BvhNodeRaw; 2],
 }
 
 /// `BvhTriangle` of shaders/bvh.wgsl: corner v0 and edges e1 = v1 − v0, e2 = v2 − v0 (m).
@@ -137,15 +158,69 @@ impl FlatBvh {
             .collect();
         Self { nodes, triangles }
     }
+
+    /// The uploaded layout: an entry per inner node, in node order (the
+    /// root's first), each with its children's boxes and links, an inner
+    /// child's `first` the index of its entry. A root that is a leaf gets
+    /// one entry whose children are both that leaf. Empty when `nodes` is.
+    pub fn pairs(&self) -> Vec<BvhPairRaw> {
+        let Some(&root) = self.nodes.first() else {
+            return Vec::new();
+        };
+        if root.count > 0 {
+            let leaf = BvhNodeRaw {
+                first: leaf_link(root),
+                ..root
+            };
+            return vec![BvhPairRaw { children: [leaf; 2] }];
+        }
+        let mut entry = vec![u32::MAX; self.nodes.len()];
+        let inner: Vec<usize> = (0..self.nodes.len())
+            .filter(|&i| self.nodes[i].count == 0)
+            .collect();
+        for (k, &i) in inner.iter().enumerate() {
+            entry[i] = k as u32;
+        }
+        inner
+            .iter()
+            .map(|&i| {
+                let first = self.nodes[i].first as usize;
+                BvhPairRaw {
+                    children: [first, first + 1].map(|c| {
+                        let child = self.nodes[c];
+                        BvhNodeRaw {
+                            first: if child.count > 0 {
+                                leaf_link(child)
+                            } else {
+                                entry[c]
+                            },
+                            ..child
+                        }
+                    }),
+                }
+            })
+            .collect()
+    }
+}
+
+/// A leaf as a pair's child links to it (`BVH_LEAF` of shaders/bvh.wgsl):
+/// the top bit set, its count in bits 28–30, its first triangle below.
+fn leaf_link(leaf: BvhNodeRaw) -> u32 {
+    assert!(
+        leaf.count <= 7 && leaf.first < 1 << 28,
+        "a leaf the GPU's links cannot name"
+    );
+    1 << 31 | leaf.count << 28 | leaf.first
 }
 
 /// The flattened BVH on the GPU.
 pub struct GpuBvh {
-    pub nodes: wgpu::Buffer,
+    /// [`FlatBvh::pairs`].
+    pub pairs: wgpu::Buffer,
     pub triangles: wgpu::Buffer,
-    /// Nodes in use: 0 when nothing casts shadows (the buffers then hold one
+    /// Pairs in use: 0 when nothing casts shadows (the buffers then hold one
     /// unused element each: bindings cannot be empty).
-    pub node_count: u32,
+    pub pair_count: u32,
     pub triangle_count: u32,
 }
 
@@ -158,10 +233,11 @@ impl GpuBvh {
                 usage: wgpu::BufferUsages::STORAGE,
             })
         };
-        let nodes = if flat.nodes.is_empty() {
-            upload("bvh nodes", bytemuck::bytes_of(&BvhNodeRaw::default()))
+        let pairs = flat.pairs();
+        let pair_buffer = if pairs.is_empty() {
+            upload("bvh pairs", bytemuck::bytes_of(&BvhPairRaw::default()))
         } else {
-            upload("bvh nodes", bytemuck::cast_slice(&flat.nodes))
+            upload("bvh pairs", bytemuck::cast_slice(&pairs))
         };
         let triangles = if flat.triangles.is_empty() {
             upload("bvh triangles", bytemuck::bytes_of(&BvhTriangleRaw::default()))
@@ -169,9 +245,9 @@ impl GpuBvh {
             upload("bvh triangles", bytemuck::cast_slice(&flat.triangles))
         };
         Self {
-            nodes,
+            pairs: pair_buffer,
             triangles,
-            node_count: flat.nodes.len() as u32,
+            pair_count: pairs.len() as u32,
             triangle_count: flat.triangles.len() as u32,
         }
     }
@@ -219,10 +295,44 @@ mod tests {
             }
         }
         assert!(seen.iter().all(|&n| n == 1));
+
+        // The uploaded pairs reach every triangle once, through the same boxes.
+        let pairs = flat.pairs();
+        assert_eq!(pairs.len(), flat.nodes.iter().filter(|n| n.count == 0).count());
+        let mut seen = vec![0; 200];
+        let mut stack = vec![0];
+        while let Some(p) = stack.pop() {
+            for child in pairs[p].children {
+                assert!(
+                    flat.nodes
+                        .iter()
+                        .any(|n| (n.min, n.max) == (child.min, child.max))
+                );
+                if child.count == 0 {
+                    stack.push(child.first as usize);
+                } else {
+                    assert_eq!(child.first >> 28, 8 | child.count, "a leaf's link");
+                    let first = child.first & 0x0fff_ffff;
+                    (first..first + child.count).for_each(|t| seen[t as usize] += 1);
+                }
+            }
+        }
+        assert!(seen.iter().all(|&n| n == 1));
+    }
+
+    #[test]
+    fn a_root_leaf_is_one_pair_of_itself() {
+        let flat = FlatBvh::new(&[[Vec3::ZERO, Vec3::X, Vec3::Y]]);
+        let leaf = BvhNodeRaw {
+            first: 1 << 31 | 1 << 28,
+            ..flat.nodes[0]
+        };
+        assert_eq!(flat.pairs(), vec![BvhPairRaw { children: [leaf; 2] }]);
     }
 
     #[test]
     fn nothing_to_hit_gives_no_nodes() {
         assert!(FlatBvh::new(&[]).nodes.is_empty());
+        assert!(FlatBvh::new(&[]).pairs().is_empty());
     }
 }

@@ -21,7 +21,7 @@ pub struct RayTraceRaw {
     pub weight: f32,
     pub strata_x: u32,
     pub strata_y: u32,
-    pub node_count: u32,
+    pub pair_count: u32,
     pub frame_seed: u32,
     pub _padding: [u32; 2],
 }
@@ -195,7 +195,7 @@ impl RayTracePass {
             weight,
             strata_x,
             strata_y,
-            node_count: bvh.node_count,
+            pair_count: bvh.pair_count,
             frame_seed: self.frame_seed,
             _padding: [0; 2],
         };
@@ -264,7 +264,7 @@ impl History {
             layout,
             &[
                 uniform.as_entire_binding(),
-                bvh.nodes.as_entire_binding(),
+                bvh.pairs.as_entire_binding(),
                 bvh.triangles.as_entire_binding(),
                 wgpu::BindingResource::TextureView(&quantity.create_view(&Default::default())),
                 wgpu::BindingResource::TextureView(&aux.create_view(&Default::default())),
