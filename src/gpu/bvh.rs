@@ -29,6 +29,8 @@ use wgpu::util::DeviceExt;
 
 /// Most triangles per leaf: fewer node visits against more triangle tests.
 const MAX_TRIANGLES_PER_LEAF: u32 = 4;
+// A leaf's link holds its count in three bits (see `leaf_link`).
+const _: () = assert!(MAX_TRIANGLES_PER_LEAF <= 7);
 /// Boxes are widened by this fraction of (largest |coordinate| + scene
 /// extent): a few hundred f32 ulps, so that the slab test's rounding never
 /// drops a triangle that touches its box's face.
