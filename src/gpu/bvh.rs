@@ -29,8 +29,13 @@ use wgpu::util::DeviceExt;
 
 /// Most triangles per leaf: fewer node visits against more triangle tests.
 const MAX_TRIANGLES_PER_LEAF: u32 = 4;
-// A leaf's link holds its count in three bits (see `leaf_link`).
-const _: () = assert!(MAX_TRIANGLES_PER_LEAF <= 7);
+/// A leaf's link (`leaf_link`, `BVH_LEAF` and its fields in
+/// shaders/bvh.wgsl): the top bit set, its count from bit 28 (at most 7),
+/// its first triangle below.
+const LEAF_LINK: u32 = 1 << 31;
+const LINK_COUNT_SHIFT: u32 = 28;
+const LINK_MAX_COUNT: u32 = 7;
+const _: () = assert!(MAX_TRIANGLES_PER_LEAF <= LINK_MAX_COUNT);
 /// Boxes are widened by this fraction of (largest |coordinate| + scene
 /// extent): a few hundred f32 ulps, so that the slab test's rounding never
 /// drops a triangle that touches its box's face.
@@ -205,14 +210,13 @@ impl FlatBvh {
     }
 }
 
-/// A leaf as a pair's child links to it (`BVH_LEAF` of shaders/bvh.wgsl):
-/// the top bit set, its count in bits 28–30, its first triangle below.
+/// A leaf as a pair's child links to it ([`LEAF_LINK`]).
 fn leaf_link(leaf: BvhNodeRaw) -> u32 {
     assert!(
-        leaf.count <= 7 && leaf.first < 1 << 28,
+        leaf.count <= LINK_MAX_COUNT && leaf.first < 1 << LINK_COUNT_SHIFT,
         "a leaf the GPU's links cannot name"
     );
-    1 << 31 | leaf.count << 28 | leaf.first
+    LEAF_LINK | leaf.count << LINK_COUNT_SHIFT | leaf.first
 }
 
 /// The flattened BVH on the GPU.

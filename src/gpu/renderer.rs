@@ -340,7 +340,8 @@ impl Renderer {
         report: &FrameReport,
     ) {
         let layout = report.layout.as_ref();
-        let meshes = shared.scene.meshes(report.simplified_triangles.is_some());
+        let simplified = report.simplified_triangles.is_some();
+        let meshes = shared.scene.meshes(simplified);
         let targets = self
             .targets
             .as_ref()
@@ -357,7 +358,7 @@ impl Renderer {
             targets.size,
             shared,
             DragRays {
-                simplified: report.simplified_triangles.is_some(),
+                simplified,
                 one_light_sample: self.shade_options.one_light_sample,
             },
         );
@@ -366,7 +367,7 @@ impl Renderer {
             self.layout_kind,
             self.shade_options,
             accumulating,
-            report.simplified_triangles.is_some(),
+            simplified,
         );
         self.shade.prepare(&self.device, specialisation);
         // The pre-pass and the camera pass are timed as one span: the cost of shading.
