@@ -7,7 +7,7 @@
 //! device of their own (`drag_device`).
 
 use super::drag_device::{DragDevice, DragFrame, DragRenderer, Job};
-use super::render_scale::{RenderScale, shadow_map_side};
+use super::render_scale::{FrameScale, RenderScale, shadow_map_side};
 use super::view_readback::{PendingFrame, PendingProbe};
 use super::viewport_image::{ImageBinding, ImagePipeline};
 use crate::gpu::readback::ReadState;
@@ -38,15 +38,15 @@ const DRAG_FRAME_WAIT: Duration = Duration::from_millis(10);
 /// What comes back with a drag frame rendered on the drag device.
 struct DragTag {
     key: RenderKey,
-    scale: f64,
+    scale: FrameScale,
 }
 
 /// The settings a frame at render scale `scale` is drawn with: the
-/// shadow map's side scaled with the image ([`shadow_map_side`]). The key
-/// keeps the settings as chosen, so the drag's end renders again.
-fn drawn_at(settings: &Settings, scale: f64) -> Settings {
+/// shadow map's side scaled by `scale.shadow` ([`shadow_map_side`]). The
+/// key keeps the settings as chosen, so the drag's end renders again.
+fn drawn_at(settings: &Settings, scale: FrameScale) -> Settings {
     let mut drawn = settings.clone();
-    drawn.shadow.resolution = shadow_map_side(settings.shadow.resolution, scale);
+    drawn.shadow.resolution = shadow_map_side(settings.shadow.resolution, scale.shadow);
     drawn
 }
 
@@ -76,8 +76,8 @@ pub struct HalfView {
     pub render_cpu_ms: f64,
     /// Frames rendered so far (the lab renders only on change).
     pub renders: u64,
-    /// The render scale of the last frame (1: the viewport's full size).
-    rendered_scale: f64,
+    /// The render scales of the last frame (1: the viewport's full size).
+    rendered_scale: FrameScale,
     /// Until when to keep polling for the last frame's GPU times.
     times_due: Option<Instant>,
     /// The false-colour scale of the displayed frame, once read back.
@@ -92,8 +92,8 @@ pub struct GpuViews {
     caps: Capabilities,
     /// Reduced while the user drags, full when idle.
     pub render_scale: RenderScale,
-    /// This frame's render scale (see [`Self::begin_frame`]).
-    frame_scale: f64,
+    /// This frame's render scales (see [`Self::begin_frame`]).
+    frame_scale: FrameScale,
     image_pipeline: ImagePipeline,
     /// Where drag frames render when not on the window's device.
     drag: Option<DragRenderer<DragTag>>,
@@ -125,7 +125,7 @@ impl GpuViews {
             scene_generation: 0,
             caps,
             render_scale: RenderScale::default(),
-            frame_scale: 1.0,
+            frame_scale: FrameScale::FULL,
             image_pipeline,
             drag,
             simplifying: simplify_in_background(scene),
@@ -233,7 +233,7 @@ impl GpuViews {
     /// target: nothing reads them back.
     pub fn begin_frame(&mut self, interacting: bool) -> f64 {
         self.frame_scale = self.render_scale.begin_frame(interacting);
-        self.frame_scale
+        self.frame_scale.image
     }
 
     /// Renders a half if what it shows changed; true when a new image is
@@ -340,7 +340,7 @@ impl GpuViews {
 
     /// The render scale of a half's last frame (1: full resolution).
     pub fn rendered_scale(&self, half: Half) -> f64 {
-        self.half(half).map_or(1.0, |h| h.rendered_scale)
+        self.half(half).map_or(1.0, |h| h.rendered_scale.image)
     }
 
     /// A half's ray-traced accumulation (None: V from the shadow map).
@@ -454,7 +454,7 @@ impl HalfView {
             last_shadow_ms: None,
             render_cpu_ms: 0.0,
             renders: 0,
-            rendered_scale: 1.0,
+            rendered_scale: FrameScale::FULL,
             times_due: None,
             scale: None,
             pending_scale: None,
@@ -482,8 +482,8 @@ impl HalfView {
         self.bind_shown(&render_state.device, pipeline, recreated);
     }
 
-    /// Counts a new image, rendered from `key` with `drawn` at render scale `scale`.
-    fn shows(&mut self, key: RenderKey, drawn: Settings, scale: f64) {
+    /// Counts a new image, rendered from `key` with `drawn` at render scales `scale`.
+    fn shows(&mut self, key: RenderKey, drawn: Settings, scale: FrameScale) {
         self.renders += 1;
         self.rendered = Some(key);
         self.drawn = Some(drawn);
@@ -558,6 +558,6 @@ impl HalfView {
         let view = shown.create_view(&wgpu::TextureViewDescriptor::default());
         // Nearest at full scale: one texel per pixel. Linear for the
         // reduced images of interaction frames.
-        self.image = Some(pipeline.bind(device, &view, self.rendered_scale < 1.0));
+        self.image = Some(pipeline.bind(device, &view, self.rendered_scale.image < 1.0));
     }
 }

@@ -2,7 +2,7 @@
 //! was redrawn, what was drawn into it, and the adapter.
 
 use super::gpu_view::GpuViews;
-use super::render_scale::{MIN_SCALE, RenderScale, TARGET_FPS};
+use super::render_scale::{MIN_SCALE, RenderScale, SHADOW_STEPS, TARGET_FPS};
 use super::widgets::{number, value_row};
 use crate::presets::Half;
 use crate::scene::simplify::THRESHOLD_TRIANGLES;
@@ -48,19 +48,25 @@ fn interaction_rows(ui: &mut egui::Ui, gpu: &GpuViews) {
                 ui,
                 &tr!("timings-render-scale"),
                 &format!(
-                    "{} % {}",
-                    number(100.0 * scale.shown),
-                    if scale.shown < 1.0 {
+                    "{} % {}{}",
+                    number(100.0 * scale.shown.image),
+                    if scale.shown.image < 1.0 {
                         tr!("timings-dragging")
                     } else {
                         tr!("timings-full")
+                    },
+                    if scale.shown.shadow < scale.shown.image {
+                        tr!("timings-map-scale", percent = number(100.0 * scale.shown.shadow))
+                    } else {
+                        String::new()
                     }
                 ),
                 &tr!(
                     "timings-render-scale-tip",
                     budget = number(RenderScale::budget_ms()),
                     fps = number(TARGET_FPS),
-                    min = number(100.0 * MIN_SCALE)
+                    min = number(100.0 * MIN_SCALE),
+                    map_min = number(100.0 * SHADOW_STEPS[0])
                 ),
             );
             value_row(

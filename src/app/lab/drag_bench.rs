@@ -74,6 +74,8 @@ pub(super) struct FrameBefore {
     pub gpu_ms: f64,
     /// GPU time of the shadow pass among them (ms).
     pub shadow_ms: f64,
+    /// Side of the shadow map the view's last image read (texels).
+    pub map_side: u32,
     /// Images the view has shown so far.
     pub images: u64,
     /// The scene's simplified meshes are being built: the warm-up waits
@@ -99,6 +101,8 @@ pub(super) struct DragBench {
     /// GPU time of the shadow pass among them (ms; 0 where the map was
     /// kept): a light drag draws it every frame.
     shadow_ms: Vec<f64>,
+    /// Side of the shadow map each measured frame's image read (texels).
+    map_sides: Vec<f64>,
     /// When the view showed a new image, over the measured frames.
     image_times: Vec<Instant>,
     /// Measured frames whose image drew the simplified meshes.
@@ -131,6 +135,7 @@ impl DragBench {
             ui_ms: Vec::new(),
             gpu_ms: Vec::new(),
             shadow_ms: Vec::new(),
+            map_sides: Vec::new(),
             image_times: Vec::new(),
             simplified_frames: 0,
             images: 0,
@@ -205,6 +210,7 @@ impl DragBench {
                 self.ui_ms.push(before.ui_ms);
                 self.gpu_ms.push(before.gpu_ms);
                 self.shadow_ms.push(before.shadow_ms);
+                self.map_sides.push(f64::from(before.map_side));
                 self.simplified_frames += before.simplified as usize;
                 if new_image {
                     self.image_times.push(now);
@@ -253,12 +259,13 @@ impl DragBench {
             .map(|w| (w[1] - w[0]).as_secs_f64())
             .collect();
         Some(format!(
-            "{}; {}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms (shadow {:.1}){cpu}; simplified meshes in {} of {n} frames",
+            "{}; {}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms (shadow {:.1}, map side {} texels){cpu}; simplified meshes in {} of {n} frames",
             summary(self.target, &self.intervals_s, &self.scales, viewport),
             image_summary(&images),
             median(&self.ui_ms),
             median(&self.gpu_ms),
             median(&self.shadow_ms),
+            median(&self.map_sides),
             self.simplified_frames,
         ))
     }
