@@ -73,15 +73,42 @@ fn resolution() -> f32 {
     return f32(shadow.resolution_texels);
 }
 
-// Texel coordinates of the direction with tangents t in `layer`.
-fn texel_of_tangent(t: vec2<f32>, layer: u32) -> vec2<f32> {
-    let f = shadow.layers[layer];
+// The layers of a map share their tangents, near and far planes and depth
+// conversion (a single frustum is one layer, and the cube's faces are alike:
+// gpu::light_frustum), so they are read from layer 0, the same for every
+// pixel. Read from a cube face that changes from pixel to pixel, each field
+// is loaded lane by lane by a software rasterizer.
+fn frustum() -> ShadowLayer {
+    return shadow.layers[0];
+}
+
+// A light-relative direction d in the view of `layer` (looking down −Z).
+// The cube's faces look along ±X, ±Y, ±Z (scene::camera::look_frame: up +Y,
+// or +Z for the ±Y faces), so their rotations only permute and negate
+// coordinates: written out, the same values as the matrix product, without
+// loading a face's matrix lane by lane.
+fn to_view(d: vec3<f32>, layer: u32) -> vec3<f32> {
+    if !is_cube() {
+        return (shadow.layers[0].rotation * vec4<f32>(d, 0.0)).xyz;
+    }
+    let axis = layer / 2u;
+    let s = select(1.0, -1.0, (layer & 1u) == 1u);
+    // +X (z, y, −x), −X (−z, y, x), +Y (x, z, −y), −Y (−x, z, y), +Z (−x, y, −z), −Z (x, y, z).
+    let x = select(select(-s * d.x, s * d.x, axis == 1u), s * d.z, axis == 0u);
+    let y = select(d.y, d.z, axis == 1u);
+    let z = -s * select(select(d.z, d.y, axis == 1u), d.x, axis == 0u);
+    return vec3<f32>(x, y, z);
+}
+
+// Texel coordinates of the direction with tangents t (on any layer).
+fn texel_of_tangent(t: vec2<f32>) -> vec2<f32> {
+    let f = frustum();
     let uv = vec2<f32>((t.x - f.tan_left) / (f.tan_right - f.tan_left), (f.tan_top - t.y) / (f.tan_top - f.tan_bottom));
     return uv * resolution();
 }
 
-fn tangent_of_texel(tc: vec2<f32>, layer: u32) -> vec2<f32> {
-    let f = shadow.layers[layer];
+fn tangent_of_texel(tc: vec2<f32>) -> vec2<f32> {
+    let f = frustum();
     let uv = tc / resolution();
     return vec2<f32>(f.tan_left + uv.x * (f.tan_right - f.tan_left), f.tan_top - uv.y * (f.tan_top - f.tan_bottom));
 }
@@ -89,12 +116,12 @@ fn tangent_of_texel(tc: vec2<f32>, layer: u32) -> vec2<f32> {
 fn make_receiver(p_l: vec3<f32>, n: vec3<f32>, cos_theta: f32) -> Receiver {
     var r: Receiver;
     r.layer = choose_layer(p_l);
-    let layer = shadow.layers[r.layer];
-    r.v = (layer.rotation * vec4<f32>(p_l, 0.0)).xyz;
+    let f = frustum();
+    r.v = to_view(p_l, r.layer);
     r.z = max(-r.v.z, 1e-30);
-    r.tc = texel_of_tangent(r.v.xy / r.z, r.layer);
-    r.n_v = (layer.rotation * vec4<f32>(n, 0.0)).xyz;
-    r.texel_m = r.z * max(layer.tan_right - layer.tan_left, layer.tan_top - layer.tan_bottom) / resolution();
+    r.tc = texel_of_tangent(r.v.xy / r.z);
+    r.n_v = to_view(n, r.layer);
+    r.texel_m = r.z * max(f.tan_right - f.tan_left, f.tan_top - f.tan_bottom) / resolution();
     let c = clamp(cos_theta, 1e-4, 1.0);
     r.tan_theta = min(sqrt(1.0 - c * c) / c, MAX_SLOPE);
     return r;
@@ -102,7 +129,7 @@ fn make_receiver(p_l: vec3<f32>, n: vec3<f32>, cos_theta: f32) -> Receiver {
 
 fn stored_depth(layer: u32, texel: vec2<i32>) -> f32 {
     let d = textureLoad(shadow_depth_values, texel, i32(layer), 0).x;
-    let f = shadow.layers[layer];
+    let f = frustum();
     return stored_linear(d, f.depth_a, f.depth_b);
 }
 
@@ -116,7 +143,7 @@ fn stored_linear(d: f32, depth_a: f32, depth_b: f32) -> f32 {
 // intersected with the light ray through that texel, within the slope limit.
 fn plane_depth(r: Receiver, texel: vec2<i32>) -> f32 {
     let centre = vec2<f32>(texel) + 0.5;
-    let t = tangent_of_texel(centre, r.layer);
+    let t = tangent_of_texel(centre);
     let reach = MAX_SLOPE * r.texel_m * max(length(centre - r.tc), 0.5);
     return plane_along(r, dot(r.n_v, r.v), dot(r.n_v, vec3<f32>(t, -1.0)), reach);
 }
@@ -189,17 +216,17 @@ struct Tap {
 // tangents (make_receiver's formulas), so its depth is compared on that face.
 fn receiver_on_layer(r: Receiver, layer: u32) -> Receiver {
     let own = shadow.layers[r.layer].rotation;
-    let to = shadow.layers[layer];
+    let f = frustum();
     // The rotations are orthonormal: v · M applies M's transpose, its inverse.
     let p_l = (vec4<f32>(r.v, 0.0) * own).xyz;
     let n = (vec4<f32>(r.n_v, 0.0) * own).xyz;
     var q = r;
     q.layer = layer;
-    q.v = (to.rotation * vec4<f32>(p_l, 0.0)).xyz;
+    q.v = to_view(p_l, layer);
     q.z = max(-q.v.z, 1e-30);
-    q.tc = texel_of_tangent(q.v.xy / q.z, layer);
-    q.n_v = (to.rotation * vec4<f32>(n, 0.0)).xyz;
-    q.texel_m = q.z * max(to.tan_right - to.tan_left, to.tan_top - to.tan_bottom) / resolution();
+    q.tc = texel_of_tangent(q.v.xy / q.z);
+    q.n_v = to_view(n, layer);
+    q.texel_m = q.z * max(f.tan_right - f.tan_left, f.tan_top - f.tan_bottom) / resolution();
     return q;
 }
 
@@ -216,12 +243,12 @@ fn tap(r: Receiver, texel: vec2<i32>) -> Tap {
     if !is_cube() {
         return Tap(r, texel, false);
     }
-    let dir_v = vec3<f32>(tangent_of_texel(vec2<f32>(texel) + 0.5, r.layer), -1.0);
+    let dir_v = vec3<f32>(tangent_of_texel(vec2<f32>(texel) + 0.5), -1.0);
     let dir = (vec4<f32>(dir_v, 0.0) * shadow.layers[r.layer].rotation).xyz;
     let layer = choose_layer(dir);
     let q = receiver_on_layer(r, layer);
-    let d = (shadow.layers[layer].rotation * vec4<f32>(dir, 0.0)).xyz;
-    let t = vec2<i32>(floor(texel_of_tangent(d.xy / max(-d.z, 1e-30), layer)));
+    let d = to_view(dir, layer);
+    let t = vec2<i32>(floor(texel_of_tangent(d.xy / max(-d.z, 1e-30))));
     let last = vec2<i32>(i32(resolution()) - 1);
     // A face with no geometry in it was not drawn (its texels are stale).
     let drawn = (shadow.layer_mask & (1u << layer)) != 0u;
@@ -270,7 +297,7 @@ fn filter_hw2x2(r: Receiver) -> f32 {
         }
         default: {}
     }
-    let f = shadow.layers[r.layer];
+    let f = frustum();
     let d_ref = f.depth_a / z_ref + f.depth_b;
     return textureSampleCompareLevel(shadow_depth, shadow_compare, r.tc / resolution(), i32(r.layer), d_ref);
 }
@@ -302,9 +329,9 @@ struct OwnFace {
 }
 
 fn own_face(r: Receiver, base: vec2<i32>) -> OwnFace {
-    let f = shadow.layers[r.layer];
+    let f = frustum();
     let centre = vec2<f32>(base) + 0.5;
-    let t = tangent_of_texel(centre, r.layer);
+    let t = tangent_of_texel(centre);
     let per_texel = vec2<f32>(f.tan_right - f.tan_left, f.tan_bottom - f.tan_top) / resolution();
     return OwnFace(
         f.depth_a,
@@ -418,7 +445,7 @@ fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
     if radius_m <= 0.0 {
         return bilinear_test(r, r.tc);
     }
-    let near = shadow.layers[r.layer].near_m;
+    let near = frustum().near_m;
     let angle = pixel_angle(pixel);
     // Blockers lie between the light and the receiver: the light's disc seen
     // from the receiver covers at most this many texels at the near plane.
@@ -501,7 +528,7 @@ fn hamburger_4msm(b: vec4<f32>, z_f: f32, alpha: f32) -> f32 {
 }
 
 fn filter_moments(r: Receiver) -> f32 {
-    let f = shadow.layers[r.layer];
+    let f = frustum();
     let u = clamp((r.z - f.near_m) / (f.far_m - f.near_m), 0.0, 1.0);
     let m = textureSampleLevel(moments, moments_sampler, r.tc / resolution(), i32(r.layer), 0.0);
     if filter_mode() == FILTER_VSM {

@@ -222,6 +222,8 @@ impl ShadowLayout {
             .iter()
             .map(|c| (c.as_dvec3() - light).length())
             .fold(0.0, f64::max);
+        // Every face alike but for its axis: shadow_map.wgsl reads the
+        // tangents, near and far planes of layer 0 for all of them.
         let layers = CUBE_AXES
             .iter()
             .map(|&axis| {
@@ -374,6 +376,31 @@ mod tests {
                     assert!(z > f.near, "{point:?} at depth {z} before near {}", f.near);
                 }
             }
+        }
+    }
+
+    #[test]
+    fn cube_faces_share_their_extent_and_only_permute_axes() {
+        // shadow_map.wgsl reads every face's tangents, near and far planes
+        // from layer 0 (`frustum`), and turns directions into a face's view
+        // by the permutations of `to_view`: (1, 2, 3) in each face's view.
+        let ground = aabb([-6.0, -0.5, -6.0], [6.0, 0.0, 6.0]);
+        let layout = ShadowLayout::fit(DVec3::new(0.5, 1.0, -0.3), &[ground], 0.02);
+        assert_eq!(layout.kind, LayoutKind::Cube);
+        let first = &layout.layers[0].frustum;
+        let permuted = [
+            [3.0, 2.0, -1.0],
+            [-3.0, 2.0, 1.0],
+            [1.0, 3.0, -2.0],
+            [-1.0, 3.0, 2.0],
+            [-1.0, 2.0, -3.0],
+            [1.0, 2.0, 3.0],
+        ];
+        for (layer, expected) in layout.layers.iter().zip(permuted) {
+            let f = &layer.frustum;
+            assert_eq!((f.tan, f.near, f.far), (first.tan, first.near, first.far));
+            let view = f.rotation().transform_vector3(DVec3::new(1.0, 2.0, 3.0));
+            assert_eq!(view.to_array(), expected);
         }
     }
 
