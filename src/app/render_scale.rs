@@ -39,10 +39,10 @@ pub const STEPS: [f64; 5] = [
 /// chosen resolution's texels (never below
 /// [`ShadowSettings::MIN_RESOLUTION`], see [`shadow_map_side`]).
 pub const SHADOW_STEPS: [f64; 3] = [MIN_SCALE / 2.0, MIN_SCALE / std::f64::consts::SQRT_2, MIN_SCALE];
-/// The share of the image's own cost below which the map is not shrunk
-/// alone: past it coarser texels would buy little frame time (on lavapipe
-/// a map with few texels to fill costs its casters' setup, whatever its
-/// side).
+/// The least budget a map shrinking alone aims at, as a share of the
+/// image's own cost: below it coarser texels would buy little frame time
+/// (on lavapipe a map with few texels to fill costs its casters' setup,
+/// whatever its side).
 const SHADOW_FLOOR_SHARE: f64 = 0.5;
 /// A drag moves up a step only when the cost model leaves this much room
 /// above it: frame costs that wobble by less never flip the size.
