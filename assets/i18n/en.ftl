@@ -515,7 +515,7 @@ timings-render-scale = render scale
 timings-dragging = (dragging)
 timings-full = (full)
 timings-map-scale = , shadow map { $percent } %
-timings-render-scale-tip = Image side rendered / viewport side. While dragging, s = s_measured · √(budget / t_passes), budget { $budget } ms for { $fps } frames/s, rounded down to a step of √2 (25, 35, 50, 71, 100 %; up a step only with 10 % of room to spare), at least { $min } %. The shadow map's side follows s; at { $min } %, a map that costs more than the budget leaves it shrinks alone, down to { $map_min } % of its side (never to less than half the image's own cost). Full resolution as soon as the drag ends
+timings-render-scale-tip = Image side rendered / viewport side. While dragging, s = s_measured · √(budget / t_passes), budget { $budget } ms for { $fps } frames/s, rounded down to a step of √2 (25, 35, 50, 71, 100 %; up a step only with 10 % of room to spare), at least { $min } %. The shadow map's side follows s; at { $min } %, a map costing more than the image leaves of the budget shrinks alone, down to { $map_min } % of its side (never aiming below half the image's own cost). Full resolution as soon as the drag ends
 timings-drag-fps = frames/s (drag)
 timings-drag-fps-tip = Frames rendered per second during the last drag: 1 / (time between frames), smoothed
 timings-drag-device = drag frames

@@ -521,7 +521,7 @@ timings-render-scale = échelle de rendu
 timings-dragging = (glissement en cours)
 timings-full = (pleine)
 timings-map-scale = , carte d'ombre { $percent } %
-timings-render-scale-tip = Côté de l'image rendue / côté de la vue. Pendant un glissement, s = s_measured · √(budget / t_passes), budget de { $budget } ms pour { $fps } images/s, arrondi au palier de √2 inférieur (25, 35, 50, 71, 100 % ; un palier de plus seulement avec 10 % de marge), au moins { $min } %. Le côté de la carte d'ombre suit s ; à { $min } %, une carte qui coûte plus que ce que l'image laisse du budget rétrécit seule, jusqu'à { $map_min } % de son côté (jamais sous la moitié du coût propre de l'image). Pleine résolution dès la fin du glissement
+timings-render-scale-tip = Côté de l'image rendue / côté de la vue. Pendant un glissement, s = s_measured · √(budget / t_passes), budget de { $budget } ms pour { $fps } images/s, arrondi au palier de √2 inférieur (25, 35, 50, 71, 100 % ; un palier de plus seulement avec 10 % de marge), au moins { $min } %. Le côté de la carte d'ombre suit s ; à { $min } %, une carte qui coûte plus que ce que l'image laisse du budget rétrécit seule, jusqu'à { $map_min } % de son côté (sans viser moins de la moitié du coût propre de l'image). Pleine résolution dès la fin du glissement
 timings-drag-fps = images/s (glissement)
 timings-drag-fps-tip = Images rendues par seconde pendant le dernier glissement : 1 / (temps entre deux images), lissé
 timings-drag-device = glissement
