@@ -535,7 +535,9 @@ impl eframe::App for LabApp {
                 ui_ms: self.clock.ui_ms,
                 gpu_ms: a.and_then(|h| h.times).map_or(0.0, |t| t.total_ms()),
                 shadow_ms: a.and_then(|h| h.times?.shadow_ms).unwrap_or(0.0),
-                map_side: a.map_or(0, |h| h.report.resolution),
+                map_side: a
+                    .filter(|h| !h.report.shadow_map_unused)
+                    .map_or(0, |h| h.report.resolution),
                 images: a.map_or(0, |h| h.renders),
                 simplifying: gpu.is_some_and(GpuViews::simplifying),
                 simplified: a.is_some_and(|h| h.report.simplified_triangles.is_some()),

@@ -74,7 +74,8 @@ pub(super) struct FrameBefore {
     pub gpu_ms: f64,
     /// GPU time of the shadow pass among them (ms).
     pub shadow_ms: f64,
-    /// Side of the shadow map the view's last image read (texels).
+    /// Side of the shadow map the view's last image read (texels; 0: it
+    /// read none, under ray-traced visibility or without shadows).
     pub map_side: u32,
     /// Images the view has shown so far.
     pub images: u64,
@@ -259,15 +260,24 @@ impl DragBench {
             .map(|w| (w[1] - w[0]).as_secs_f64())
             .collect();
         Some(format!(
-            "{}; {}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms (shadow {:.1}, map side {} texels){cpu}; simplified meshes in {} of {n} frames",
+            "{}; {}; median UI pass (layout, panels, render submit) {:.1} ms, renderer's GPU passes {:.1} ms (shadow {:.1}, {}){cpu}; simplified meshes in {} of {n} frames",
             summary(self.target, &self.intervals_s, &self.scales, viewport),
             image_summary(&images),
             median(&self.ui_ms),
             median(&self.gpu_ms),
             median(&self.shadow_ms),
-            median(&self.map_sides),
+            map_side(median(&self.map_sides)),
             self.simplified_frames,
         ))
+    }
+}
+
+/// "map side N texels", or "no map read" for a side of 0.
+fn map_side(side: f64) -> String {
+    if side > 0.0 {
+        format!("map side {side} texels")
+    } else {
+        "no map read".into()
     }
 }
 
