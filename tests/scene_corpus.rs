@@ -25,11 +25,34 @@ fn a_square_loads_the_same_from_glb_data_uri_and_external_bin() {
 }
 
 #[test]
-fn missing_normals_are_generated_facing_the_winding() {
+fn missing_normals_shade_flat_facing_the_winding() {
     let scene = load_ok(&Doc::square().glb());
     assert_eq!(scene.facts().has_normals, NormalsPresence::Missing);
     assert_normals_are(&scene, Vec3::Z);
     assert_front_faces_follow_normals(&scene);
+    // glTF 2.0 §3.7.2.1: a primitive without NORMAL is shaded flat. A
+    // bent strip keeps no normals, so each of its faces is shaded with its
+    // own normal, not one smoothed across the bend.
+    let bent = [
+        [0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [2.0, 0.0, 1.0],
+        [2.0, 1.0, 1.0],
+    ];
+    let (doc, _) = Doc::simple(&bent, Some((&[1, 0, 3, 2, 5, 4], UNSIGNED_BYTE)), TRIANGLE_STRIP);
+    let scene = load_ok(&doc.glb());
+    let mesh = &scene.objects[0].mesh;
+    assert!(mesh.normals.is_empty(), "{:?}", mesh.normals);
+    assert_front_faces_follow_normals(&scene);
+    // Two faces in z = 0, two rising to z = 1, meeting along x = 1.
+    let slanted = Vec3::new(-1.0, 0.0, 1.0).normalize();
+    for (t, expected) in [Vec3::Z, Vec3::Z, slanted, slanted].into_iter().enumerate() {
+        for n in shading_normals(mesh, t) {
+            assert!((n - expected).length() < 1e-6, "triangle {t}: {n}");
+        }
+    }
 }
 
 #[test]

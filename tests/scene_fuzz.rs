@@ -110,7 +110,9 @@ fn check_load(bytes: &[u8]) -> Result<(), TestCaseError> {
 fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
     for o in &scene.objects {
         let m = &o.mesh;
-        prop_assert!(m.normals.len() == m.positions.len() && m.uvs.len() == m.positions.len());
+        // Normals: one per position, or none (shaded flat).
+        prop_assert!(m.normals.is_empty() || m.normals.len() == m.positions.len());
+        prop_assert!(m.uvs.len() == m.positions.len());
         prop_assert!(m.indices.len() % 3 == 0 && !m.indices.is_empty());
         prop_assert!(m.indices.iter().all(|&i| (i as usize) < m.positions.len()));
         prop_assert!(m.positions.iter().all(|p| p.is_finite()));

@@ -140,7 +140,8 @@ pub struct Object {
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
     pub positions: Vec<Vec3>,
-    /// Unit normals, one per position.
+    /// Unit normals, one per position, or none: a glTF primitive without
+    /// NORMAL is shaded flat, each triangle with its face's normal.
     pub normals: Vec<Vec3>,
     /// Texture coordinates, one per position: the set the material's base
     /// colour texture samples (set 0 but for rare files); zeros when the

@@ -2,7 +2,7 @@
 
 use super::builder::Doc;
 use glam::Vec3;
-use lumlab::scene::{self, LoadProblem, Scene, SceneError};
+use lumlab::scene::{self, LoadProblem, Mesh, Scene, SceneError};
 use std::path::Path;
 
 pub const NAME: &str = "case.gltf";
@@ -56,10 +56,26 @@ pub fn has_warning(scene: &Scene, text: &str) -> bool {
 /// Every vertex normal of every object is `expected`.
 pub fn assert_normals_are(scene: &Scene, expected: Vec3) {
     for object in &scene.objects {
-        for n in &object.mesh.normals {
-            assert!((*n - expected).length() < 1e-6, "{}: {n}", object.name);
+        for t in 0..object.mesh.triangle_count() {
+            for n in shading_normals(&object.mesh, t) {
+                assert!((n - expected).length() < 1e-6, "{}: {n}", object.name);
+            }
         }
     }
+}
+
+/// The normals triangle t is shaded with at its corners: its vertex
+/// normals, or its face's own (the winding's) where the mesh has none (a
+/// glTF primitive without NORMAL is shaded flat).
+pub fn shading_normals(mesh: &Mesh, t: usize) -> [Vec3; 3] {
+    let [a, b, c] = mesh.triangle(t);
+    let face = (b - a).cross(c - a).normalize();
+    [0, 1, 2].map(|k| {
+        mesh.normals
+            .get(mesh.indices[3 * t + k] as usize)
+            .copied()
+            .unwrap_or(face)
+    })
 }
 
 /// Every triangle's winding agrees with its vertex normals (front faces CCW).
@@ -69,8 +85,7 @@ pub fn assert_front_faces_follow_normals(scene: &Scene) {
         for t in 0..mesh.triangle_count() {
             let [a, b, c] = mesh.triangle(t);
             let face = (b - a).cross(c - a);
-            for k in 0..3 {
-                let n = mesh.normals[mesh.indices[3 * t + k] as usize];
+            for n in shading_normals(mesh, t) {
                 assert!(
                     face.dot(n) > 0.0,
                     "{}: triangle {t} winds against its normal",

@@ -1,6 +1,7 @@
 //! One mesh primitive in its mesh's own space: the triangle list drawn
-//! (strips and fans converted, broken triangles dropped), normals read,
-//! repaired or generated, and what was repaired, counted.
+//! (strips and fans converted, broken triangles dropped), normals read and
+//! repaired (none when the file gives none: shaded flat), and what was
+//! repaired, counted.
 
 use super::accessor::Data;
 use crate::scene::{LoadProblem, Mesh};
@@ -154,28 +155,27 @@ pub(super) fn build(
         None => vec![Vec2::ZERO; vertex_count],
     };
 
-    let needs_generated = match &normals {
-        None => true,
-        Some(n) => n.iter().any(|v| !usable(*v)),
-    };
-    let normals = if needs_generated {
+    // Without NORMAL the primitive keeps no normals: glTF 2.0 (§3.7.2.1)
+    // has it shaded flat, and both renderers then shade each triangle with
+    // its face's normal (a missing vertex normal counts as zero there).
+    // Given normals that are zero, NaN or infinite are repaired from the
+    // triangles around their vertex.
+    if let Some(given) = normals.as_mut()
+        && given.iter().any(|v| !usable(*v))
+    {
         let generated = vertex_normals(&positions, &kept);
-        match normals.as_mut() {
-            Some(given) => {
-                for (n, g) in given.iter_mut().zip(&generated) {
-                    if !usable(*n) {
-                        *n = *g;
-                        local.normals_repaired += 1;
-                    }
-                }
-                std::mem::take(given)
+        for (n, g) in given.iter_mut().zip(&generated) {
+            if !usable(*n) {
+                *n = *g;
+                local.normals_repaired += 1;
             }
-            None => generated,
         }
-    } else {
-        normals.unwrap_or_default()
-    };
-    let normals = normals.into_iter().map(|n| n.normalize_or(Vec3::Y)).collect();
+    }
+    let normals = normals
+        .unwrap_or_default()
+        .into_iter()
+        .map(|n| n.normalize_or(Vec3::Y))
+        .collect();
 
     local.mesh = Mesh {
         positions,
@@ -293,7 +293,7 @@ fn without_non_finite(mesh: &Mesh) -> Mesh {
         if p.is_finite() {
             remap[i] = out.positions.len() as u32;
             out.positions.push(*p);
-            out.normals.push(mesh.normals[i]);
+            out.normals.extend(mesh.normals.get(i));
             out.uvs.push(mesh.uvs[i]);
         }
     }
