@@ -220,6 +220,25 @@ fn the_default_scene_of_the_file_is_drawn() {
 }
 
 #[test]
+fn vertex_colours_are_said_to_be_ignored() {
+    let mut doc = Doc::square();
+    let colours = doc.vec3s(&[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 1.0]]);
+    doc.json["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = json!(colours);
+    let scene = load_every_form(&doc);
+    assert!(
+        has_warning(&scene, "1 primitives have vertex colours (COLOR_0)"),
+        "{:?}",
+        scene.warnings
+    );
+    assert!(
+        !load_ok(&Doc::square().glb())
+            .warnings
+            .iter()
+            .any(|w| w.contains("COLOR_0"))
+    );
+}
+
+#[test]
 fn given_normals_are_kept_and_zero_or_nan_ones_repaired() {
     let mut doc = Doc::square();
     let normals = doc.vec3s(&[

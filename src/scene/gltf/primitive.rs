@@ -36,6 +36,9 @@ pub(super) struct LocalPrimitive {
     pub normals_repaired: usize,
     /// The NORMAL or TEXCOORD accessor had the wrong count and was ignored.
     pub attributes_ignored: Vec<String>,
+    /// The primitive has vertex colours (COLOR_0), which the lab does not
+    /// model: it shows its material's base colour alone.
+    pub vertex_colours: bool,
 }
 
 /// The vertex triples of the triangles `mode` makes of `indices`, in the
@@ -92,6 +95,7 @@ pub(super) fn build(
         non_finite_vertices,
         normals_repaired: 0,
         attributes_ignored: Vec::new(),
+        vertex_colours: attribute(Semantic::Colors(0)).is_some(),
     };
     if topology == Topology::PointsOrLines {
         local.mesh.positions = positions.into_iter().filter(|p| p.is_finite()).collect();
