@@ -39,6 +39,8 @@ struct VsIn {
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
     @location(3) material: u32,
+    // The vertex colour multiplying the base colour (1 without one).
+    @location(4) colour: vec3<f32>,
 }
 
 struct VsOut {
@@ -51,6 +53,7 @@ struct VsOut {
     @location(3) @interpolate(flat) material: u32,
     // 0: the object receives no shadows (V = 1).
     @location(4) @interpolate(flat) receives_shadows: u32,
+    @location(5) colour: vec3<f32>,
 }
 
 // gpu::scene_buffers::Vertex::NO_SHADOWS_RECEIVED: set in a vertex's material
@@ -78,6 +81,7 @@ fn vs(in: VsIn) -> VsOut {
     out.uv = in.uv;
     out.material = in.material & ~NO_SHADOWS_RECEIVED;
     out.receives_shadows = u32((in.material & NO_SHADOWS_RECEIVED) == 0u);
+    out.colour = in.colour;
     return out;
 }
 
@@ -130,8 +134,8 @@ fn surface_at(in: VsOut, front_facing: bool) -> Surface {
         s.k = select(s.k, mat.own_k, mat.has_own_k != 0u);
         s.m = select(s.m, mat.own_m, mat.has_own_m != 0u);
     }
-    s.c = mat.base_color.rgb;
-    s.other_c = mat.other_model_color.rgb;
+    s.c = mat.base_color.rgb * in.colour;
+    s.other_c = mat.other_model_color.rgb * in.colour;
     if mat.texture_layer_plus_one > 0u {
         let layer = i32(mat.texture_layer_plus_one - 1u);
         let texel = textureSampleLevel(base_textures, base_sampler, in.uv, layer, 0.0).rgb;

@@ -9,15 +9,19 @@ mod common;
 use lumlab::colour::{ColourModel, Illuminant};
 use lumlab::gpu::Renderer;
 use lumlab::reference::{Reference, ReferenceOptions, RenderControl, luminance};
+use lumlab::scene::Scene;
 use lumlab::settings::Settings;
 
 fn compare(settings: &Settings) -> (usize, f64) {
+    compare_on(&lumlab::scene::default_scene(), settings)
+}
+
+fn compare_on(scene: &Scene, settings: &Settings) -> (usize, f64) {
     let gpu = common::gpu();
-    let scene = lumlab::scene::default_scene();
-    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, scene);
     renderer.render(settings, (settings.image.width, settings.image.height));
     let (quantity, aux) = (renderer.read_quantity(), renderer.read_aux());
-    let reference = Reference::new(&scene)
+    let reference = Reference::new(scene)
         .render(settings, &ReferenceOptions::DEFAULT, &RenderControl::default())
         .unwrap();
     let mean =
@@ -91,6 +95,42 @@ fn without_shadows_the_gpu_equals_the_reference_on_every_lit_pixel() {
     let (checked, worst) = compare(&settings);
     assert!(checked > 192 * 108 / 3, "only {checked} pixels compared");
     eprintln!("m = 1e4: {checked} lit pixels, worst relative difference {worst:.2e}");
+}
+
+#[test]
+fn vertex_colours_modulate_the_base_colour_alike_on_both() {
+    let mut settings = Settings::default();
+    settings.image.width = 160;
+    settings.image.height = 90;
+    settings.shadow.enabled = false;
+    let plain = lumlab::scene::default_scene();
+    let mut coloured = plain.clone();
+    for object in &mut coloured.objects {
+        let mesh = &mut object.mesh;
+        mesh.colours = mesh
+            .positions
+            .iter()
+            .map(|p| {
+                glam::Vec3::new(
+                    0.2 + 0.8 * p.x.sin().abs(),
+                    0.2 + 0.8 * (2.0 * p.y).cos().abs(),
+                    0.5,
+                )
+            })
+            .collect();
+    }
+    let (checked, worst) = compare_on(&coloured, &settings);
+    assert!(checked > 160 * 90 / 3, "only {checked} pixels compared");
+    eprintln!("vertex colours: {checked} lit pixels, worst relative difference {worst:.2e}");
+    // The colours show: blue is halved everywhere against the plain scene.
+    let blue = |scene: &Scene| {
+        let image = Reference::new(scene)
+            .render(&settings, &ReferenceOptions::DEFAULT, &RenderControl::default())
+            .unwrap();
+        image.radiance.iter().map(|l| l[2]).sum::<f64>()
+    };
+    let ratio = blue(&coloured) / blue(&plain);
+    assert!((ratio - 0.5).abs() < 1e-9, "blue ratio {ratio}");
 }
 
 #[test]

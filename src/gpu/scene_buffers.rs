@@ -19,6 +19,8 @@ pub struct Vertex {
     pub normal: [f32; 3],
     pub uv: [f32; 2],
     pub material: u32,
+    /// The vertex colour multiplying the base colour (1 without one).
+    pub colour: [f32; 3],
 }
 
 impl Vertex {
@@ -27,8 +29,9 @@ impl Vertex {
     /// visibility source, as in the reference. The low bits are the index.
     pub const NO_SHADOWS_RECEIVED: u32 = 1 << 31;
 
-    pub const ATTRIBUTES: [wgpu::VertexAttribute; 4] =
-        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Uint32];
+    pub const ATTRIBUTES: [wgpu::VertexAttribute; 5] = wgpu::vertex_attr_array![
+        0 => Float32x3, 1 => Float32x3, 2 => Float32x2, 3 => Uint32, 4 => Float32x3
+    ];
 
     /// The full layout (camera pass).
     pub fn layout() -> wgpu::VertexBufferLayout<'static> {
@@ -174,6 +177,7 @@ impl GpuScene {
                         .to_array(),
                     uv: mesh.uvs.get(i).copied().unwrap_or_default().to_array(),
                     material,
+                    colour: mesh.colours.get(i).copied().unwrap_or(glam::Vec3::ONE).to_array(),
                 }
             }));
         }

@@ -125,6 +125,9 @@ struct TriangleInfo {
     shadow_offset_m: f64,
     normals: [Vec3; 3],
     uvs: [Vec2; 3],
+    /// The corners' vertex colours multiplying the base colour, None
+    /// without them (1, as the GPU uploads).
+    colours: Option<[Vec3; 3]>,
 }
 
 #[derive(Clone, Debug)]
@@ -261,6 +264,7 @@ impl MeshTriangle {
         // shade.wgsl's surface_at). Missing uvs: zero.
         let normals = ids.map(|i| mesh.normals.get(i).copied().unwrap_or(Vec3::ZERO));
         let uvs = corner_values(&mesh.uvs, ids).unwrap_or([Vec2::ZERO; 3]);
+        let colours = corner_values(&mesh.colours, ids);
         let largest = corners.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
         let first = normals[0].as_dvec3();
         TriangleInfo {
@@ -273,6 +277,7 @@ impl MeshTriangle {
             shadow_offset_m: SHADOW_OFFSET_REL * largest,
             normals,
             uvs,
+            colours,
         }
     }
 }

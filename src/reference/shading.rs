@@ -284,17 +284,22 @@ impl Reference {
             .base_color_texture
             .and_then(|t| self.textures.get(t)?.as_ref())
             .map(|texture| texture.sample(uv));
+        // The texture and the vertex colours modulate the base colour.
+        let vertex_colour = tri.colours.map_or(DVec3::ONE, |[c0, c1, c2]| {
+            c0.as_dvec3() * b0 + c1.as_dvec3() * b1 + c2.as_dvec3() * b2
+        });
+        let modulation = texture.unwrap_or(DVec3::ONE) * vertex_colour;
         let color = match setup.color_override {
             Some(c) => c,
-            None => material.base_color.truncate().as_dvec3() * texture.unwrap_or(DVec3::ONE),
+            None => material.base_color.truncate().as_dvec3() * modulation,
         };
         let surface_tint = match &setup.spectral {
             None => tint(color, setup.light_color),
-            // The texture modulates the spectral colour as it does the RGB one.
-            Some(light) => {
-                let texture = texture.filter(|_| setup.color_override.is_none());
-                light.reflected_rgb(object.material) * texture.unwrap_or(DVec3::ONE)
+            // They modulate the spectral colour as they do the RGB one.
+            Some(light) if setup.color_override.is_none() => {
+                light.reflected_rgb(object.material) * modulation
             }
+            Some(light) => light.reflected_rgb(object.material),
         };
         let own = |value: Option<f32>, default: f64| match value {
             Some(v) if setup.use_scene_materials => v as f64,

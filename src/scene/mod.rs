@@ -147,6 +147,9 @@ pub struct Mesh {
     /// colour texture samples (set 0 but for rare files); zeros when the
     /// file has none.
     pub uvs: Vec<Vec2>,
+    /// Linear RGB factors, one per position, multiplying the material's
+    /// base colour (glTF COLOR_0), or none.
+    pub colours: Vec<Vec3>,
     /// Three indices per triangle.
     pub indices: Vec<u32>,
 }

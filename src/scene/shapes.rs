@@ -28,6 +28,7 @@ impl Mesh {
         self.positions.extend_from_slice(&other.positions);
         self.normals.extend_from_slice(&other.normals);
         self.uvs.extend_from_slice(&other.uvs);
+        self.colours.extend_from_slice(&other.colours);
         self.indices.extend(other.indices.iter().map(|i| base + i));
     }
 
@@ -53,6 +54,7 @@ impl Mesh {
                 .map(|&n| normal_matrix.transform_vector3(n).normalize_or_zero())
                 .collect(),
             uvs: self.uvs.clone(),
+            colours: self.colours.clone(),
             indices,
         }
     }

@@ -340,6 +340,7 @@ mod tests {
                 positions,
                 normals,
                 uvs,
+                colours: Vec::new(),
             };
         }
         let simplified = simplify(&scene).expect("above the threshold");

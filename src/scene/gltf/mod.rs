@@ -140,7 +140,6 @@ struct Tally {
     without_positions: usize,
     singular: usize,
     attributes_ignored: Vec<String>,
-    vertex_coloured: usize,
 }
 
 struct Loader<'d, 'r, 'b> {
@@ -241,7 +240,6 @@ impl Loader<'_, '_, '_> {
         for local in locals.values().flatten().flatten() {
             tally.normals_repaired += local.normals_repaired;
             tally.non_finite_vertices += local.non_finite_vertices;
-            tally.vertex_coloured += usize::from(local.vertex_colours);
             tally
                 .attributes_ignored
                 .extend(local.attributes_ignored.iter().cloned());
@@ -522,14 +520,6 @@ impl Loader<'_, '_, '_> {
                 format!(
                     "{} mesh instances have a transform that flattens them (scale 0): their triangles are dropped",
                     t.singular
-                ),
-            ),
-            (
-                t.vertex_coloured,
-                format!(
-                    "{} primitives have vertex colours (COLOR_0), which the lab does not model: \
-                     they show their material's base colour alone",
-                    t.vertex_coloured
                 ),
             ),
         ];

@@ -6,6 +6,7 @@
 use super::accessor::Data;
 use crate::scene::{LoadProblem, Mesh};
 use glam::{Vec2, Vec3};
+use gltf::json::accessor::Type;
 use gltf::json::mesh::{Mode, Primitive, Semantic};
 use gltf::json::validation::Checked;
 
@@ -34,11 +35,9 @@ pub(super) struct LocalPrimitive {
     pub non_finite_vertices: usize,
     /// Normals that were zero, NaN or infinite and were replaced.
     pub normals_repaired: usize,
-    /// The NORMAL or TEXCOORD accessor had the wrong count and was ignored.
+    /// The NORMAL, TEXCOORD or COLOR_0 accessor had the wrong count and
+    /// was ignored.
     pub attributes_ignored: Vec<String>,
-    /// The primitive has vertex colours (COLOR_0), which the lab does not
-    /// model: it shows its material's base colour alone.
-    pub vertex_colours: bool,
 }
 
 /// The vertex triples of the triangles `mode` makes of `indices`, in the
@@ -95,7 +94,6 @@ pub(super) fn build(
         non_finite_vertices,
         normals_repaired: 0,
         attributes_ignored: Vec::new(),
-        vertex_colours: attribute(Semantic::Colors(0)).is_some(),
     };
     if topology == Topology::PointsOrLines {
         local.mesh.positions = positions.into_iter().filter(|p| p.is_finite()).collect();
@@ -158,6 +156,27 @@ pub(super) fn build(
         }
         None => vec![Vec2::ZERO; vertex_count],
     };
+    // COLOR_0 multiplies the base colour: linear RGB, floats or normalized
+    // integers, its alpha (like the material's) not modelled. A NaN or
+    // infinite component counts as 1, a negative one as 0.
+    let colours = match attribute(Semantic::Colors(0)) {
+        Some(accessor) => {
+            let (values, components) = data.floats(accessor, &[Type::Vec3, Type::Vec4])?;
+            if values.len() == components * vertex_count {
+                values
+                    .chunks_exact(components)
+                    .map(|c| Vec3::from_slice(c).map(|v| if v.is_finite() { v.max(0.0) } else { 1.0 }))
+                    .collect()
+            } else {
+                local.attributes_ignored.push(format!(
+                    "{what}: COLOR_0 has {} entries for {vertex_count} vertices",
+                    values.len() / components.max(1)
+                ));
+                Vec::new()
+            }
+        }
+        None => Vec::new(),
+    };
 
     // Without NORMAL the primitive keeps no normals: glTF 2.0 (§3.7.2.1)
     // has it shaded flat, and both renderers then shade each triangle with
@@ -185,6 +204,7 @@ pub(super) fn build(
         positions,
         normals,
         uvs,
+        colours,
         indices: kept,
     };
     if non_finite_vertices > 0 {
@@ -299,6 +319,7 @@ fn without_non_finite(mesh: &Mesh) -> Mesh {
             out.positions.push(*p);
             out.normals.extend(mesh.normals.get(i));
             out.uvs.push(mesh.uvs[i]);
+            out.colours.extend(mesh.colours.get(i));
         }
     }
     out.indices = mesh.indices.iter().map(|&i| remap[i as usize]).collect();

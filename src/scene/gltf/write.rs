@@ -79,6 +79,9 @@ impl Binary {
         if mesh.uvs.len() == n {
             attributes["TEXCOORD_0"] = json!(self.floats(mesh.uvs.iter().map(|v| v.to_array()), n, "VEC2"));
         }
+        if mesh.colours.len() == n {
+            attributes["COLOR_0"] = json!(self.floats(mesh.colours.iter().map(|v| v.to_array()), n, "VEC3"));
+        }
         let indices: Vec<u8> = mesh.indices.iter().flat_map(|i| i.to_le_bytes()).collect();
         let indices = self.add(
             &indices,
