@@ -259,6 +259,24 @@ fn vertex_colours_are_read_as_floats_or_normalized_bytes() {
 }
 
 #[test]
+fn see_through_materials_are_said_to_be_drawn_opaque() {
+    let mut doc = Doc::square();
+    doc.json["materials"] = json!([{"name": "leaf", "alphaMode": "MASK"}, {"name": "wall"}]);
+    doc.json["meshes"][0]["primitives"][0]["material"] = json!(0);
+    let scene = load_ok(&doc.glb());
+    assert!(
+        has_warning(
+            &scene,
+            "1 materials are alpha-masked or blended (alphaMode, first: 'leaf')"
+        ),
+        "{:?}",
+        scene.warnings
+    );
+    doc.json["materials"][0]["alphaMode"] = json!("OPAQUE");
+    assert!(load_ok(&doc.glb()).warnings.is_empty());
+}
+
+#[test]
 fn given_normals_are_kept_and_zero_or_nan_ones_repaired() {
     let mut doc = Doc::square();
     let normals = doc.vec3s(&[

@@ -4,6 +4,8 @@
 use super::{Loader, lab_extras, resources};
 use crate::scene::{Material, Texture};
 use glam::Vec4;
+use gltf::json::material::AlphaMode;
+use gltf::json::validation::Checked;
 use std::collections::HashMap;
 
 impl Loader<'_, '_, '_> {
@@ -14,6 +16,7 @@ impl Loader<'_, '_, '_> {
         let mut by_image: HashMap<usize, Option<usize>> = HashMap::new();
         let mut unreadable: Vec<String> = Vec::new();
         let mut materials = Vec::with_capacity(root.materials.len());
+        let mut see_through = Vec::new();
         for (i, json) in root.materials.iter().enumerate() {
             let name = json.name.clone().unwrap_or_else(|| format!("material {i}"));
             let pbr = &json.pbr_metallic_roughness;
@@ -43,6 +46,9 @@ impl Loader<'_, '_, '_> {
                     }
                 })
             });
+            if json.alpha_mode != Checked::Valid(AlphaMode::Opaque) {
+                see_through.push(name.clone());
+            }
             let (k, m) = self.lab_parameters(&name, &json.extras);
             materials.push(Material {
                 name,
@@ -52,6 +58,14 @@ impl Loader<'_, '_, '_> {
                 m,
                 double_sided: json.double_sided,
             });
+        }
+        if let Some(first) = see_through.first() {
+            // The lab models opaque surfaces only: a cut-out or a glass
+            // would need its alpha in the shadow rays and maps alike.
+            self.warn(format!(
+                "{} materials are alpha-masked or blended (alphaMode, first: '{first}'); the lab draws them opaque",
+                see_through.len()
+            ));
         }
         if let Some(first) = unreadable.first() {
             self.warn(format!(
