@@ -259,6 +259,27 @@ fn vertex_colours_are_read_as_floats_or_normalized_bytes() {
 }
 
 #[test]
+fn extensions_the_lab_does_not_read_are_named() {
+    let mut doc = Doc::square();
+    doc.json["extensionsUsed"] = json!([
+        "KHR_texture_transform",
+        "KHR_lights_punctual",
+        "KHR_materials_sheen"
+    ]);
+    let scene = load_ok(&doc.glb());
+    assert!(
+        has_warning(
+            &scene,
+            "uses extensions the lab does not read: KHR_texture_transform, KHR_materials_sheen"
+        ),
+        "{:?}",
+        scene.warnings
+    );
+    doc.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+    assert!(load_ok(&doc.glb()).warnings.is_empty());
+}
+
+#[test]
 fn see_through_materials_are_said_to_be_drawn_opaque() {
     let mut doc = Doc::square();
     doc.json["materials"] = json!([{"name": "leaf", "alphaMode": "MASK"}, {"name": "wall"}]);

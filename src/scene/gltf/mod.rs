@@ -38,6 +38,15 @@ use std::path::Path;
 pub const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] =
     &["KHR_mesh_quantization", "KHR_materials_emissive_strength"];
 
+/// Extensions whose data the lab reads (or, for emission, need not): any
+/// other a file uses is named in a warning, since what it changes (a
+/// texture's placement, a PBR lobe) is not drawn.
+pub const READ_EXTENSIONS: &[&str] = &[
+    "KHR_lights_punctual",
+    "KHR_mesh_quantization",
+    "KHR_materials_emissive_strength",
+];
+
 /// Most triangles a scene may place, all instances counted: beyond this the
 /// flattened scene would not fit in memory (about 100 bytes a triangle).
 pub const MAX_TRIANGLES: usize = 1 << 25;
@@ -156,6 +165,19 @@ impl Loader<'_, '_, '_> {
 
     fn run(mut self) -> Result<Scene, LoadProblem> {
         let root = self.root;
+        let ignored: Vec<&str> = root
+            .extensions_used
+            .iter()
+            .map(String::as_str)
+            .filter(|e| !READ_EXTENSIONS.contains(e))
+            .collect();
+        if !ignored.is_empty() {
+            self.warn(format!(
+                "the file uses extensions the lab does not read: {} (it draws the base colour, its texture and \
+                 the vertex colours, with the lab's own BRDF)",
+                ignored.join(", ")
+            ));
+        }
         let (scene_index, roots) = self.roots()?;
         if root.meshes.is_empty() {
             return Ok(self.empty(scene_index, "it defines no mesh".into()));
