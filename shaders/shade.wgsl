@@ -21,6 +21,14 @@ override SPECIALISED_VIEW: u32 = SPECIALISE_ANY;
 override SPECIALISED_VISIBILITY: u32 = SPECIALISE_ANY;
 // Shadows on (1) or off (0), or SPECIALISE_ANY to read shadow.enabled.
 override SPECIALISED_SHADOWS: u32 = SPECIALISE_ANY;
+// The scene has vertex colours (1) or none (0: every vertex's is 1, and
+// the colour is not read), or SPECIALISE_ANY to read them anyway.
+override SPECIALISED_VERTEX_COLOURS: u32 = SPECIALISE_ANY;
+
+// The vertex colour at a fragment (1 where the scene has none).
+fn vertex_colour(in: VsOut) -> vec3<f32> {
+    return select(in.colour, vec3<f32>(1.0), SPECIALISED_VERTEX_COLOURS == 0u);
+}
 
 fn view_mode() -> u32 {
     return select(SPECIALISED_VIEW, globals.view, SPECIALISED_VIEW == SPECIALISE_ANY);
@@ -134,8 +142,9 @@ fn surface_at(in: VsOut, front_facing: bool) -> Surface {
         s.k = select(s.k, mat.own_k, mat.has_own_k != 0u);
         s.m = select(s.m, mat.own_m, mat.has_own_m != 0u);
     }
-    s.c = mat.base_color.rgb * in.colour;
-    s.other_c = mat.other_model_color.rgb * in.colour;
+    let colour = vertex_colour(in);
+    s.c = mat.base_color.rgb * colour;
+    s.other_c = mat.other_model_color.rgb * colour;
     if mat.texture_layer_plus_one > 0u {
         let layer = i32(mat.texture_layer_plus_one - 1u);
         let texel = textureSampleLevel(base_textures, base_sampler, in.uv, layer, 0.0).rgb;

@@ -109,6 +109,8 @@ const MAX_TEXTURE_SIDE: u32 = 2048;
 
 pub struct GpuScene {
     pub vertices: wgpu::Buffer,
+    /// Some object has vertex colours (the others' are uploaded as 1).
+    pub vertex_colours: bool,
     pub indices: wgpu::Buffer,
     pub draws: Vec<Draw>,
     /// Per object: its bounds when it casts shadows.
@@ -211,6 +213,7 @@ impl GpuScene {
             .map(|m| (m.name.clone(), m.base_color.truncate().as_dvec3()))
             .collect();
         Self {
+            vertex_colours: scene.objects.iter().any(|o| !o.mesh.colours.is_empty()),
             vertices: buffer(
                 "scene vertices",
                 bytemuck::cast_slice(&vertices),

@@ -3,7 +3,8 @@
 //! pipeline-overridable constants (`SPECIALISED_VIEW`, `SPECIALISED_FILTER`,
 //! `SPECIALISED_VISIBILITY`, `SPECIALISED_BIAS`, `SPECIALISED_CUBE`: the
 //! shadow map's layout, `SPECIALISED_SHADOWS`: shadows on or off, and under
-//! ray-traced V `SPECIALISED_SPHERE_LIGHT` and `SPECIALISED_ACCUMULATING`); a
+//! ray-traced V `SPECIALISED_SPHERE_LIGHT` and `SPECIALISED_ACCUMULATING`,
+//! and `SPECIALISED_VERTEX_COLOURS`: the scene has vertex colours); a
 //! pipeline given one value keeps only that case of each `switch` (the
 //! compiler folds the rest away), the default
 //! value `SPECIALISE_ANY` reads the uniforms: the generic pipeline the tests
@@ -92,6 +93,10 @@ pub struct Specialisation {
     /// the cone's code and every frame the history's loads.
     pub sphere_light: Option<bool>,
     pub accumulating: Option<bool>,
+    /// The scene has vertex colours (`SPECIALISED_VERTEX_COLOURS`): without
+    /// them the camera pass reads none, and lavapipe interpolates one
+    /// varying less per pixel.
+    pub vertex_colours: Option<bool>,
     /// Writes the aux target beside the quantity.
     pub aux: bool,
     /// Follows the depth pre-pass (depth test Equal, no writes).
@@ -101,13 +106,15 @@ pub struct Specialisation {
 impl Specialisation {
     /// The pipeline a frame with `settings` and a shadow map laid out as
     /// `layout` uses; `accumulating`: it folds in a ray-traced history;
-    /// `simplified`: it draws the simplified copy of a large scene.
+    /// `simplified`: it draws the simplified copy of a large scene;
+    /// `vertex_colours`: the scene has some.
     pub fn for_frame(
         settings: &Settings,
         layout: Option<LayoutKind>,
         options: ShadeOptions,
         accumulating: bool,
         simplified: bool,
+        vertex_colours: bool,
     ) -> Self {
         let on = options.specialised;
         let ray_traced = settings.shadow.visibility == Visibility::RayTraced;
@@ -128,6 +135,7 @@ impl Specialisation {
             layout: layout.filter(|_| on),
             sphere_light: traced.then_some(settings.light.is_sphere()),
             accumulating: traced.then_some(accumulating),
+            vertex_colours: on.then_some(vertex_colours),
             aux: options.aux,
             // A ray-traced fragment costs its rays. After the pre-pass each
             // pixel traces them once, instead of once per triangle drawn
@@ -169,6 +177,9 @@ impl Specialisation {
         }
         if let Some(accumulating) = self.accumulating {
             constants.push(("SPECIALISED_ACCUMULATING", f64::from(u8::from(accumulating))));
+        }
+        if let Some(colours) = self.vertex_colours {
+            constants.push(("SPECIALISED_VERTEX_COLOURS", f64::from(u8::from(colours))));
         }
         constants
     }
@@ -259,14 +270,28 @@ mod tests {
             let mut settings = Settings::default();
             settings.shadow.visibility = visibility;
             settings.shadow.enabled = enabled;
-            Specialisation::for_frame(&settings, None, ShadeOptions::INTERACTION, false, simplified).prepassed
+            Specialisation::for_frame(
+                &settings,
+                None,
+                ShadeOptions::INTERACTION,
+                false,
+                simplified,
+                false,
+            )
+            .prepassed
         };
         assert!(prepassed(Visibility::RayTraced, true, true));
         assert!(!prepassed(Visibility::RayTraced, true, false));
         assert!(!prepassed(Visibility::RayTraced, false, true));
         assert!(!prepassed(Visibility::ShadowMap, true, true));
-        let full =
-            Specialisation::for_frame(&Settings::default(), None, ShadeOptions::default(), false, false);
+        let full = Specialisation::for_frame(
+            &Settings::default(),
+            None,
+            ShadeOptions::default(),
+            false,
+            false,
+            false,
+        );
         assert!(full.prepassed);
     }
 }
