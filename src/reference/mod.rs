@@ -125,9 +125,6 @@ struct TriangleInfo {
     shadow_offset_m: f64,
     normals: [Vec3; 3],
     uvs: [Vec2; 3],
-    /// The corners' vertex colours multiplying the base colour, None
-    /// without them (1, as the GPU uploads).
-    colours: Option<[Vec3; 3]>,
 }
 
 #[derive(Clone, Debug)]
@@ -137,6 +134,20 @@ struct ObjectInfo {
     /// The scene's material index, None when it was out of range.
     material_index: Option<usize>,
     receives_shadows: bool,
+    /// The mesh's vertex colours and its indices, only where it has
+    /// colours: kept per object, not per triangle, so that scenes without
+    /// them carry nothing more.
+    colours: Option<(Vec<Vec3>, Vec<u32>)>,
+}
+
+impl ObjectInfo {
+    /// The vertex colours at the corners of the mesh's triangle `index`,
+    /// None without colours (1, as the GPU uploads).
+    fn corner_colours(&self, index: usize) -> Option<[Vec3; 3]> {
+        let (colours, indices) = self.colours.as_ref()?;
+        let ids = indices.get(3 * index..3 * index + 3)?;
+        corner_values(colours, [ids[0] as usize, ids[1] as usize, ids[2] as usize])
+    }
 }
 
 /// A scene prepared for ray tracing: build once, render many settings.
@@ -170,6 +181,8 @@ impl Reference {
                     material: material_index.unwrap_or(fallback),
                     material_index,
                     receives_shadows: object.receives_shadows,
+                    colours: (!object.mesh.colours.is_empty())
+                        .then(|| (object.mesh.colours.clone(), object.mesh.indices.clone())),
                 }
             })
             .collect();
@@ -264,7 +277,6 @@ impl MeshTriangle {
         // shade.wgsl's surface_at). Missing uvs: zero.
         let normals = ids.map(|i| mesh.normals.get(i).copied().unwrap_or(Vec3::ZERO));
         let uvs = corner_values(&mesh.uvs, ids).unwrap_or([Vec2::ZERO; 3]);
-        let colours = corner_values(&mesh.colours, ids);
         let largest = corners.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
         let first = normals[0].as_dvec3();
         TriangleInfo {
@@ -277,7 +289,6 @@ impl MeshTriangle {
             shadow_offset_m: SHADOW_OFFSET_REL * largest,
             normals,
             uvs,
-            colours,
         }
     }
 }

@@ -285,9 +285,11 @@ impl Reference {
             .and_then(|t| self.textures.get(t)?.as_ref())
             .map(|texture| texture.sample(uv));
         // The texture and the vertex colours modulate the base colour.
-        let vertex_colour = tri.colours.map_or(DVec3::ONE, |[c0, c1, c2]| {
-            c0.as_dvec3() * b0 + c1.as_dvec3() * b1 + c2.as_dvec3() * b2
-        });
+        let vertex_colour = object
+            .corner_colours(tri.index)
+            .map_or(DVec3::ONE, |[c0, c1, c2]| {
+                c0.as_dvec3() * b0 + c1.as_dvec3() * b1 + c2.as_dvec3() * b2
+            });
         let modulation = texture.unwrap_or(DVec3::ONE) * vertex_colour;
         let color = match setup.color_override {
             Some(c) => c,
