@@ -114,16 +114,23 @@ fn tangent_of_texel(tc: vec2<f32>) -> vec2<f32> {
 }
 
 fn make_receiver(p_l: vec3<f32>, n: vec3<f32>, cos_theta: f32) -> Receiver {
+    let c = clamp(cos_theta, 1e-4, 1.0);
+    return placed_on(choose_layer(p_l), p_l, n, min(sqrt(1.0 - c * c) / c, MAX_SLOPE));
+}
+
+// The receiver at p_l (relative to the light) with normal n, seen on
+// `layer`: its view position, depth, texel coordinates, normal and texel
+// footprint there.
+fn placed_on(layer: u32, p_l: vec3<f32>, n: vec3<f32>, tan_theta: f32) -> Receiver {
     var r: Receiver;
-    r.layer = choose_layer(p_l);
+    r.layer = layer;
     let f = frustum();
-    r.v = to_view(p_l, r.layer);
+    r.v = to_view(p_l, layer);
     r.z = max(-r.v.z, 1e-30);
     r.tc = texel_of_tangent(r.v.xy / r.z);
-    r.n_v = to_view(n, r.layer);
+    r.n_v = to_view(n, layer);
     r.texel_m = r.z * max(f.tan_right - f.tan_left, f.tan_top - f.tan_bottom) / resolution();
-    let c = clamp(cos_theta, 1e-4, 1.0);
-    r.tan_theta = min(sqrt(1.0 - c * c) / c, MAX_SLOPE);
+    r.tan_theta = tan_theta;
     return r;
 }
 
@@ -211,23 +218,14 @@ struct Tap {
     drawn: bool,
 }
 
-// The receiver r expressed in another layer's view: its position, depth,
-// normal and texel footprint re-derived with that layer's rotation and
-// tangents (make_receiver's formulas), so its depth is compared on that face.
+// The receiver r expressed in another layer's view (placed_on, as
+// make_receiver places it), so its depth is compared on that face.
 fn receiver_on_layer(r: Receiver, layer: u32) -> Receiver {
     let own = shadow.layers[r.layer].rotation;
-    let f = frustum();
     // The rotations are orthonormal: v · M applies M's transpose, its inverse.
     let p_l = (vec4<f32>(r.v, 0.0) * own).xyz;
     let n = (vec4<f32>(r.n_v, 0.0) * own).xyz;
-    var q = r;
-    q.layer = layer;
-    q.v = to_view(p_l, layer);
-    q.z = max(-q.v.z, 1e-30);
-    q.tc = texel_of_tangent(q.v.xy / q.z);
-    q.n_v = to_view(n, layer);
-    q.texel_m = q.z * max(f.tan_right - f.tan_left, f.tan_top - f.tan_bottom) / resolution();
-    return q;
+    return placed_on(layer, p_l, n, r.tan_theta);
 }
 
 // The texel a filter reads for the one it asks for. Beyond a single fitted
