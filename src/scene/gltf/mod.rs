@@ -38,14 +38,10 @@ use std::path::Path;
 pub const SUPPORTED_REQUIRED_EXTENSIONS: &[&str] =
     &["KHR_mesh_quantization", "KHR_materials_emissive_strength"];
 
-/// Extensions whose data the lab reads (or, for emission, need not): any
-/// other a file uses is named in a warning, since what it changes (a
-/// texture's placement, a PBR lobe) is not drawn.
-pub const READ_EXTENSIONS: &[&str] = &[
-    "KHR_lights_punctual",
-    "KHR_mesh_quantization",
-    "KHR_materials_emissive_strength",
-];
+/// The lights' extension: read where a file uses it (its point light
+/// becomes the lab's), though not among [`SUPPORTED_REQUIRED_EXTENSIONS`].
+/// With those, the extensions a file may use without a warning.
+const LIGHTS_EXTENSION: &str = "KHR_lights_punctual";
 
 /// Most triangles a scene may place, all instances counted: beyond this the
 /// flattened scene would not fit in memory (about 100 bytes a triangle).
@@ -169,7 +165,8 @@ impl Loader<'_, '_, '_> {
             .extensions_used
             .iter()
             .map(String::as_str)
-            .filter(|e| !READ_EXTENSIONS.contains(e))
+            // What any other changes (a texture's placement, a PBR lobe) is not drawn.
+            .filter(|&e| e != LIGHTS_EXTENSION && !SUPPORTED_REQUIRED_EXTENSIONS.contains(&e))
             .collect();
         if !ignored.is_empty() {
             self.warn(format!(
