@@ -1,7 +1,8 @@
 //! The file's cameras, reduced to the lab's camera model: eye, target (where the orbit
 //! turns) and vertical field of view.
 
-use super::{CameraInstance, Loader, lab_extras};
+use super::nodes::CameraInstance;
+use super::{Loader, lab_extras};
 use crate::scene::{Aabb, Camera, SceneCamera};
 use glam::DVec3;
 use gltf::json::camera::Type as CameraType;

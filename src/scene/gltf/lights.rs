@@ -2,7 +2,8 @@
 //! a point light as it is, a spot light as a point light (its cone is not
 //! modelled, said in a warning), a directional light skipped with a warning.
 
-use super::{LightInstance, Loader};
+use super::Loader;
+use super::nodes::LightInstance;
 use crate::scene::SceneLight;
 use glam::{DVec3, Vec3};
 use gltf::json::extensions::scene::khr_lights_punctual::Type;
