@@ -12,8 +12,30 @@ use lumlab::reference::{Reference, ReferenceOptions, RenderControl, luminance};
 use lumlab::scene::Scene;
 use lumlab::settings::Settings;
 
-fn compare(settings: &Settings) -> (usize, f64) {
-    compare_on(&lumlab::scene::default_scene(), settings)
+/// A `width` × `height` image of the default settings, shadows off.
+fn unshadowed(width: u32, height: u32) -> Settings {
+    let mut settings = Settings::default();
+    settings.image.width = width;
+    settings.image.height = height;
+    settings.shadow.enabled = false;
+    settings
+}
+
+/// `compare_on` the default scene.
+fn agree(settings: &Settings, what: &str) {
+    agree_on(&lumlab::scene::default_scene(), settings, what);
+}
+
+/// `compare_on`, which checks every lit pixel, over at least a third of the
+/// image; prints the worst relative difference under `what`.
+fn agree_on(scene: &Scene, settings: &Settings, what: &str) {
+    let (checked, worst) = compare_on(scene, settings);
+    let pixels = settings.image.width * settings.image.height;
+    assert!(
+        checked > pixels as usize / 3,
+        "{what}: only {checked} pixels compared"
+    );
+    eprintln!("{what}: {checked} lit pixels, worst relative difference {worst:.2e}");
 }
 
 fn compare_on(scene: &Scene, settings: &Settings) -> (usize, f64) {
@@ -79,30 +101,20 @@ fn subpixel_slack(radiance: &[[f64; 3]], width: u32, idx: usize, c: usize) -> f6
 
 #[test]
 fn without_shadows_the_gpu_equals_the_reference_on_every_lit_pixel() {
-    let mut settings = Settings::default();
-    settings.image.width = 192;
-    settings.image.height = 108;
-    settings.shadow.enabled = false;
-    let (checked, worst) = compare(&settings);
-    assert!(checked > 192 * 108 / 3, "only {checked} pixels compared");
-    eprintln!("scene materials: {checked} lit pixels, worst relative difference {worst:.2e}");
+    let mut settings = unshadowed(192, 108);
+    agree(&settings, "scene materials");
 
     // One sharp lobe everywhere, the light moved.
     settings.material.use_scene_materials = false;
     settings.material.k = 0.1;
     settings.material.m = 1e4;
     settings.light.position = glam::Vec3::new(-3.0, 4.0, 3.0);
-    let (checked, worst) = compare(&settings);
-    assert!(checked > 192 * 108 / 3, "only {checked} pixels compared");
-    eprintln!("m = 1e4: {checked} lit pixels, worst relative difference {worst:.2e}");
+    agree(&settings, "m = 1e4");
 }
 
 #[test]
 fn vertex_colours_modulate_the_base_colour_alike_on_both() {
-    let mut settings = Settings::default();
-    settings.image.width = 160;
-    settings.image.height = 90;
-    settings.shadow.enabled = false;
+    let settings = unshadowed(160, 90);
     let plain = lumlab::scene::default_scene();
     let mut coloured = plain.clone();
     for object in &mut coloured.objects {
@@ -119,9 +131,7 @@ fn vertex_colours_modulate_the_base_colour_alike_on_both() {
             })
             .collect();
     }
-    let (checked, worst) = compare_on(&coloured, &settings);
-    assert!(checked > 160 * 90 / 3, "only {checked} pixels compared");
-    eprintln!("vertex colours: {checked} lit pixels, worst relative difference {worst:.2e}");
+    agree_on(&coloured, &settings, "vertex colours");
     // The colours show: blue is halved everywhere against the plain scene.
     let blue = |scene: &Scene| {
         let image = Reference::new(scene)
@@ -139,17 +149,12 @@ fn under_a_spectral_light_the_gpu_equals_the_spectral_reference() {
     // CPU; the reference integrates reflectance × emission against the CMFs
     // per sample. Measured chart spectra and uplifted RGB colours, a smooth
     // and a spiky illuminant.
-    let mut settings = Settings::default();
-    settings.image.width = 192;
-    settings.image.height = 108;
-    settings.shadow.enabled = false;
+    let mut settings = unshadowed(192, 108);
     for illuminant in [Illuminant::A, Illuminant::Fl11] {
         for model in ColourModel::ALL {
             settings.colour.illuminant = Some(illuminant);
             settings.colour.model = *model;
-            let (checked, worst) = compare(&settings);
-            assert!(checked > 192 * 108 / 3, "only {checked} pixels compared");
-            eprintln!("{illuminant} {model}: {checked} lit pixels, worst relative difference {worst:.2e}");
+            agree(&settings, &format!("{illuminant} {model}"));
         }
     }
 }
