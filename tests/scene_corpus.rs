@@ -115,11 +115,7 @@ fn points_and_lines_draw_nothing_but_count_in_the_bounds() {
         );
         assert!(scene.objects.is_empty());
         assert_bounds(&scene, [0.0; 3], [1.0, 1.0, 0.0]);
-        assert!(
-            has_warning(&scene, "skipped 1 point or line"),
-            "{:?}",
-            scene.warnings
-        );
+        assert_warns(&scene, "skipped 1 point or line");
     }
 }
 
@@ -251,11 +247,7 @@ fn vertex_colours_are_read_as_floats_or_normalized_bytes() {
     doc.json["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = json!(colours);
     let scene = load_ok(&doc.glb());
     assert!(scene.objects[0].mesh.colours.is_empty());
-    assert!(
-        has_warning(&scene, "COLOR_0 has 3 entries for 4 vertices"),
-        "{:?}",
-        scene.warnings
-    );
+    assert_warns(&scene, "COLOR_0 has 3 entries for 4 vertices");
 }
 
 #[test]
@@ -267,13 +259,9 @@ fn extensions_the_lab_does_not_read_are_named() {
         "KHR_materials_sheen"
     ]);
     let scene = load_ok(&doc.glb());
-    assert!(
-        has_warning(
-            &scene,
-            "uses extensions the lab does not read: KHR_texture_transform, KHR_materials_sheen"
-        ),
-        "{:?}",
-        scene.warnings
+    assert_warns(
+        &scene,
+        "uses extensions the lab does not read: KHR_texture_transform, KHR_materials_sheen",
     );
     doc.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
     assert!(load_ok(&doc.glb()).warnings.is_empty());
@@ -285,13 +273,9 @@ fn see_through_materials_are_said_to_be_drawn_opaque() {
     doc.json["materials"] = json!([{"name": "leaf", "alphaMode": "MASK"}, {"name": "wall"}]);
     doc.json["meshes"][0]["primitives"][0]["material"] = json!(0);
     let scene = load_ok(&doc.glb());
-    assert!(
-        has_warning(
-            &scene,
-            "1 materials are alpha-masked or blended (alphaMode, first: 'leaf')"
-        ),
-        "{:?}",
-        scene.warnings
+    assert_warns(
+        &scene,
+        "1 materials are alpha-masked or blended (alphaMode, first: 'leaf')",
     );
     doc.json["materials"][0]["alphaMode"] = json!("OPAQUE");
     assert!(load_ok(&doc.glb()).warnings.is_empty());
@@ -310,11 +294,7 @@ fn given_normals_are_kept_and_zero_or_nan_ones_repaired() {
     let scene = load_every_form(&doc);
     assert_eq!(scene.facts().has_normals, NormalsPresence::Every);
     assert_normals_are(&scene, Vec3::Z);
-    assert!(
-        has_warning(&scene, "repaired 2 zero, NaN or infinite normals"),
-        "{:?}",
-        scene.warnings
-    );
+    assert_warns(&scene, "repaired 2 zero, NaN or infinite normals");
 }
 
 #[test]
@@ -346,13 +326,9 @@ fn nan_and_infinite_positions_drop_the_triangles_that_use_them() {
     assert_eq!(scene.triangle_count(), 2);
     assert_bounds(&scene, [0.0; 3], [1.0, 1.0, 0.0]);
     assert!(scene.objects[0].mesh.positions.iter().all(|p| p.is_finite()));
-    assert!(
-        has_warning(
-            &scene,
-            "dropped 2 triangles with NaN or infinite corners (2 such vertices in the file"
-        ),
-        "{:?}",
-        scene.warnings
+    assert_warns(
+        &scene,
+        "dropped 2 triangles with NaN or infinite corners (2 such vertices in the file",
     );
 }
 
@@ -372,11 +348,7 @@ fn positions_a_transform_overflows_are_dropped() {
     assert_eq!(scene.triangle_count(), 2);
     assert!(scene.objects[0].mesh.positions.iter().all(|p| p.is_finite()));
     assert_bounds(&scene, [0.0; 3], [10.0, 1.0, 0.0]);
-    assert!(
-        has_warning(&scene, "dropped 1 triangles with NaN or infinite corners"),
-        "{:?}",
-        scene.warnings
-    );
+    assert_warns(&scene, "dropped 1 triangles with NaN or infinite corners");
 }
 
 #[test]
@@ -391,22 +363,14 @@ fn degenerate_triangles_are_dropped_and_counted() {
     );
     let scene = load_every_form(&doc);
     assert_eq!(scene.facts().triangles, 2);
-    assert!(
-        has_warning(&scene, "dropped 2 degenerate triangles"),
-        "{:?}",
-        scene.warnings
-    );
+    assert_warns(&scene, "dropped 2 degenerate triangles");
     // Every instance counts its own.
     let mut doc = doc;
     let node = doc.node(json!({"mesh": 0, "translation": [3.0, 0.0, 0.0]}));
     doc.add_root(node);
     let scene = load_ok(&doc.glb());
     assert_eq!(scene.facts().triangles, 4);
-    assert!(
-        has_warning(&scene, "dropped 4 degenerate triangles"),
-        "{:?}",
-        scene.warnings
-    );
+    assert_warns(&scene, "dropped 4 degenerate triangles");
 }
 
 #[test]
@@ -416,7 +380,7 @@ fn a_node_that_flattens_its_mesh_drops_its_triangles() {
     doc.add_root(flat);
     let scene = load_ok(&doc.glb());
     assert_eq!((scene.objects.len(), scene.triangle_count()), (1, 2));
-    assert!(has_warning(&scene, "flattens"), "{:?}", scene.warnings);
+    assert_warns(&scene, "flattens");
     assert_bounds(&scene, [0.0; 3], [5.0, 1.0, 0.0]);
 }
 
@@ -434,11 +398,7 @@ fn triangles_a_transform_collapses_are_dropped_as_degenerate() {
     let scene = load_ok(&doc.glb());
     // Only the second mesh (its first three vertices, not indexed) is drawn.
     assert_eq!((scene.objects.len(), scene.triangle_count()), (1, 1));
-    assert!(
-        has_warning(&scene, "dropped 2 degenerate triangles"),
-        "{:?}",
-        scene.warnings
-    );
+    assert_warns(&scene, "dropped 2 degenerate triangles");
 }
 
 #[test]

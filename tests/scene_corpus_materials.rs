@@ -38,7 +38,7 @@ fn cameras_are_reduced_to_eye_target_and_vertical_fov() {
     let front = &scene.cameras[1].camera;
     assert!((front.target - Vec3::new(0.5, 0.5, centre.z)).length() < 1e-6);
     assert!((front.fovy_deg - 2.0 * (1.0f32 / 3.0).atan().to_degrees()).abs() < 1e-3);
-    assert!(has_warning(&scene, "orthographic"), "{:?}", scene.warnings);
+    assert_warns(&scene, "orthographic");
 }
 
 #[test]
@@ -60,11 +60,8 @@ fn material_base_colour_double_sidedness_and_lab_extras() {
     assert_eq!((m.k, m.m), (Some(0.3), Some(64.0)));
     let other = &scene.materials[1];
     assert_eq!((other.k, other.m), (Some(1.0), None));
-    assert!(
-        has_warning(&scene, "clamped") && has_warning(&scene, "not a number"),
-        "{:?}",
-        scene.warnings
-    );
+    assert_warns(&scene, "clamped");
+    assert_warns(&scene, "not a number");
     // A primitive without material gets the default one.
     let plain = load_ok(&Doc::square().glb());
     assert_eq!(plain.material_of(&plain.objects[0]).name, "default");
@@ -136,12 +133,8 @@ fn an_unreadable_image_is_a_warning_and_the_factor_alone_is_drawn() {
     let scene = scene::load(&doc.write_external(dir.path(), "textured")).unwrap();
     assert!(scene.textures.is_empty());
     assert!(scene.materials.iter().all(|m| m.base_color_texture.is_none()));
-    assert!(
-        has_warning(&scene, "2 base-colour textures cannot be used"),
-        "{:?}",
-        scene.warnings
-    );
-    assert!(has_warning(&scene, "missing.png"), "{:?}", scene.warnings);
+    assert_warns(&scene, "2 base-colour textures cannot be used");
+    assert_warns(&scene, "missing.png");
 }
 
 #[test]
@@ -163,7 +156,7 @@ fn a_file_without_scenes_draws_its_root_nodes() {
     let scene = load_ok(&doc.glb());
     assert_eq!(scene.triangle_count(), 4);
     assert_eq!(scene.facts().scene, None);
-    assert!(has_warning(&scene, "no scene"), "{:?}", scene.warnings);
+    assert_warns(&scene, "no scene");
 }
 
 #[test]
@@ -174,7 +167,7 @@ fn node_cycles_and_shared_children_end() {
     doc.json["scenes"][0]["nodes"] = json!([0, a]);
     let scene = load_ok(&doc.glb());
     assert_eq!(scene.objects.len(), 2);
-    assert!(has_warning(&scene, "repeat a node"), "{:?}", scene.warnings);
+    assert_warns(&scene, "repeat a node");
 }
 
 #[test]
@@ -183,5 +176,5 @@ fn skins_and_morph_targets_are_named_as_ignored() {
     let offsets = doc.vec3s(&[[0.0; 3]; 4]);
     doc.json["meshes"][0]["primitives"][0]["targets"] = json!([{"POSITION": offsets}]);
     let scene = load_ok(&doc.glb());
-    assert!(has_warning(&scene, "morph targets"), "{:?}", scene.warnings);
+    assert_warns(&scene, "morph targets");
 }

@@ -49,8 +49,13 @@ pub fn assert_bounds(scene: &Scene, min: [f32; 3], max: [f32; 3]) {
     }
 }
 
-pub fn has_warning(scene: &Scene, text: &str) -> bool {
-    scene.warnings.iter().any(|w| w.contains(text))
+/// Some warning of `scene` contains `text` (the failure lists them all).
+pub fn assert_warns(scene: &Scene, text: &str) {
+    assert!(
+        scene.warnings.iter().any(|w| w.contains(text)),
+        "no warning contains {text:?}: {:?}",
+        scene.warnings
+    );
 }
 
 /// Every vertex normal of every object is `expected`.
