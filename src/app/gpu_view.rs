@@ -29,6 +29,10 @@ struct RenderKey {
     size: (u32, u32),
     scene_generation: u64,
     comparison_generation: u64,
+    /// Drawn as a drag frame (simplified meshes, no aux target, one ray a
+    /// pixel to a sphere light): the frame after the drag renders again
+    /// even where the drag's render scale had reached 1.
+    interaction: bool,
 }
 
 /// How long a drag frame waits for the drag device's image on its way
@@ -255,6 +259,7 @@ impl GpuViews {
             size,
             scene_generation: h.scene_generation,
             comparison_generation: h.comparison_generation,
+            interaction: self.render_scale.interacting,
         };
         if self.drag.as_ref().is_some_and(DragRenderer::is_gone) {
             self.drag = None;
