@@ -7,7 +7,7 @@
 mod scene_support;
 
 use glam::Vec3;
-use lumlab::scene::NormalsPresence;
+use lumlab::scene::{LoadProblem, NormalsPresence};
 use scene_support::builder::*;
 use scene_support::corpus::*;
 use serde_json::json;
@@ -328,7 +328,7 @@ fn nan_and_infinite_positions_drop_the_triangles_that_use_them() {
     assert!(scene.objects[0].mesh.positions.iter().all(|p| p.is_finite()));
     assert_warns(
         &scene,
-        "dropped 2 triangles with NaN or infinite corners (2 such vertices in the file",
+        "dropped 2 triangles with NaN, infinite or distant corners (past ±1e11 m; 2 such vertices in the file",
     );
 }
 
@@ -348,7 +348,62 @@ fn positions_a_transform_overflows_are_dropped() {
     assert_eq!(scene.triangle_count(), 2);
     assert!(scene.objects[0].mesh.positions.iter().all(|p| p.is_finite()));
     assert_bounds(&scene, [0.0; 3], [10.0, 1.0, 0.0]);
-    assert_warns(&scene, "dropped 1 triangles with NaN or infinite corners");
+    assert_warns(
+        &scene,
+        "dropped 1 triangles with NaN, infinite or distant corners",
+    );
+}
+
+/// Found by the fuzzer (a float's exponent byte overwritten): a finite
+/// vertex at 1.7·10³⁸ m gave bounds whose size overflowed f32, and the
+/// file's camera an infinite orbit target. The lab takes models within
+/// ±10¹¹ m (its camera and light, framed around them, within ±10¹² m): a
+/// triangle with a corner past it is dropped like a NaN one, at the limit
+/// it is kept, and a model wholly past it is a one-line error.
+#[test]
+fn corners_past_the_labs_range_are_dropped_like_nan_ones() {
+    let limit = lumlab::scene::gltf::MAX_MODEL_COORDINATE_M;
+    assert_eq!(limit, lumlab::settings::Settings::MAX_COORDINATE_M / 10.0);
+    let mut positions = SQUARE.to_vec();
+    positions.push([1.7e38, 1.0, 0.0]);
+    positions.push([0.5, limit, 0.0]);
+    let (doc, _) = Doc::simple(
+        &positions,
+        Some((&[0, 1, 2, 0, 2, 3, 0, 1, 4, 1, 5, 2], UNSIGNED_SHORT)),
+        TRIANGLES,
+    );
+    let scene = load_every_form(&doc);
+    assert_eq!(scene.triangle_count(), 3);
+    assert_bounds(&scene, [0.0; 3], [1.0, limit, 0.0]);
+    assert_warns(
+        &scene,
+        "dropped 1 triangles with NaN, infinite or distant corners (past ±1e11 m; 1 such vertices",
+    );
+
+    // Placed past it by the node's transform, the same.
+    let (mut doc, _) = Doc::simple(&SQUARE, Some((&[0, 1, 2, 0, 2, 3], UNSIGNED_SHORT)), TRIANGLES);
+    doc.json["nodes"][0]["translation"] = json!([0.0, 2.0 * limit, 0.0]);
+    let problem = problem(&doc.glb());
+    assert!(
+        matches!(&problem, LoadProblem::NothingToDraw(d) if d.contains("all 2 triangles are degenerate or have NaN, infinite or distant corners")),
+        "{problem}"
+    );
+}
+
+/// A file's camera whose eye or orbit target lies past the lab's
+/// coordinate range is skipped with a warning, not handed to the settings
+/// (which would refuse it).
+#[test]
+fn cameras_past_the_labs_range_are_skipped() {
+    let mut doc = Doc::square();
+    doc.json["cameras"] = json!([{"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1}}]);
+    let near = doc.node(json!({"camera": 0, "translation": [0.5, 0.5, 3.0]}));
+    let far = doc.node(json!({"camera": 0, "translation": [0.5, 0.5, 3e12]}));
+    doc.json["scenes"][0]["nodes"] = json!([0, near, far]);
+    let scene = load_every_form(&doc);
+    assert_eq!(scene.cameras.len(), 1);
+    assert_eq!(scene.cameras[0].camera.eye.z, 3.0);
+    assert_warns(&scene, "lies past ±1e12 m; skipped");
 }
 
 #[test]

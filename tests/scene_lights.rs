@@ -60,3 +60,42 @@ fn a_point_light_in_the_file_becomes_the_labs_light() {
     assert!((settings.light.power_w - expected).abs() < 1e-5, "Φ = 4π I");
     assert_eq!(settings.light.color, Vec3::new(1.0, 0.5, 0.25));
 }
+
+/// A light the lab's settings could not take (past ±10¹² m, a power past
+/// 10³² W, a colour past 10⁶) is skipped with a warning, and the model's
+/// own light takes its place.
+#[test]
+fn lights_past_the_labs_range_are_skipped() {
+    for light in [
+        json!({"type": "point", "intensity": 683.0, "color": [1.0, 1.0, 1.0]}),
+        json!({"type": "point", "intensity": 1e36, "color": [1.0, 1.0, 1.0]}),
+        json!({"type": "point", "intensity": 683.0, "color": [1e7, 1.0, 1.0]}),
+    ] {
+        let far = light["intensity"] == 683.0 && light["color"][0] == 1.0;
+        let mut doc = Doc::square();
+        doc.json["extensionsUsed"] = json!(["KHR_lights_punctual"]);
+        doc.json["extensions"] = json!({"KHR_lights_punctual": {"lights": [light]}});
+        let z = if far { 2e12 } else { 3.0 };
+        let bulb = doc.node(json!({"translation": [0.0, 0.0, z],
+            "extensions": {"KHR_lights_punctual": {"light": 0}}}));
+        doc.add_root(bulb);
+        let dir = tempfile::tempdir().unwrap();
+        let path = doc.write_external(dir.path(), "far");
+        let scene = lumlab::scene::load(&path).unwrap();
+        assert!(scene.lights.is_empty(), "{light}");
+        assert!(
+            scene
+                .warnings
+                .iter()
+                .any(|w| w.contains("light 'light 0' has a position past ±1e12 m")),
+            "{:?}",
+            scene.warnings
+        );
+        let options = SceneOptions {
+            scene: Some(path),
+            ..SceneOptions::default()
+        };
+        let (settings, _) = load_scene(&options).unwrap();
+        assert!(settings.light.position.z.abs() < 10.0, "{light}");
+    }
+}

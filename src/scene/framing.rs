@@ -105,7 +105,7 @@ pub fn adopt(settings: &mut Settings, scene: &Scene) {
         (Some(_), _) => None,
         (None, Some(file)) => {
             settings.light.color = file.color;
-            Some((file.position, 4.0 * std::f32::consts::PI * file.intensity_w_sr))
+            Some((file.position, file.power_w()))
         }
         (None, None) => scene_light(&scene.model_bounds()),
     };

@@ -25,7 +25,7 @@ impl Settings {
         check_vec("light.position", l.position, -far, far)?;
         check("light.power_w", l.power_w, 0.0, Self::MAX_POWER_W)?;
         check("light.radius_m", l.radius_m, 0.0, far)?;
-        check_vec("light.color", l.color, 0.0, 1e6)?;
+        check_vec("light.color", l.color, 0.0, Self::MAX_LIGHT_COLOR)?;
         let m = &self.material;
         check("material.k", m.k, 0.0, 1.0)?;
         check("material.m", m.m, 0.0, 1e6)?;

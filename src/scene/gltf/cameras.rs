@@ -4,6 +4,7 @@
 use super::nodes::CameraInstance;
 use super::{Loader, lab_extras};
 use crate::scene::{Aabb, Camera, SceneCamera};
+use crate::settings::Settings;
 use glam::DVec3;
 use gltf::json::camera::Type as CameraType;
 use gltf::json::validation::Checked;
@@ -79,11 +80,19 @@ impl Loader<'_, '_, '_> {
             }
             let distance_m = target_distance(&root.nodes[instance.node].extras)
                 .unwrap_or_else(|| orbit_distance(eye, forward, bounds));
+            let target = eye + forward * distance_m;
+            let far = f64::from(Settings::MAX_COORDINATE_M);
+            if eye.abs().max(target.abs()).cmpgt(DVec3::splat(far)).any() {
+                self.warn(format!(
+                    "camera '{name}' or its target lies past ±{far:.0e} m; skipped"
+                ));
+                continue;
+            }
             cameras.push(SceneCamera {
                 name,
                 camera: Camera {
                     eye: eye.as_vec3(),
-                    target: (eye + forward * distance_m).as_vec3(),
+                    target: target.as_vec3(),
                     fovy_deg: clamped as f32,
                 },
             });

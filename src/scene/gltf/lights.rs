@@ -5,6 +5,7 @@
 use super::Loader;
 use super::nodes::LightInstance;
 use crate::scene::SceneLight;
+use crate::settings::Settings;
 use glam::{DVec3, Vec3};
 use gltf::json::extensions::scene::khr_lights_punctual::Type;
 use gltf::json::validation::Checked;
@@ -47,20 +48,24 @@ impl Loader<'_, '_, '_> {
                     continue;
                 }
             }
-            let position = instance.world.transform_point3(DVec3::ZERO);
-            let intensity = light.intensity / LUMINOUS_EFFICACY_LM_PER_W;
-            if !position.is_finite() || !intensity.is_finite() || intensity < 0.0 {
-                self.warn(format!(
-                    "light '{name}' has no usable position or intensity; skipped"
-                ));
-                continue;
-            }
-            lights.push(SceneLight {
+            let placed = SceneLight {
                 name,
-                position: position.as_vec3(),
-                intensity_w_sr: intensity,
+                position: instance.world.transform_point3(DVec3::ZERO).as_vec3(),
+                intensity_w_sr: light.intensity / LUMINOUS_EFFICACY_LM_PER_W,
                 color: Vec3::from(light.color).max(Vec3::ZERO),
-            });
+            };
+            if placed.fits_the_lab() {
+                lights.push(placed);
+            } else {
+                self.warn(format!(
+                    "light '{}' has a position past ±{:.0e} m, a power past 0 … {:.0e} W or a \
+                     colour past 0 … {:.0e}; skipped",
+                    placed.name,
+                    Settings::MAX_COORDINATE_M,
+                    Settings::MAX_POWER_W,
+                    Settings::MAX_LIGHT_COLOR
+                ));
+            }
         }
         lights
     }

@@ -20,6 +20,7 @@ mod resources;
 pub mod write;
 
 pub use lights::LUMINOUS_EFFICACY_LM_PER_W;
+pub use primitive::MAX_MODEL_COORDINATE_M;
 pub use resources::MAX_IMAGE_SIDE;
 pub use write::to_glb;
 
@@ -111,8 +112,8 @@ fn read_scene(bytes: &[u8], base_dir: Option<&Path>) -> Result<Scene, LoadProble
 #[derive(Default)]
 struct Tally {
     degenerate: usize,
-    non_finite: usize,
-    non_finite_vertices: usize,
+    out_of_range: usize,
+    distant_vertices: usize,
     normals_repaired: usize,
     points_or_lines: usize,
     without_positions: usize,
@@ -194,7 +195,7 @@ impl Loader<'_, '_, '_> {
                 } else {
                     triangles_defined += local.triangles_defined;
                     tally.degenerate += local.degenerate;
-                    tally.non_finite += local.non_finite;
+                    tally.out_of_range += local.out_of_range;
                     if singular {
                         tally.singular += 1;
                         tally.degenerate += local.mesh.triangle_count();
@@ -203,8 +204,8 @@ impl Loader<'_, '_, '_> {
                 let mut mesh = None;
                 if local.topology == Topology::Triangles && !singular {
                     let mut placed = local.mesh.transformed(world);
-                    let (non_finite, degenerate) = primitive::repair_placed(&mut placed);
-                    tally.non_finite += non_finite;
+                    let (out_of_range, degenerate) = primitive::repair_placed(&mut placed);
+                    tally.out_of_range += out_of_range;
                     tally.degenerate += degenerate;
                     mesh = Some(placed).filter(|m| !m.indices.is_empty());
                 }
@@ -214,7 +215,7 @@ impl Loader<'_, '_, '_> {
                         .positions
                         .iter()
                         .map(|&q| world.transform_point3(q))
-                        .filter(|q| q.is_finite());
+                        .filter(|&q| primitive::within(q, MAX_MODEL_COORDINATE_M));
                     undrawn_bounds = undrawn_bounds.union(&Aabb::from_points(points));
                     continue;
                 };
@@ -231,14 +232,15 @@ impl Loader<'_, '_, '_> {
         }
         for local in locals.values().flatten().flatten() {
             tally.normals_repaired += local.normals_repaired;
-            tally.non_finite_vertices += local.non_finite_vertices;
+            tally.distant_vertices += local.distant_vertices;
             tally
                 .attributes_ignored
                 .extend(local.attributes_ignored.iter().cloned());
         }
         if objects.is_empty() && triangles_defined > 0 {
             return Err(LoadProblem::NothingToDraw(format!(
-                "all {triangles_defined} triangles are degenerate or have NaN or infinite corners"
+                "all {triangles_defined} triangles are degenerate or have NaN, infinite or distant \
+                 corners (past ±{MAX_MODEL_COORDINATE_M:.0e} m)"
             )));
         }
         if objects.is_empty() && tally.points_or_lines == 0 {
@@ -352,11 +354,11 @@ impl Loader<'_, '_, '_> {
                 ),
             ),
             (
-                t.non_finite,
+                t.out_of_range,
                 format!(
-                    "dropped {} triangles with NaN or infinite corners ({} such vertices in the file, \
-                     others made infinite by their node's transform)",
-                    t.non_finite, t.non_finite_vertices
+                    "dropped {} triangles with NaN, infinite or distant corners (past ±{:.0e} m; \
+                     {} such vertices in the file, others placed there by their node's transform)",
+                    t.out_of_range, MAX_MODEL_COORDINATE_M, t.distant_vertices
                 ),
             ),
             (

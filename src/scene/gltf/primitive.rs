@@ -5,6 +5,7 @@
 
 use super::accessor::Data;
 use crate::scene::{LoadProblem, Mesh};
+use crate::settings::Settings;
 use glam::{Vec2, Vec3};
 use gltf::json::accessor::Type;
 use gltf::json::mesh::{Mode, Primitive, Semantic};
@@ -30,9 +31,10 @@ pub(super) struct LocalPrimitive {
     /// Triangles with two equal corners or zero area.
     pub degenerate: usize,
     /// Triangles with a NaN or infinite corner.
-    pub non_finite: usize,
-    /// Vertices whose position is NaN or infinite.
-    pub non_finite_vertices: usize,
+    pub out_of_range: usize,
+    /// Vertices whose position in the file is NaN, infinite or past
+    /// [`MAX_MODEL_COORDINATE_M`] (before their node's transform).
+    pub distant_vertices: usize,
     /// Normals that were zero, NaN or infinite and were replaced.
     pub normals_repaired: usize,
     /// The NORMAL, TEXCOORD or COLOR_0 accessor had the wrong count and
@@ -84,14 +86,17 @@ pub(super) fn build(
         Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan => Topology::Triangles,
         Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip => Topology::PointsOrLines,
     };
-    let non_finite_vertices = positions.iter().filter(|p| !p.is_finite()).count();
+    let distant_vertices = positions
+        .iter()
+        .filter(|&&p| !within(p, MAX_MODEL_COORDINATE_M))
+        .count();
     let mut local = LocalPrimitive {
         topology,
         mesh: Mesh::default(),
         triangles_defined: 0,
         degenerate: 0,
-        non_finite: 0,
-        non_finite_vertices,
+        out_of_range: 0,
+        distant_vertices,
         normals_repaired: 0,
         attributes_ignored: Vec::new(),
     };
@@ -120,9 +125,9 @@ pub(super) fn build(
     drop(indices);
     local.triangles_defined = triangles.len();
 
-    let drawable = drawable(&positions, triangles.iter().copied());
+    let drawable = drawable(&positions, triangles.iter().copied(), f32::MAX);
     let kept = drawable.indices;
-    local.non_finite = drawable.non_finite;
+    local.out_of_range = drawable.out_of_range;
     local.degenerate = drawable.degenerate;
     drop(triangles);
 
@@ -207,8 +212,8 @@ pub(super) fn build(
         colours,
         indices: kept,
     };
-    if non_finite_vertices > 0 {
-        local.mesh = without_non_finite(&local.mesh);
+    if local.mesh.positions.iter().any(|p| !p.is_finite()) {
+        local.mesh = within_bound(&local.mesh, f32::MAX);
     }
     Ok(Some(local))
 }
@@ -216,23 +221,40 @@ pub(super) fn build(
 /// The triangles worth drawing, as an index list, and what was dropped.
 pub(super) struct Drawable {
     pub indices: Vec<u32>,
-    /// Triangles with a NaN or infinite corner.
-    pub non_finite: usize,
+    /// Triangles with a corner past the bound (NaN included).
+    pub out_of_range: usize,
     /// Triangles with two equal corners or zero area.
     pub degenerate: usize,
 }
 
-/// Sorts `triangles` (indices into `positions`) into kept and dropped.
-pub(super) fn drawable(positions: &[Vec3], triangles: impl ExactSizeIterator<Item = [u32; 3]>) -> Drawable {
+/// The farthest a placed vertex may lie from the origin along any axis
+/// (m): a tenth of the lab's coordinate range, so that the camera and the
+/// light framed around the largest model stay inside that range. A corner
+/// past it is treated as a NaN one: its triangle is dropped.
+pub const MAX_MODEL_COORDINATE_M: f32 = Settings::MAX_COORDINATE_M / 10.0;
+
+/// Whether every coordinate of `p` lies within ±`bound` (never for NaN;
+/// a bound of `f32::MAX` asks whether `p` is finite).
+pub(super) fn within(p: Vec3, bound: f32) -> bool {
+    p.abs().cmple(Vec3::splat(bound)).all()
+}
+
+/// Sorts `triangles` (indices into `positions`) into kept and dropped: a
+/// corner past ±`bound`, or no area.
+pub(super) fn drawable(
+    positions: &[Vec3],
+    triangles: impl ExactSizeIterator<Item = [u32; 3]>,
+    bound: f32,
+) -> Drawable {
     let mut out = Drawable {
         indices: Vec::with_capacity(3 * triangles.len()),
-        non_finite: 0,
+        out_of_range: 0,
         degenerate: 0,
     };
     for t in triangles {
         let [a, b, c] = t.map(|i| positions[i as usize]);
-        if !(a.is_finite() && b.is_finite() && c.is_finite()) {
-            out.non_finite += 1;
+        if !(within(a, bound) && within(b, bound) && within(c, bound)) {
+            out.out_of_range += 1;
         } else if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || (b - a).cross(c - a) == Vec3::ZERO {
             out.degenerate += 1;
         } else {
@@ -242,20 +264,21 @@ pub(super) fn drawable(positions: &[Vec3], triangles: impl ExactSizeIterator<Ite
     out
 }
 
-/// Repairs a mesh just placed in the world: a large transform can overflow
-/// finite positions to infinity, a nearly flat one can collapse triangles
-/// (both are dropped), an extreme normal matrix can lose normals (they are
-/// generated again). Returns the non-finite and degenerate triangles dropped.
+/// Repairs a mesh just placed in the world: a large transform can move
+/// finite positions past [`MAX_MODEL_COORDINATE_M`] or overflow them to
+/// infinity, a nearly flat one can collapse triangles (both are dropped),
+/// an extreme normal matrix can lose normals (they are generated again).
+/// Returns the out-of-range and degenerate triangles dropped.
 pub(super) fn repair_placed(mesh: &mut Mesh) -> (usize, usize) {
     let triangles = mesh.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]);
     let Drawable {
         indices,
-        non_finite,
+        out_of_range,
         degenerate,
-    } = drawable(&mesh.positions, triangles);
+    } = drawable(&mesh.positions, triangles, MAX_MODEL_COORDINATE_M);
     mesh.indices = indices;
-    if mesh.positions.iter().any(|p| !p.is_finite()) {
-        *mesh = without_non_finite(mesh);
+    if !mesh.positions.iter().all(|&p| within(p, MAX_MODEL_COORDINATE_M)) {
+        *mesh = within_bound(mesh, MAX_MODEL_COORDINATE_M);
     }
     if mesh.normals.iter().any(|n| !usable(*n)) {
         let generated = vertex_normals(&mesh.positions, &mesh.indices);
@@ -265,7 +288,7 @@ pub(super) fn repair_placed(mesh: &mut Mesh) -> (usize, usize) {
             }
         }
     }
-    (non_finite, degenerate)
+    (out_of_range, degenerate)
 }
 
 /// A normal that can be normalized: finite and not zero.
@@ -309,14 +332,15 @@ pub(super) fn vertex_normals(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {
         .collect()
 }
 
-/// The mesh without its non-finite vertices (no kept triangle uses them).
-fn without_non_finite(mesh: &Mesh) -> Mesh {
+/// The mesh without its vertices past ±`bound` (no kept triangle uses
+/// them).
+fn within_bound(mesh: &Mesh, bound: f32) -> Mesh {
     let mut remap = vec![u32::MAX; mesh.positions.len()];
     let mut out = Mesh::default();
-    for (i, p) in mesh.positions.iter().enumerate() {
-        if p.is_finite() {
+    for (i, &p) in mesh.positions.iter().enumerate() {
+        if within(p, bound) {
             remap[i] = out.positions.len() as u32;
-            out.positions.push(*p);
+            out.positions.push(p);
             out.normals.extend(mesh.normals.get(i));
             out.uvs.push(mesh.uvs[i]);
             out.colours.extend(mesh.colours.get(i));
