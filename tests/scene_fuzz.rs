@@ -2,7 +2,8 @@
 //! data URI), for a bounded number of cases: whatever the bytes, it returns
 //! a scene or a one-line error, never panics (not even one it would catch)
 //! and never takes long; a scene it returns is sound (finite positions,
-//! unit normals, indices in range). Inputs that once broke it live in
+//! unit normals, indices in range) and opens in the lab (the settings
+//! framed around it, and its cameras, are valid). Inputs that once broke it live in
 //! `tests/data/fuzz/` and are replayed first.
 //!
 //! The settings file and the report's sweep file get the same treatment:
@@ -13,7 +14,8 @@
 
 mod scene_support;
 
-use lumlab::scene::{LoadProblem, Scene, gltf::load_slice};
+use lumlab::scene::{LoadProblem, Scene, framing, gltf::load_slice};
+use lumlab::settings::Settings;
 use proptest::prelude::*;
 use proptest::sample::Index;
 use scene_support::builder::*;
@@ -131,9 +133,18 @@ fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
     for t in &scene.textures {
         prop_assert_eq!(t.rgba8.len(), 4 * t.width as usize * t.height as usize);
     }
+    // The lab can open it: the settings framed around it, and each of its
+    // cameras, are within the settings' ranges.
+    let mut settings = Settings::default();
+    framing::adopt(&mut settings, scene);
+    if let Err(e) = settings.validate() {
+        prop_assert!(false, "framed: {e}");
+    }
     for c in &scene.cameras {
-        prop_assert!(c.camera.eye.is_finite() && c.camera.target.is_finite());
-        prop_assert!((1.0..=179.0).contains(&c.camera.fovy_deg));
+        settings.camera = c.camera;
+        if let Err(e) = settings.validate() {
+            prop_assert!(false, "camera '{}': {e}", c.name);
+        }
     }
     let facts = scene.facts();
     prop_assert_eq!(facts.triangles, scene.triangle_count());
