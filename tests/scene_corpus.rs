@@ -390,20 +390,32 @@ fn corners_past_the_labs_range_are_dropped_like_nan_ones() {
     );
 }
 
-/// A file's camera whose eye or orbit target lies past the lab's
-/// coordinate range is skipped with a warning, not handed to the settings
-/// (which would refuse it).
+/// A file's camera the settings would refuse (its eye or orbit target past
+/// the lab's coordinate range, or its target on its eye) is skipped with a
+/// warning.
 #[test]
 fn cameras_past_the_labs_range_are_skipped() {
     let mut doc = Doc::square();
     doc.json["cameras"] = json!([{"type": "perspective", "perspective": {"yfov": 0.5, "znear": 0.1}}]);
     let near = doc.node(json!({"camera": 0, "translation": [0.5, 0.5, 3.0]}));
     let far = doc.node(json!({"camera": 0, "translation": [0.5, 0.5, 3e12]}));
-    doc.json["scenes"][0]["nodes"] = json!([0, near, far]);
+    // Found by the fuzzer: 4.3·10⁹ m out along +X and looking further out,
+    // its target 0.14 m ahead rounds to its eye in f32.
+    let half = std::f32::consts::FRAC_1_SQRT_2;
+    let away = doc.node(json!({"camera": 0, "translation": [4294967295.0, 0.0, 5.0],
+        "rotation": [0.0, -half, 0.0, half]}));
+    doc.json["scenes"][0]["nodes"] = json!([0, near, far, away]);
     let scene = load_every_form(&doc);
     assert_eq!(scene.cameras.len(), 1);
     assert_eq!(scene.cameras[0].camera.eye.z, 3.0);
-    assert_warns(&scene, "lies past ±1e12 m; skipped");
+    assert_warns(
+        &scene,
+        "camera 'camera 0' is not usable (camera.eye = [0.5, 0.5, 3000000000000.0] is out of range",
+    );
+    assert_warns(
+        &scene,
+        "is out of range (allowed: any point at least 1 µm from camera.eye)); skipped",
+    );
 }
 
 #[test]

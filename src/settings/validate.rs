@@ -2,23 +2,14 @@
 //! value and what is allowed when one is out of it.
 
 use super::{Settings, SettingsError, ShadowSettings};
+use crate::scene::Camera;
 use glam::Vec3;
 
 impl Settings {
     /// Checks every value against its allowed range.
     pub fn validate(&self) -> Result<(), SettingsError> {
-        let c = &self.camera;
+        Self::validate_camera(&self.camera)?;
         let far = Self::MAX_COORDINATE_M;
-        check_vec("camera.eye", c.eye, -far, far)?;
-        check_vec("camera.target", c.target, -far, far)?;
-        if (c.eye - c.target).length() < 1e-6 {
-            return Err(SettingsError::OutOfRange {
-                field: "camera.target",
-                value: format!("{:?}", c.target.to_array()),
-                allowed: "any point at least 1 µm from camera.eye".into(),
-            });
-        }
-        check("camera.fovy_deg", c.fovy_deg, 1.0, 179.0)?;
         check_int("image.width", self.image.width, 1, 16384)?;
         check_int("image.height", self.image.height, 1, 16384)?;
         let l = &self.light;
@@ -71,6 +62,24 @@ impl Settings {
         check("ground.k", self.ground.k, 0.0, 1.0)?;
         check("ground.m", self.ground.m, 0.0, 1e6)?;
         Ok(())
+    }
+}
+
+impl Settings {
+    /// Checks a camera alone (the settings' own, or one a scene file
+    /// places) against the ranges [`Settings::validate`] allows.
+    pub fn validate_camera(c: &Camera) -> Result<(), SettingsError> {
+        let far = Self::MAX_COORDINATE_M;
+        check_vec("camera.eye", c.eye, -far, far)?;
+        check_vec("camera.target", c.target, -far, far)?;
+        if (c.eye - c.target).length() < 1e-6 {
+            return Err(SettingsError::OutOfRange {
+                field: "camera.target",
+                value: format!("{:?}", c.target.to_array()),
+                allowed: "any point at least 1 µm from camera.eye".into(),
+            });
+        }
+        check("camera.fovy_deg", c.fovy_deg, 1.0, 179.0)
     }
 }
 

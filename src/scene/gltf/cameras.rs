@@ -80,22 +80,18 @@ impl Loader<'_, '_, '_> {
             }
             let distance_m = target_distance(&root.nodes[instance.node].extras)
                 .unwrap_or_else(|| orbit_distance(eye, forward, bounds));
-            let target = eye + forward * distance_m;
-            let far = f64::from(Settings::MAX_COORDINATE_M);
-            if eye.abs().max(target.abs()).cmpgt(DVec3::splat(far)).any() {
-                self.warn(format!(
-                    "camera '{name}' or its target lies past ±{far:.0e} m; skipped"
-                ));
+            let camera = Camera {
+                eye: eye.as_vec3(),
+                target: (eye + forward * distance_m).as_vec3(),
+                fovy_deg: clamped as f32,
+            };
+            // Past the lab's range, or so far out that f32 cannot tell its
+            // target from its eye.
+            if let Err(e) = Settings::validate_camera(&camera) {
+                self.warn(format!("camera '{name}' is not usable ({e}); skipped"));
                 continue;
             }
-            cameras.push(SceneCamera {
-                name,
-                camera: Camera {
-                    eye: eye.as_vec3(),
-                    target: target.as_vec3(),
-                    fovy_deg: clamped as f32,
-                },
-            });
+            cameras.push(SceneCamera { name, camera });
         }
         cameras
     }
