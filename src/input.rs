@@ -17,6 +17,21 @@ pub const SETTINGS_LIMIT_BYTES: u64 = 1 << 20;
 /// A sweep file for `lumlab report`.
 pub const SWEEP_LIMIT_BYTES: u64 = 1 << 20;
 
+/// `text` with its line breaks and other control characters escaped (`\n`),
+/// for a message that quotes what a user or a file wrote: the message
+/// stays one line whatever that text holds.
+pub fn one_line(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_debug().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
+}
+
 /// The bytes of the regular file at `path`, at most `limit` of them;
 /// `what` names the kind of file in the message ("a settings file").
 pub fn read_bounded(path: &Path, limit: u64, what: &str) -> std::io::Result<Vec<u8>> {
@@ -85,6 +100,12 @@ pub fn human_bytes(bytes: u64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quoted_text_stays_on_one_line() {
+        assert_eq!(one_line("a\nb\tc\u{7}é '"), "a\\nb\\tc\\u{7}é '");
+        assert_eq!(one_line("plain"), "plain");
+    }
 
     #[test]
     fn devices_and_folders_are_refused_before_reading() {

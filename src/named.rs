@@ -49,7 +49,11 @@ macro_rules! named_enum {
         impl std::str::FromStr for $name {
             type Err = String;
             fn from_str(s: &str) -> Result<Self, String> {
-                Self::from_name(s).ok_or_else(|| format!("unknown name '{s}' (allowed: {})", Self::choices()))
+                Self::from_name(s).ok_or_else(|| format!(
+                    "unknown name '{}' (allowed: {})",
+                    $crate::input::one_line(s),
+                    Self::choices()
+                ))
             }
         }
 
@@ -63,7 +67,11 @@ macro_rules! named_enum {
             fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
                 let text = String::deserialize(deserializer)?;
                 Self::from_name(&text).ok_or_else(|| {
-                    serde::de::Error::custom(format!("unknown name '{text}' (allowed: {})", Self::choices()))
+                    serde::de::Error::custom(format!(
+                        "unknown name '{}' (allowed: {})",
+                        $crate::input::one_line(&text),
+                        Self::choices()
+                    ))
                 })
             }
         }

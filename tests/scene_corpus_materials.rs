@@ -178,3 +178,22 @@ fn skins_and_morph_targets_are_named_as_ignored() {
     let scene = load_ok(&doc.glb());
     assert_warns(&scene, "morph targets");
 }
+
+/// Names from the file that a warning quotes keep it on one line: a line
+/// break in a material's name is written `\n`.
+#[test]
+fn warnings_quote_names_on_one_line() {
+    let mut doc = Doc::square();
+    doc.material(json!({"name": "two\nlines", "extras": {"lumlab": {"k": 1.5}}}));
+    doc.json["meshes"][0]["primitives"][0]["material"] = json!(0);
+    let scene = load_every_form(&doc);
+    assert_warns(
+        &scene,
+        "material 'two\\nlines': lumlab k = 1.5 is outside 0 … 1; clamped",
+    );
+    assert!(
+        scene.warnings.iter().all(|w| !w.contains('\n')),
+        "{:?}",
+        scene.warnings
+    );
+}

@@ -126,6 +126,11 @@ fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
         prop_assert!(o.material < scene.materials.len());
         prop_assert!(!o.bounds.is_empty() && o.bounds.min.is_finite() && o.bounds.max.is_finite());
     }
+    prop_assert!(
+        scene.warnings.iter().all(|w| !w.contains('\n')),
+        "{:?}",
+        scene.warnings
+    );
     for m in &scene.materials {
         prop_assert!(m.base_color.is_finite());
         prop_assert!(m.base_color_texture.is_none_or(|t| t < scene.textures.len()));

@@ -72,7 +72,8 @@ fn norms(text: &str) -> Result<List<Normalization>, String> {
         .map(|n| {
             Normalization::from_name(n.trim()).ok_or_else(|| {
                 format!(
-                    "unknown normalization '{n}' (allowed: {}, or all)",
+                    "unknown normalization '{}' (allowed: {}, or all)",
+                    crate::input::one_line(n),
                     Normalization::choices()
                 )
             })

@@ -192,7 +192,13 @@ impl std::str::FromStr for Illuminant {
         Self::NAMED
             .into_iter()
             .find(|i| i.name().eq_ignore_ascii_case(text))
-            .ok_or_else(|| format!("unknown illuminant '{text}' (allowed: {})", Self::choices()))
+            .ok_or_else(|| {
+                format!(
+                    "unknown illuminant '{}' (allowed: {})",
+                    crate::input::one_line(text),
+                    Self::choices()
+                )
+            })
     }
 }
 

@@ -123,7 +123,8 @@ pub fn parse(text: &str, base: &Settings) -> Result<Vec<SweepPoint>, SweepError>
             }
             _ => {
                 return Err(invalid(format!(
-                    "unknown section '{key}' (expected [[config]] or [cross])"
+                    "unknown section '{}' (expected [[config]] or [cross])",
+                    crate::input::one_line(key)
                 )));
             }
         }

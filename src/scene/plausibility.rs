@@ -90,7 +90,11 @@ pub fn impossible_setups(scene: &Scene, settings: &Settings) -> Vec<String> {
 
 /// One line per name, up to [`MAX_NAMED`], then "and N more".
 fn named(names: &[&str], line: impl Fn(&str) -> String) -> Vec<String> {
-    let mut lines: Vec<String> = names.iter().take(MAX_NAMED).map(|n| line(n)).collect();
+    let mut lines: Vec<String> = names
+        .iter()
+        .take(MAX_NAMED)
+        .map(|n| crate::input::one_line(&line(n)))
+        .collect();
     if names.len() > MAX_NAMED {
         lines.push(format!(
             "… and {} more object(s) like it",

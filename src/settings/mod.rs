@@ -249,7 +249,12 @@ impl BiasSettings {
                 self.mode = BiasMode::Normal;
                 self.normal_texels = *n;
             }
-            _ => return Err(format!("unknown bias '{text}' (expected {FORMS})")),
+            _ => {
+                return Err(format!(
+                    "unknown bias '{}' (expected {FORMS})",
+                    crate::input::one_line(text)
+                ));
+            }
         }
         Ok(self)
     }
@@ -586,6 +591,9 @@ mod tests {
         for bad in ["slope:1", "constant:x", "normal:-1", "bogus", "constant:nan"] {
             assert!(b.parse_onto(bad).is_err(), "{bad}");
         }
+        // Found by the fuzzer: the message quotes the text on one line.
+        let err = b.parse_onto("c\nstant:0.02").unwrap_err();
+        assert!(err.starts_with("unknown bias 'c\\nstant:0.02'"), "{err}");
         for form in ["auto", "constant:0.02", "slope:0.01,2.5", "normal:1.5"] {
             assert_eq!(b.parse_onto(form).unwrap().describe(), form);
         }

@@ -129,8 +129,9 @@ struct Loader<'d, 'r, 'b> {
 }
 
 impl Loader<'_, '_, '_> {
+    /// A warning, kept to one line whatever names from the file it quotes.
     fn warn(&mut self, message: String) {
-        self.warnings.push(message);
+        self.warnings.push(crate::input::one_line(&message));
     }
 
     fn run(mut self) -> Result<Scene, LoadProblem> {
