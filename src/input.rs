@@ -20,7 +20,7 @@ pub const SWEEP_LIMIT_BYTES: u64 = 1 << 20;
 /// `text` with its line breaks and other control characters escaped (`\n`),
 /// for a message that quotes what a user or a file wrote: the message
 /// stays one line whatever that text holds.
-pub fn one_line(text: &str) -> String {
+pub fn escape_controls(text: &str) -> String {
     text.chars()
         .map(|c| {
             if c.is_control() {
@@ -103,8 +103,8 @@ mod tests {
 
     #[test]
     fn quoted_text_stays_on_one_line() {
-        assert_eq!(one_line("a\nb\tc\u{7}é '"), "a\\nb\\tc\\u{7}é '");
-        assert_eq!(one_line("plain"), "plain");
+        assert_eq!(escape_controls("a\nb\tc\u{7}é '"), "a\\nb\\tc\\u{7}é '");
+        assert_eq!(escape_controls("plain"), "plain");
     }
 
     #[test]

@@ -51,7 +51,7 @@ macro_rules! named_enum {
             fn from_str(s: &str) -> Result<Self, String> {
                 Self::from_name(s).ok_or_else(|| format!(
                     "unknown name '{}' (allowed: {})",
-                    $crate::input::one_line(s),
+                    $crate::input::escape_controls(s),
                     Self::choices()
                 ))
             }
@@ -69,7 +69,7 @@ macro_rules! named_enum {
                 Self::from_name(&text).ok_or_else(|| {
                     serde::de::Error::custom(format!(
                         "unknown name '{}' (allowed: {})",
-                        $crate::input::one_line(&text),
+                        $crate::input::escape_controls(&text),
                         Self::choices()
                     ))
                 })

@@ -73,7 +73,7 @@ fn norms(text: &str) -> Result<List<Normalization>, String> {
             Normalization::from_name(n.trim()).ok_or_else(|| {
                 format!(
                     "unknown normalization '{}' (allowed: {}, or all)",
-                    crate::input::one_line(n),
+                    crate::input::escape_controls(n),
                     Normalization::choices()
                 )
             })

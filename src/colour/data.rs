@@ -195,7 +195,7 @@ impl std::str::FromStr for Illuminant {
             .ok_or_else(|| {
                 format!(
                     "unknown illuminant '{}' (allowed: {})",
-                    crate::input::one_line(text),
+                    crate::input::escape_controls(text),
                     Self::choices()
                 )
             })

@@ -124,7 +124,7 @@ pub fn parse(text: &str, base: &Settings) -> Result<Vec<SweepPoint>, SweepError>
             _ => {
                 return Err(invalid(format!(
                     "unknown section '{}' (expected [[config]] or [cross])",
-                    crate::input::one_line(key)
+                    crate::input::escape_controls(key)
                 )));
             }
         }

@@ -93,7 +93,7 @@ fn named(names: &[&str], line: impl Fn(&str) -> String) -> Vec<String> {
     let mut lines: Vec<String> = names
         .iter()
         .take(MAX_NAMED)
-        .map(|n| crate::input::one_line(&line(n)))
+        .map(|n| crate::input::escape_controls(&line(n)))
         .collect();
     if names.len() > MAX_NAMED {
         lines.push(format!(

@@ -252,7 +252,7 @@ impl BiasSettings {
             _ => {
                 return Err(format!(
                     "unknown bias '{}' (expected {FORMS})",
-                    crate::input::one_line(text)
+                    crate::input::escape_controls(text)
                 ));
             }
         }

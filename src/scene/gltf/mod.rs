@@ -131,7 +131,7 @@ struct Loader<'d, 'r, 'b> {
 impl Loader<'_, '_, '_> {
     /// A warning, kept to one line whatever names from the file it quotes.
     fn warn(&mut self, message: String) {
-        self.warnings.push(crate::input::one_line(&message));
+        self.warnings.push(crate::input::escape_controls(&message));
     }
 
     fn run(mut self) -> Result<Scene, LoadProblem> {
