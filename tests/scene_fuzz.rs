@@ -156,26 +156,64 @@ fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
     Ok(())
 }
 
-/// JSON pointers to every number in a value.
-fn number_pointers(value: &Value, at: String, out: &mut Vec<String>) {
-    match value {
-        Value::Number(_) => out.push(at),
-        Value::Array(items) => {
-            for (i, v) in items.iter().enumerate() {
-                number_pointers(v, format!("{at}/{i}"), out);
-            }
-        }
-        Value::Object(map) => {
-            for (k, v) in map {
-                number_pointers(
-                    v,
-                    format!("{at}/{}", k.replace('~', "~0").replace('/', "~1")),
-                    out,
-                );
-            }
-        }
-        _ => {}
+/// JSON pointers to every value inside `value` (arrays and objects
+/// included, the root not), in document order.
+fn value_pointers(value: &Value, at: &str, out: &mut Vec<String>) {
+    let children: Vec<(String, &Value)> = match value {
+        Value::Array(items) => items
+            .iter()
+            .enumerate()
+            .map(|(i, v)| (i.to_string(), v))
+            .collect(),
+        Value::Object(map) => map
+            .iter()
+            .map(|(k, v)| (k.replace('~', "~0").replace('/', "~1"), v))
+            .collect(),
+        _ => Vec::new(),
+    };
+    for (key, v) in children {
+        let pointer = format!("{at}/{key}");
+        out.push(pointer.clone());
+        value_pointers(v, &pointer, out);
     }
+}
+
+/// JSON pointers to every number in a value.
+fn number_pointers(value: &Value) -> Vec<String> {
+    let mut all = Vec::new();
+    value_pointers(value, "", &mut all);
+    all.retain(|p| value.pointer(p).is_some_and(Value::is_number));
+    all
+}
+
+/// Values of every JSON type put in place of any value of the file: the
+/// loader must tell a wrong type, a wrong name or an odd string from a
+/// right one.
+fn edge_json_values() -> Vec<Value> {
+    vec![
+        Value::Null,
+        json!(true),
+        json!(""),
+        json!("VEC3"),
+        json!("MAT4"),
+        json!("SCALAR"),
+        json!("image/png"),
+        json!("data:,"),
+        json!("data:application/octet-stream;base64,AAAA"),
+        json!("two\nlines"),
+        json!("../../../etc/passwd"),
+        json!("%ZZ"),
+        json!([]),
+        json!([0]),
+        json!([1e300, -1e300, 0.0, 1.0]),
+        json!({}),
+        json!({"index": 0}),
+        json!(-1),
+        json!(0),
+        json!(1),
+        json!(0.5),
+        json!(4294967296u64),
+    ]
 }
 
 /// Numbers that sit on the edges of what the loader checks.
@@ -287,8 +325,7 @@ proptest! {
         binary in prop::collection::vec((any::<Index>(), any::<u8>()), 0..4),
     ) {
         let mut doc = rich_doc();
-        let mut pointers = Vec::new();
-        number_pointers(&doc.json, String::new(), &mut pointers);
+        let pointers = number_pointers(&doc.json);
         for (at, value) in edits {
             let pointer = &pointers[at.index(pointers.len())];
             if let Some(slot) = doc.json.pointer_mut(pointer) {
@@ -306,6 +343,26 @@ proptest! {
         for (at, value) in binary {
             let i = at.index(doc.bin.len());
             doc.bin[i] = value;
+        }
+        check(&if glb { doc.glb() } else { doc.gltf_embedded() })?;
+    }
+
+    /// Any value of the JSON (a number, a string, an array, an object)
+    /// replaced by a value of any type.
+    #[test]
+    fn json_value_mutations(
+        glb in any::<bool>(),
+        edits in prop::collection::vec((any::<Index>(), any::<Index>()), 1..4),
+    ) {
+        let mut doc = rich_doc();
+        let mut pointers = Vec::new();
+        value_pointers(&doc.json, "", &mut pointers);
+        let edges = edge_json_values();
+        for (at, value) in edits {
+            let pointer = &pointers[at.index(pointers.len())];
+            if let Some(slot) = doc.json.pointer_mut(pointer) {
+                *slot = edges[value.index(edges.len())].clone();
+            }
         }
         check(&if glb { doc.glb() } else { doc.gltf_embedded() })?;
     }
