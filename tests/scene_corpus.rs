@@ -312,15 +312,18 @@ fn some_primitives_with_normals_is_some() {
     assert_eq!(facts.has_normals, NormalsPresence::Partial);
 }
 
+/// The unit square's four corners and `extra` ones, drawn as the
+/// triangles `indices` (16-bit).
+fn square_and(extra: &[[f32; 3]], indices: &[u32]) -> Doc {
+    let positions = [&SQUARE[..], extra].concat();
+    Doc::simple(&positions, Some((indices, UNSIGNED_SHORT)), TRIANGLES).0
+}
+
 #[test]
 fn nan_and_infinite_positions_drop_the_triangles_that_use_them() {
-    let mut positions = SQUARE.to_vec();
-    positions.push([f32::NAN, 0.0, 0.0]);
-    positions.push([f32::INFINITY, 1.0, 0.0]);
-    let (doc, _) = Doc::simple(
-        &positions,
-        Some((&[0, 1, 2, 0, 2, 3, 0, 1, 4, 4, 5, 2], UNSIGNED_SHORT)),
-        TRIANGLES,
+    let doc = square_and(
+        &[[f32::NAN, 0.0, 0.0], [f32::INFINITY, 1.0, 0.0]],
+        &[0, 1, 2, 0, 2, 3, 0, 1, 4, 4, 5, 2],
     );
     let scene = load_every_form(&doc);
     assert_eq!(scene.triangle_count(), 2);
@@ -336,13 +339,7 @@ fn nan_and_infinite_positions_drop_the_triangles_that_use_them() {
 /// infinity are dropped like NaN ones, and never reach the renderer.
 #[test]
 fn positions_a_transform_overflows_are_dropped() {
-    let mut positions = SQUARE.to_vec();
-    positions.push([3.0e38, 1.0, 0.5]);
-    let (mut doc, _) = Doc::simple(
-        &positions,
-        Some((&[0, 1, 2, 0, 2, 3, 0, 1, 4], UNSIGNED_SHORT)),
-        TRIANGLES,
-    );
+    let mut doc = square_and(&[[3.0e38, 1.0, 0.5]], &[0, 1, 2, 0, 2, 3, 0, 1, 4]);
     doc.json["nodes"][0]["scale"] = json!([10.0, 1.0, 1.0]);
     let scene = load_ok(&doc.glb());
     assert_eq!(scene.triangle_count(), 2);
@@ -364,13 +361,9 @@ fn positions_a_transform_overflows_are_dropped() {
 fn corners_past_the_labs_range_are_dropped_like_nan_ones() {
     let limit = lumlab::scene::gltf::MAX_MODEL_COORDINATE_M;
     assert_eq!(limit, lumlab::settings::Settings::MAX_COORDINATE_M / 10.0);
-    let mut positions = SQUARE.to_vec();
-    positions.push([1.7e38, 1.0, 0.0]);
-    positions.push([0.5, limit, 0.0]);
-    let (doc, _) = Doc::simple(
-        &positions,
-        Some((&[0, 1, 2, 0, 2, 3, 0, 1, 4, 1, 5, 2], UNSIGNED_SHORT)),
-        TRIANGLES,
+    let doc = square_and(
+        &[[1.7e38, 1.0, 0.0], [0.5, limit, 0.0]],
+        &[0, 1, 2, 0, 2, 3, 0, 1, 4, 1, 5, 2],
     );
     let scene = load_every_form(&doc);
     assert_eq!(scene.triangle_count(), 3);
@@ -420,14 +413,8 @@ fn cameras_past_the_labs_range_are_skipped() {
 
 #[test]
 fn degenerate_triangles_are_dropped_and_counted() {
-    let mut positions = SQUARE.to_vec();
-    positions.push([2.0, 0.0, 0.0]);
     // A repeated corner, and three collinear corners (zero area).
-    let (doc, _) = Doc::simple(
-        &positions,
-        Some((&[0, 1, 2, 0, 2, 3, 0, 0, 1, 0, 1, 4], UNSIGNED_SHORT)),
-        TRIANGLES,
-    );
+    let doc = square_and(&[[2.0, 0.0, 0.0]], &[0, 1, 2, 0, 2, 3, 0, 0, 1, 0, 1, 4]);
     let scene = load_every_form(&doc);
     assert_eq!(scene.facts().triangles, 2);
     assert_warns(&scene, "dropped 2 degenerate triangles");
