@@ -117,22 +117,30 @@ pub fn adopt(settings: &mut Settings, scene: &Scene) {
 }
 
 /// Whether the scene already has something that catches shadows below it:
-/// a flat, horizontal object at the bounds' lowest height covering most of
-/// their horizontal extent.
+/// triangles lying flat at the bounds' lowest height, facing up, that
+/// together cover most of their horizontal extent. Triangles, not objects:
+/// a model exported as one mesh often holds its floor (a separate ground
+/// would then lie in the same plane and fight it for every pixel), and a
+/// closed model's own underside faces down.
 pub fn has_ground(scene: &Scene) -> bool {
     let bounds = scene.model_bounds();
     if bounds.is_empty() {
         return false;
     }
     let extent = bounds.extent();
-    let size = extent.length();
-    scene.objects.iter().any(|o| {
-        let e = o.bounds.extent();
-        let flat = e.y <= 0.02 * size;
-        let low = o.bounds.max.y <= bounds.min.y + 0.02 * size;
-        let wide = e.x >= 0.8 * extent.x && e.z >= 0.8 * extent.z;
-        flat && low && wide
-    })
+    let top = bounds.min.y + 0.02 * extent.length();
+    let mut floor = Aabb::EMPTY;
+    for o in scene.objects.iter().filter(|o| o.bounds.min.y <= top) {
+        for t in o.mesh.indices.chunks_exact(3) {
+            let [a, b, c] = [0, 1, 2].map(|k| o.mesh.positions[t[k] as usize]);
+            let low = a.y.max(b.y).max(c.y) <= top;
+            if low && (b - a).cross(c - a).y > 0.0 {
+                floor = floor.including(a).including(b).including(c);
+            }
+        }
+    }
+    let covered = floor.extent();
+    !floor.is_empty() && covered.x >= 0.8 * extent.x && covered.z >= 0.8 * extent.z
 }
 
 /// `scene` with the ground `settings` ask for: under a model at its bounds'
@@ -251,6 +259,34 @@ mod tests {
         assert!(framed.eye.distance(b.center()) < 10.0);
     }
 
+    /// A model exported as one mesh with its floor: the floor's triangles
+    /// count, and no second ground is laid in their plane.
+    #[test]
+    fn a_floor_inside_the_models_mesh_is_its_ground() {
+        let mut scene = box_scene(1.0);
+        let mesh = &mut scene.objects[0].mesh;
+        let base = mesh.positions.len() as u32;
+        // Wound counter-clockwise seen from above: facing up.
+        mesh.positions.extend([
+            Vec3::new(-2.0, 0.0, -2.0),
+            Vec3::new(-2.0, 0.0, 2.0),
+            Vec3::new(2.0, 0.0, 2.0),
+            Vec3::new(2.0, 0.0, -2.0),
+        ]);
+        mesh.normals.extend([Vec3::Y; 4]);
+        mesh.uvs.extend([glam::Vec2::ZERO; 4]);
+        mesh.indices.extend([0, 1, 2, 0, 2, 3].map(|i| base + i));
+        scene.objects[0].bounds = Aabb::from_points(mesh.positions.iter().copied());
+        assert!(has_ground(&scene));
+        let grounded = with_ground(scene.clone(), &GroundSettings::default());
+        assert_eq!(grounded.objects.len(), 1);
+        // Facing down, the same quad is an underside.
+        let mesh = &mut scene.objects[0].mesh;
+        let n = mesh.indices.len();
+        mesh.indices[n - 6..].reverse();
+        assert!(!has_ground(&scene));
+    }
+
     #[test]
     fn a_ground_is_added_once_under_a_model_without_one() {
         let s = GroundSettings::default();
@@ -266,6 +302,8 @@ mod tests {
             "auto adds none to a grounded scene"
         );
         assert!(has_ground(&crate::scene::default_scene()));
+        // A box's underside faces down: it is not a ground.
+        assert!(!has_ground(&box_scene(1.0)));
         let off = GroundSettings {
             mode: GroundMode::Off,
             ..s
