@@ -55,7 +55,10 @@ impl View for LightPanel<'_> {
                         .speed(self.scale.length(0.02))
                         .range(range.clone())
                         .prefix(format!("{axis} "))
-                        .suffix(" m"),
+                        .suffix(" m")
+                        // Four significant digits, as every read-out: a
+                        // far light's 1.4e11 m keeps the row's width.
+                        .custom_formatter(|x, _| super::widgets::number(x)),
                 )
                 .on_hover_text(tr!("light-position-axis-tip", axis = axis));
             }
