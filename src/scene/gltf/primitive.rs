@@ -30,7 +30,8 @@ pub(super) struct LocalPrimitive {
     pub triangles_defined: usize,
     /// Triangles with two equal corners or zero area.
     pub degenerate: usize,
-    /// Triangles with a NaN or infinite corner.
+    /// Triangles with a NaN or infinite corner in the file (placing the
+    /// mesh drops those with a distant corner: [`repair_placed`]).
     pub out_of_range: usize,
     /// Vertices whose position in the file is NaN, infinite or past
     /// [`MAX_MODEL_COORDINATE_M`] (before their node's transform).
