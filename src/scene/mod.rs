@@ -235,16 +235,6 @@ impl SceneLight {
     pub fn power_w(&self) -> f32 {
         4.0 * std::f32::consts::PI * self.intensity_w_sr
     }
-
-    /// Whether the lab's light can take its place: position, power and
-    /// colour within the settings' ranges (none NaN).
-    pub fn fits_the_lab(&self) -> bool {
-        let far = Settings::MAX_COORDINATE_M;
-        self.position.abs().cmple(Vec3::splat(far)).all()
-            && (0.0..=Settings::MAX_POWER_W).contains(&self.power_w())
-            && self.color.cmpge(Vec3::ZERO).all()
-            && self.color.cmple(Vec3::splat(Settings::MAX_LIGHT_COLOR)).all()
-    }
 }
 
 impl Scene {

@@ -225,8 +225,6 @@ impl Settings {
     pub const MAX_COORDINATE_M: f32 = 1e12;
     /// The largest light power (W): the Sun's 3.8·10²⁶ W included.
     pub const MAX_POWER_W: f32 = 1e32;
-    /// The largest component of the light's linear RGB colour.
-    pub const MAX_LIGHT_COLOR: f32 = 1e6;
 
     /// The default settings moved to a scene of `scale`: the light, the
     /// camera and the bias where the built-in scene has them, scaled. The

@@ -1,7 +1,7 @@
 //! The allowed range of every setting: one line naming the field, the
 //! value and what is allowed when one is out of it.
 
-use super::{Settings, SettingsError, ShadowSettings};
+use super::{LightSettings, Settings, SettingsError, ShadowSettings};
 use crate::scene::Camera;
 use glam::Vec3;
 
@@ -12,11 +12,7 @@ impl Settings {
         let far = Self::MAX_COORDINATE_M;
         check_int("image.width", self.image.width, 1, 16384)?;
         check_int("image.height", self.image.height, 1, 16384)?;
-        let l = &self.light;
-        check_vec("light.position", l.position, -far, far)?;
-        check("light.power_w", l.power_w, 0.0, Self::MAX_POWER_W)?;
-        check("light.radius_m", l.radius_m, 0.0, far)?;
-        check_vec("light.color", l.color, 0.0, Self::MAX_LIGHT_COLOR)?;
+        Self::validate_light(&self.light)?;
         let m = &self.material;
         check("material.k", m.k, 0.0, 1.0)?;
         check("material.m", m.m, 0.0, 1e6)?;
@@ -80,6 +76,16 @@ impl Settings {
             });
         }
         check("camera.fovy_deg", c.fovy_deg, 1.0, 179.0)
+    }
+
+    /// Checks a light alone (the settings' own, or one a scene file
+    /// places) against the ranges [`Settings::validate`] allows.
+    pub fn validate_light(l: &LightSettings) -> Result<(), SettingsError> {
+        let far = Self::MAX_COORDINATE_M;
+        check_vec("light.position", l.position, -far, far)?;
+        check("light.power_w", l.power_w, 0.0, Self::MAX_POWER_W)?;
+        check("light.radius_m", l.radius_m, 0.0, far)?;
+        check_vec("light.color", l.color, 0.0, 1e6)
     }
 }
 

@@ -5,7 +5,7 @@
 use super::Loader;
 use super::nodes::LightInstance;
 use crate::scene::SceneLight;
-use crate::settings::Settings;
+use crate::settings::{LightSettings, Settings};
 use glam::{DVec3, Vec3};
 use gltf::json::extensions::scene::khr_lights_punctual::Type;
 use gltf::json::validation::Checked;
@@ -54,17 +54,16 @@ impl Loader<'_, '_, '_> {
                 intensity_w_sr: light.intensity / LUMINOUS_EFFICACY_LM_PER_W,
                 color: Vec3::from(light.color).max(Vec3::ZERO),
             };
-            if placed.fits_the_lab() {
-                lights.push(placed);
-            } else {
-                self.warn(format!(
-                    "light '{}' has a position past ±{:.0e} m, a power past 0 … {:.0e} W or a \
-                     colour past 0 … {:.0e}; skipped",
-                    placed.name,
-                    Settings::MAX_COORDINATE_M,
-                    Settings::MAX_POWER_W,
-                    Settings::MAX_LIGHT_COLOR
-                ));
+            // The point light the settings would make of it.
+            let as_set = LightSettings {
+                position: placed.position,
+                power_w: placed.power_w(),
+                radius_m: 0.0,
+                color: placed.color,
+            };
+            match Settings::validate_light(&as_set) {
+                Ok(()) => lights.push(placed),
+                Err(e) => self.warn(format!("light '{}' is not usable ({e}); skipped", placed.name)),
             }
         }
         lights
