@@ -105,15 +105,15 @@ impl Loader<'_, '_, '_> {
             match value.as_f64().filter(|v| v.is_finite()) {
                 Some(v) if (lo..=hi).contains(&v) => Some(v as f32),
                 Some(v) => {
-                    self.warnings.push(crate::input::escape_controls(&format!(
+                    self.warn(format!(
                         "material '{name}': lumlab {key} = {v} is outside {lo} … {hi}; clamped"
-                    )));
+                    ));
                     Some(v.clamp(lo, hi) as f32)
                 }
                 None => {
-                    self.warnings.push(crate::input::escape_controls(&format!(
+                    self.warn(format!(
                         "material '{name}': lumlab {key} = {value} is not a number; ignored"
-                    )));
+                    ));
                     None
                 }
             }
