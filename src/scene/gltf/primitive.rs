@@ -213,9 +213,7 @@ pub(super) fn build(
         colours,
         indices: kept,
     };
-    if local.mesh.positions.iter().any(|p| !p.is_finite()) {
-        local.mesh = within_bound(&local.mesh, f32::MAX);
-    }
+    drop_vertices_past(&mut local.mesh, f32::MAX);
     Ok(Some(local))
 }
 
@@ -278,9 +276,7 @@ pub(super) fn repair_placed(mesh: &mut Mesh) -> (usize, usize) {
         degenerate,
     } = drawable(&mesh.positions, triangles, MAX_MODEL_COORDINATE_M);
     mesh.indices = indices;
-    if !mesh.positions.iter().all(|&p| within(p, MAX_MODEL_COORDINATE_M)) {
-        *mesh = within_bound(mesh, MAX_MODEL_COORDINATE_M);
-    }
+    drop_vertices_past(mesh, MAX_MODEL_COORDINATE_M);
     if mesh.normals.iter().any(|n| !usable(*n)) {
         let generated = vertex_normals(&mesh.positions, &mesh.indices);
         for (n, g) in mesh.normals.iter_mut().zip(generated) {
@@ -333,9 +329,12 @@ pub(super) fn vertex_normals(positions: &[Vec3], indices: &[u32]) -> Vec<Vec3> {
         .collect()
 }
 
-/// The mesh without its vertices past ±`bound` (no kept triangle uses
-/// them).
-fn within_bound(mesh: &Mesh, bound: f32) -> Mesh {
+/// Drops the mesh's vertices past ±`bound`, if any (no kept triangle
+/// uses them).
+fn drop_vertices_past(mesh: &mut Mesh, bound: f32) {
+    if mesh.positions.iter().all(|&p| within(p, bound)) {
+        return;
+    }
     let mut remap = vec![u32::MAX; mesh.positions.len()];
     let mut out = Mesh::default();
     for (i, &p) in mesh.positions.iter().enumerate() {
@@ -348,7 +347,7 @@ fn within_bound(mesh: &Mesh, bound: f32) -> Mesh {
         }
     }
     out.indices = mesh.indices.iter().map(|&i| remap[i as usize]).collect();
-    out
+    *mesh = out;
 }
 
 #[cfg(test)]
