@@ -3,8 +3,8 @@
 //! a scene or a one-line error, never panics (not even one it would catch)
 //! and never takes long; a scene it returns is sound (finite positions,
 //! unit normals, indices in range) and opens in the lab (the settings
-//! framed around it, and its cameras, are valid). Inputs that once broke it live in
-//! `tests/data/fuzz/` and are replayed first.
+//! framed around it, and its cameras, are valid). Inputs that once broke
+//! it live in `tests/data/fuzz/` and are replayed first.
 //!
 //! The settings file and the report's sweep file get the same treatment:
 //! mutated values and bytes give a valid result or a one-line error, fast,
@@ -146,8 +146,7 @@ fn check_scene(scene: &Scene) -> Result<(), TestCaseError> {
         prop_assert!(false, "framed: {e}");
     }
     for c in &scene.cameras {
-        settings.camera = c.camera;
-        if let Err(e) = settings.validate() {
+        if let Err(e) = Settings::validate_camera(&c.camera) {
             prop_assert!(false, "camera '{}': {e}", c.name);
         }
     }
