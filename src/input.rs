@@ -32,6 +32,23 @@ pub fn escape_controls(text: &str) -> String {
         .collect()
 }
 
+/// `x` as a message shows it: plainly between 10⁻⁴ and 10⁷ (0.5, 179,
+/// 1000000), in exponent form past them (1e32, -1e12, 1.8398786e34), so
+/// that a range's bound reads as written instead of as 33 digits; the
+/// shortest digits that give back the same f32 either way.
+pub fn compact_number(x: f32) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// Three numbers as [`compact_number`] shows them: `[0, 0, 2e12]`.
+pub fn compact_numbers(v: [f32; 3]) -> String {
+    format!("[{}]", v.map(compact_number).join(", "))
+}
+
 /// The bytes of the regular file at `path`, at most `limit` of them;
 /// `what` names the kind of file in the message ("a settings file").
 pub fn read_bounded(path: &Path, limit: u64, what: &str) -> std::io::Result<Vec<u8>> {
@@ -105,6 +122,20 @@ mod tests {
     fn quoted_text_stays_on_one_line() {
         assert_eq!(escape_controls("a\nb\tc\u{7}é '"), "a\\nb\\tc\\u{7}é '");
         assert_eq!(escape_controls("plain"), "plain");
+    }
+
+    #[test]
+    fn numbers_read_as_written() {
+        assert_eq!(compact_number(1e32), "1e32");
+        assert_eq!(compact_number(-1e12), "-1e12");
+        assert_eq!(compact_number(1.8398786e34), "1.8398786e34");
+        assert_eq!(compact_number(1e6), "1000000");
+        assert_eq!(compact_number(179.0), "179");
+        assert_eq!(compact_number(0.99), "0.99");
+        assert_eq!(compact_number(0.0), "0");
+        assert_eq!(compact_number(2.5e-7), "2.5e-7");
+        assert_eq!(compact_number(f32::NAN), "NaN");
+        assert_eq!(compact_numbers([0.0, -0.5, 3e12]), "[0, -0.5, 3e12]");
     }
 
     #[test]

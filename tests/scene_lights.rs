@@ -69,15 +69,15 @@ fn lights_past_the_labs_range_are_skipped() {
     for (light, field) in [
         (
             json!({"type": "point", "intensity": 683.0, "color": [1.0, 1.0, 1.0]}),
-            "light.position = [0.0, 0.0, 2000000000000.0] is out of range (allowed: three numbers in -1000000000000 … 1000000000000)",
+            "light.position = [0, 0, 2e12] is out of range (allowed: three numbers in -1e12 … 1e12)",
         ),
         (
             json!({"type": "point", "intensity": 1e36, "color": [1.0, 1.0, 1.0]}),
-            "light.power_w = 18398786000000000000000000000000000 is out of range (allowed: 0 … 100000000000000000000000000000000)",
+            "light.power_w = 1.8398786e34 is out of range (allowed: 0 … 1e32)",
         ),
         (
             json!({"type": "point", "intensity": 683.0, "color": [1e7, 1.0, 1.0]}),
-            "light.color = [10000000.0, 1.0, 1.0] is out of range (allowed: three numbers in 0 … 1000000)",
+            "light.color = [1e7, 1, 1] is out of range (allowed: three numbers in 0 … 1000000)",
         ),
     ] {
         let far = light["intensity"] == 683.0 && light["color"][0] == 1.0;

@@ -2,6 +2,7 @@
 //! value and what is allowed when one is out of it.
 
 use super::{LightSettings, Settings, SettingsError, ShadowSettings};
+use crate::input::{compact_number, compact_numbers};
 use crate::scene::Camera;
 use glam::Vec3;
 
@@ -71,7 +72,7 @@ impl Settings {
         if (c.eye - c.target).length() < 1e-6 {
             return Err(SettingsError::OutOfRange {
                 field: "camera.target",
-                value: format!("{:?}", c.target.to_array()),
+                value: compact_numbers(c.target.to_array()),
                 allowed: "any point at least 1 µm from camera.eye".into(),
             });
         }
@@ -95,8 +96,8 @@ fn check(field: &'static str, value: f32, min: f32, max: f32) -> Result<(), Sett
     } else {
         Err(SettingsError::OutOfRange {
             field,
-            value: value.to_string(),
-            allowed: format!("{min} … {max}"),
+            value: compact_number(value),
+            allowed: format!("{} … {}", compact_number(min), compact_number(max)),
         })
     }
 }
@@ -109,8 +110,12 @@ fn check_vec(field: &'static str, value: Vec3, min: f32, max: f32) -> Result<(),
     for x in value.to_array() {
         check(field, x, min, max).map_err(|_| SettingsError::OutOfRange {
             field,
-            value: format!("{:?}", value.to_array()),
-            allowed: format!("three numbers in {min} … {max}"),
+            value: compact_numbers(value.to_array()),
+            allowed: format!(
+                "three numbers in {} … {}",
+                compact_number(min),
+                compact_number(max)
+            ),
         })?;
     }
     Ok(())
