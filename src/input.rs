@@ -44,6 +44,11 @@ pub fn compact_number(x: f32) -> String {
     }
 }
 
+/// A range `min … max`, its bounds as [`compact_number`] shows them.
+pub fn compact_range(min: f32, max: f32) -> String {
+    format!("{} … {}", compact_number(min), compact_number(max))
+}
+
 /// Three numbers as [`compact_number`] shows them: `[0, 0, 2e12]`.
 pub fn compact_numbers(v: [f32; 3]) -> String {
     format!("[{}]", v.map(compact_number).join(", "))
@@ -136,6 +141,7 @@ mod tests {
         assert_eq!(compact_number(2.5e-7), "2.5e-7");
         assert_eq!(compact_number(f32::NAN), "NaN");
         assert_eq!(compact_numbers([0.0, -0.5, 3e12]), "[0, -0.5, 3e12]");
+        assert_eq!(compact_range(-1e12, 1e12), "-1e12 … 1e12");
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Value parsers and the shared options of the commands that render.
 
 use crate::colour::Illuminant;
-use crate::input::compact_number;
+use crate::input::compact_range;
 use crate::physics::Normalization;
 use crate::settings::{
     BiasSettings, ColourSettings, DebugView, Filter, GroundMode, Settings, ShadowSettings, Visibility,
@@ -42,9 +42,8 @@ pub fn number_in(text: &str, min: f64, max: f64) -> Result<f64, String> {
     match text.trim().parse::<f64>() {
         Ok(v) if v.is_finite() && (min..=max).contains(&v) => Ok(v),
         _ => Err(format!(
-            "'{text}' is not a number in {} … {}",
-            compact_number(min as f32),
-            compact_number(max as f32)
+            "'{text}' is not a number in {}",
+            compact_range(min as f32, max as f32)
         )),
     }
 }

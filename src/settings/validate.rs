@@ -2,7 +2,7 @@
 //! value and what is allowed when one is out of it.
 
 use super::{LightSettings, Settings, SettingsError, ShadowSettings};
-use crate::input::{compact_number, compact_numbers};
+use crate::input::{compact_number, compact_numbers, compact_range};
 use crate::scene::Camera;
 use glam::Vec3;
 
@@ -97,7 +97,7 @@ fn check(field: &'static str, value: f32, min: f32, max: f32) -> Result<(), Sett
         Err(SettingsError::OutOfRange {
             field,
             value: compact_number(value),
-            allowed: format!("{} … {}", compact_number(min), compact_number(max)),
+            allowed: compact_range(min, max),
         })
     }
 }
@@ -111,11 +111,7 @@ fn check_vec(field: &'static str, value: Vec3, min: f32, max: f32) -> Result<(),
         check(field, x, min, max).map_err(|_| SettingsError::OutOfRange {
             field,
             value: compact_numbers(value.to_array()),
-            allowed: format!(
-                "three numbers in {} … {}",
-                compact_number(min),
-                compact_number(max)
-            ),
+            allowed: format!("three numbers in {}", compact_range(min, max)),
         })?;
     }
     Ok(())
