@@ -273,7 +273,8 @@ fn drag_end(renderer: &mut Renderer) {
 /// What the camera pass's cost is made of (`-- breakdown`): the specialised
 /// pass at full scale with one ingredient taken away at a time, against the
 /// flat pass: the depth pre-pass (timed with the pass, the flat pass has
-/// none), the filter's taps (PCF 3×3, 16 depth tests → one → no shadows),
+/// none), the filter's taps (PCF 3×3 decided from the depth ranges, or
+/// 16 depth tests each → one → no shadows),
 /// the BRDF (the `visibility` view), the second target (aux).
 fn breakdown(renderer: &mut Renderer) {
     println!(
@@ -287,8 +288,16 @@ fn breakdown(renderer: &mut Renderer) {
         ..ShadeOptions::default()
     };
     type Variant = (&'static str, fn(&mut Settings), ShadeOptions);
-    let variants: [Variant; 7] = [
+    let variants: [Variant; 8] = [
         ("default: PCF 3×3, shaded, quantity only", |_| {}, plain),
+        (
+            "PCF 3×3, every texel tested (no depth ranges)",
+            |_| {},
+            ShadeOptions {
+                depth_ranges: false,
+                ..plain
+            },
+        ),
         (
             "+ aux target (two targets written)",
             |_| {},

@@ -152,6 +152,9 @@ struct Shadow {
     light_radius_m: f32,
     // The moment bias α of msm.
     msm_bias: f32,
+    // The block size B of the depth ranges pcf may read (gpu::depth_ranges),
+    // 0 where none are ready for this map.
+    range_block: u32,
 }
 
 // A material (gpu::uniforms::MaterialRaw).

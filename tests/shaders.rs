@@ -111,7 +111,7 @@ fn uniform_fields_match_their_wgsl_offsets() {
         "Shadow",
         &fields!(ShadowRaw: layers, light_position, enabled, cube, layer_mask, filter_mode, bias_mode, pcf_size,
             poisson_samples, pcss_blocker_samples, resolution_texels, poisson_radius_texels, bias_depth_m,
-            bias_slope, normal_offset_texels, vsm_bleed_reduction, evsm_exponent, light_radius_m, msm_bias),
+            bias_slope, normal_offset_texels, vsm_bleed_reduction, evsm_exponent, light_radius_m, msm_bias, range_block),
     );
     assert_members(
         &shade,

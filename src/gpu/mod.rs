@@ -15,6 +15,7 @@ pub mod capabilities;
 pub mod colormap;
 pub mod context;
 pub mod delta_e;
+pub mod depth_ranges;
 pub mod display;
 pub mod flat;
 pub mod frame_report;

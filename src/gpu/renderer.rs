@@ -260,6 +260,7 @@ impl Renderer {
             apex,
             &visible_bounds,
             simplified,
+            self.shade_options.depth_ranges,
             &mut report,
         );
         self.queue
@@ -320,7 +321,7 @@ impl Renderer {
         if let Some(timer) = &mut self.timer {
             timer.begin_frame();
         }
-        if prepared.redraw
+        if (prepared.redraw || prepared.build_ranges.is_some())
             && let Some(layout) = &report.layout
         {
             shared.encode_shadow(&mut encoder, &prepared, settings, layout, self.timer.as_mut());
@@ -354,9 +355,12 @@ impl Renderer {
             .as_ref()
             .expect("targets exist after render() sized them");
         let shadow_textures = shared.shadow_textures(slot);
-        let shadow_group = self
-            .shade
-            .shadow_group(&self.device, shadow_textures, &shared.dummy_moments);
+        let shadow_group = self.shade.shadow_group(
+            &self.device,
+            shadow_textures,
+            &shared.dummy_moments,
+            settings.shadow.pcf_size,
+        );
         self.layout_kind = layout.map(|l| l.kind);
         let (raytrace_group, accumulating) = self.raytrace.prepare(
             &self.device,

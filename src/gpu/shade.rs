@@ -2,6 +2,7 @@
 //! quantity and the aux target (V, texel density, cos θ, coverage).
 
 use super::binding;
+use super::depth_ranges;
 use super::scene_buffers::{GpuScene, Meshes, Vertex};
 use super::shaders::Shader;
 use super::shadow::ShadowTextures;
@@ -80,6 +81,12 @@ impl ShadePass {
                     wgpu::TextureViewDimension::D2Array,
                 ),
                 binding::sampler(5, fragment, wgpu::SamplerBindingType::NonFiltering),
+                binding::texture(
+                    6,
+                    fragment,
+                    wgpu::TextureSampleType::Float { filterable: false },
+                    wgpu::TextureViewDimension::D2Array,
+                ),
             ],
         );
         let raytrace_layout = super::raytrace::layout(device);
@@ -168,14 +175,22 @@ impl ShadePass {
         ));
     }
 
-    /// The bind group of the shadow map's textures.
+    /// The bind group of the shadow map's textures, with the depth ranges
+    /// an n×n PCF kernel reads (`pcf_size` n).
     pub fn shadow_group(
         &self,
         device: &wgpu::Device,
         shadow: &ShadowTextures,
         dummy_moments: &wgpu::TextureView,
+        pcf_size: u32,
     ) -> wgpu::BindGroup {
         let moments = shadow.moments.as_ref().map_or(dummy_moments, |m| &m.array);
+        // Unread (Shadow::range_block = 0) where no ranges were built.
+        let ranges = shadow
+            .ranges
+            .as_ref()
+            .zip(depth_ranges::level_for(pcf_size))
+            .map_or(dummy_moments, |(r, level)| r.windows(level));
         binding::group(
             device,
             "camera pass shadow map",
@@ -187,6 +202,7 @@ impl ShadePass {
                 wgpu::BindingResource::Sampler(&self.moments_sampler),
                 wgpu::BindingResource::TextureView(&shadow.depth_array),
                 wgpu::BindingResource::Sampler(&self.depth_gather_sampler),
+                wgpu::BindingResource::TextureView(ranges),
             ],
         )
     }

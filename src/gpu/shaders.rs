@@ -43,6 +43,8 @@ fn constants_wgsl() -> String {
 pub enum Shader {
     Shadow,
     Blur,
+    /// The depth ranges of the shadow map's blocks (gpu::depth_ranges).
+    DepthRanges,
     Shade,
     Reduce,
     Display,
@@ -54,9 +56,10 @@ pub enum Shader {
 }
 
 impl Shader {
-    pub const ALL: [Shader; 8] = [
+    pub const ALL: [Shader; 9] = [
         Self::Shadow,
         Self::Blur,
+        Self::DepthRanges,
         Self::Shade,
         Self::Reduce,
         Self::Display,
@@ -69,6 +72,7 @@ impl Shader {
         match self {
             Self::Shadow => "shadow.wgsl",
             Self::Blur => "blur.wgsl",
+            Self::DepthRanges => "depth_ranges.wgsl",
             Self::Shade => "shade.wgsl",
             Self::Reduce => "reduce.wgsl",
             Self::Display => "display.wgsl",
@@ -82,8 +86,10 @@ impl Shader {
         match self {
             Self::Shadow => include_str!("../../shaders/shadow.wgsl"),
             Self::Blur => include_str!("../../shaders/blur.wgsl"),
+            Self::DepthRanges => include_str!("../../shaders/depth_ranges.wgsl"),
             Self::Shade => concat!(
                 include_str!("../../shaders/shadow_map.wgsl"),
+                include_str!("../../shaders/pcf.wgsl"),
                 include_str!("../../shaders/bvh.wgsl"),
                 include_str!("../../shaders/raytrace.wgsl"),
                 include_str!("../../shaders/delta_e.wgsl"),

@@ -3,6 +3,7 @@
 //! then blur them separably.
 
 use super::binding;
+use super::depth_ranges::{self, RangePass, RangeTextures};
 use super::light_frustum::ShadowLayout;
 use super::scene_buffers::{Meshes, Vertex};
 use super::shaders::Shader;
@@ -47,6 +48,8 @@ pub struct ShadowTextures {
     pub depth_array: wgpu::TextureView,
     depth_layers: Vec<wgpu::TextureView>,
     pub moments: Option<MomentTextures>,
+    /// A depth map's ranges for PCF (a moment map has none).
+    pub ranges: Option<RangeTextures>,
 }
 
 pub struct MomentTextures {
@@ -56,7 +59,7 @@ pub struct MomentTextures {
     scratch_layers: Vec<wgpu::TextureView>,
 }
 
-fn array_texture(
+pub(super) fn array_texture(
     device: &wgpu::Device,
     label: &str,
     resolution: u32,
@@ -119,6 +122,9 @@ impl ShadowTextures {
                 scratch_layers,
             }
         });
+        let ranges = moments
+            .is_none()
+            .then(|| RangeTextures::new(device, resolution, layers));
         Self {
             resolution,
             layers,
@@ -126,12 +132,16 @@ impl ShadowTextures {
             depth_array,
             depth_layers,
             moments,
+            ranges,
         }
     }
 
-    /// Bytes per texel of every layer: depth, plus moments and their scratch.
+    /// Bytes per texel of every layer: depth, plus moments and their
+    /// scratch, or the depth ranges.
     pub fn bytes_per_texel(moments_format: Option<wgpu::TextureFormat>) -> u64 {
-        4 + moments_format.map_or(0, |f| 2 * f.block_copy_size(None).unwrap_or(16) as u64)
+        4 + moments_format.map_or(depth_ranges::BYTES_PER_TEXEL, |f| {
+            2 * f.block_copy_size(None).unwrap_or(16) as u64
+        })
     }
 }
 
@@ -172,6 +182,7 @@ pub struct ShadowPass {
     depth_pipeline: wgpu::RenderPipeline,
     moments_pipeline: wgpu::RenderPipeline,
     blur: BlurPass,
+    pub ranges: RangePass,
     pub moments_format: wgpu::TextureFormat,
 }
 
@@ -264,6 +275,7 @@ impl ShadowPass {
             depth_pipeline: shadow_pipeline(device, &pipeline_layout, &module, None),
             moments_pipeline: shadow_pipeline(device, &pipeline_layout, &module, Some(moments_format)),
             blur: BlurPass::new(device, moments_format),
+            ranges: RangePass::new(device, MAX_LAYERS),
             uniform,
             layer_index,
             bind_group,

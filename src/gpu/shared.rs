@@ -6,6 +6,7 @@
 //! N(m), the view or the filter of a depth map draws the map once.
 
 use super::capabilities::Capabilities;
+use super::depth_ranges;
 use super::frame_report::FrameReport;
 use super::light_frustum::{LayoutKind, ShadowLayout, select_casters};
 use super::renderer::code;
@@ -62,6 +63,8 @@ pub(super) struct PreparedShadow {
     pub slot: usize,
     /// The map must be drawn (into `slot`) this frame.
     pub redraw: bool,
+    /// The level of depth ranges to build this frame, for a map drawn before.
+    pub build_ranges: Option<usize>,
 }
 
 pub struct SharedScene {
@@ -149,7 +152,9 @@ impl SharedScene {
     /// Fits the light's layers, picks casters, finds a slot that already
     /// holds this map or takes the view's own to redraw (unless
     /// `report.shadow_map_unused`); returns the shadow uniforms with that
-    /// choice. `simplified`: the map is drawn from the simplified meshes.
+    /// choice. `simplified`: the map is drawn from the simplified meshes;
+    /// `depth_ranges`: as [`super::ShadeOptions::depth_ranges`].
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn prepare_shadows(
         &mut self,
         view: usize,
@@ -157,6 +162,7 @@ impl SharedScene {
         light: DVec3,
         visible_bounds: &Aabb,
         simplified: bool,
+        depth_ranges: bool,
         report: &mut FrameReport,
     ) -> PreparedShadow {
         let s = &settings.shadow;
@@ -179,6 +185,7 @@ impl SharedScene {
                 raw,
                 slot: view,
                 redraw: false,
+                build_ranges: None,
             };
         }
         let layers = match ShadowLayout::fit(light, &self.scene.bounds, 0.0).kind {
@@ -253,6 +260,19 @@ impl SharedScene {
                 (view, redraw)
             }
         };
+        // PCF reads the ranges of a map drawn before this frame, built on
+        // the first frame that reads them.
+        let ranges = self.slots[slot].as_ref().and_then(|s| s.textures.ranges.as_ref());
+        let level = depth_ranges::level_for(s.pcf_size).filter(|_| {
+            depth_ranges
+                && s.filter == Filter::Pcf
+                && !report.shadow_map_unused
+                && !redraw
+                && ranges.is_some()
+        });
+        let build_ranges = level.filter(|&l| !ranges.is_some_and(|r| r.is_built(l)));
+        report.depth_ranges = level.map(depth_ranges::block_texels);
+        raw.range_block = report.depth_ranges.unwrap_or(0);
         report.shadow_redrawn = redraw;
         report.resolution = resolution;
         report.resolution_note = note;
@@ -293,37 +313,64 @@ impl SharedScene {
         raw.light_radius_m = settings.light.radius_m;
         raw.msm_bias = s.msm_bias;
         report.layout = Some(layout);
-        PreparedShadow { raw, slot, redraw }
+        PreparedShadow {
+            raw,
+            slot,
+            redraw,
+            build_ranges,
+        }
     }
 
-    /// Draws the map chosen by `prepare_shadows` into its slot.
+    /// Draws the map chosen by `prepare_shadows` into its slot where it
+    /// must be redrawn, or builds the depth ranges it asked for.
     pub(super) fn encode_shadow(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         prepared: &PreparedShadow,
         settings: &Settings,
         layout: &ShadowLayout,
-        timer: Option<&mut GpuTimer>,
+        mut timer: Option<&mut GpuTimer>,
     ) {
-        let Some(slot) = self.slots[prepared.slot].as_ref() else {
+        let moments_clear = self.moments_clear(settings.shadow.filter);
+        let Some(slot) = self.slots[prepared.slot].as_mut() else {
             return;
         };
         let Some(key) = &slot.key else { return };
-        self.queue
-            .write_buffer(&self.shadow.uniform, 0, bytemuck::bytes_of(&prepared.raw));
-        self.shadow.encode(
-            &self.device,
-            &self.queue,
-            encoder,
-            self.scene.caster_meshes(key.simplified),
-            layout,
-            &key.casters,
-            &slot.textures,
-            self.moments_clear(settings.shadow.filter),
-            settings.shadow.vsm_blur_texels,
-            timer,
-        );
-        self.shadow_draws += 1;
+        if prepared.redraw {
+            self.queue
+                .write_buffer(&self.shadow.uniform, 0, bytemuck::bytes_of(&prepared.raw));
+            self.shadow.encode(
+                &self.device,
+                &self.queue,
+                encoder,
+                self.scene.caster_meshes(key.simplified),
+                layout,
+                &key.casters,
+                &slot.textures,
+                moments_clear,
+                settings.shadow.vsm_blur_texels,
+                timer.as_deref_mut(),
+            );
+            self.shadow_draws += 1;
+            if let Some(ranges) = &mut slot.textures.ranges {
+                ranges.invalidate();
+            }
+        }
+        if let (Some(level), Some(ranges)) = (prepared.build_ranges, &mut slot.textures.ranges) {
+            let active: Vec<usize> = (0..layout.layers.len())
+                .filter(|&i| layout.layers[i].active)
+                .collect();
+            self.shadow.ranges.encode(
+                &self.device,
+                &self.queue,
+                encoder,
+                &slot.textures.depth_array,
+                ranges,
+                level,
+                &active,
+                timer,
+            );
+        }
     }
 
     fn moments_clear(&self, filter: Filter) -> Option<[f64; 4]> {

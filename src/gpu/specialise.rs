@@ -44,6 +44,11 @@ pub struct ShadeOptions {
     /// a change ends after a frame or two (the still frame after it traces
     /// them all, and its accumulation starts anew).
     pub one_light_sample: bool,
+    /// PCF reads the depth ranges of a map that has held still for a frame
+    /// (gpu::depth_ranges), built on the first frame that reuses it: a map
+    /// drawn for one frame (a moving light) never pays for them. False:
+    /// every kernel is tested texel by texel (a baseline to compare with).
+    pub depth_ranges: bool,
 }
 
 impl ShadeOptions {
@@ -57,6 +62,7 @@ impl ShadeOptions {
         depth_prepass: false,
         simplified: true,
         one_light_sample: true,
+        depth_ranges: true,
     };
 }
 
@@ -68,6 +74,7 @@ impl Default for ShadeOptions {
             depth_prepass: true,
             simplified: false,
             one_light_sample: false,
+            depth_ranges: true,
         }
     }
 }

@@ -29,7 +29,7 @@ impl std::fmt::Display for PassTimes {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let parts: Vec<String> = [
             ("shadow", self.shadow_ms),
-            ("blur", self.blur_ms),
+            ("prefilter", self.blur_ms),
             ("shade", self.shade_ms),
             ("display", self.display_ms),
         ]

@@ -117,6 +117,10 @@ pub struct ShadowRaw {
     pub light_radius_m: f32,
     /// The moment bias α of `msm`.
     pub msm_bias: f32,
+    /// Block size B (texels) of the depth ranges `pcf` reads
+    /// (gpu::depth_ranges); 0: none are ready for this map.
+    pub range_block: u32,
+    pub _padding: [u32; 3],
 }
 
 /// `Material`: one entry of the materials storage buffer.
@@ -164,6 +168,17 @@ pub struct BlurParamsRaw {
     pub radius_texels: i32,
     /// The layer blurred.
     pub layer: i32,
+}
+
+/// `RangeParams` of `depth_ranges.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct RangeParamsRaw {
+    /// Block side B (texels of the depth map).
+    pub block_texels: i32,
+    /// The layer reduced.
+    pub layer: i32,
+    pub _padding: [i32; 2],
 }
 
 /// Stride of per-layer uniforms selected with a dynamic offset.

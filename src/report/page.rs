@@ -405,7 +405,7 @@ fn table(page: &mut String, report: &Report) {
          from the reference's. Penumbra |ΔV|: mean |V − V_ref| within 2 pixels of a reference shadow edge (and \
          where V_ref is fractional). Highlighted rows are on the Pareto front.</p><table><tr>\
          <th>#</th><th>configuration</th><th title=\"GPU time of a frame with a moving light\">frame (ms)</th>\
-         <th>shadow pass (ms)</th><th>blur (ms)</th><th>shade (ms)</th>\
+         <th>shadow pass (ms)</th><th>prefilter (ms)</th><th>shade (ms)</th>\
          <th title=\"root mean square of the luminance error\">RMSE (W/m²/sr)</th><th>relative RMSE</th>\
          <th>max |error| (W/m²/sr)</th><th>wrong shadow</th><th>penumbra |ΔV|</th></tr>",
     );

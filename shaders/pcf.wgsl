@@ -1,0 +1,152 @@
+// Percentage-closer filtering of the depth map (`pcf`): n×n bilinear
+// tests summed as separable weights, gathered 2×2 texels at a time on the
+// receiver's own face, and decided at once where the depth range of the
+// texels under the kernel leaves no doubt (gpu::depth_ranges).
+
+// The stored values' range over windows of 2×2 blocks of B×B texels, B =
+// shadow.range_block (0: not built for this map, nothing to read): window
+// e covers texels B e … B e + 2B − 1, x the largest stored value there (the
+// nearest surface), y the smallest (the farthest; 0 where nothing was drawn).
+@group(1) @binding(6) var depth_ranges: texture_2d_array<f32>;
+
+// The separable weight of texel i of the n + 1 a row of n bilinear tests
+// touches, at fraction f: the first and last are partly covered.
+fn pcf_weight(i: i32, n: i32, f: f32) -> f32 {
+    return select(select(1.0, f, i == n), 1.0 - f, i == 0);
+}
+
+// What the taps of a PCF kernel on the receiver's own face share, computed
+// once per receiver instead of once per tap: the layer's depth conversion,
+// and compared_depth's terms as functions of the offset k (texels) from
+// the kernel's first texel `base`. tangent_of_texel is affine on a face, so
+// plane_depth's denominator dot(n_v, (t, −1)) is affine in k; its reach
+// grows with the distance from base's centre + k to tc.
+struct OwnFace {
+    depth_a: f32,
+    depth_b: f32,
+    // Bias modes other than auto: the one compared depth.
+    fixed: f32,
+    // Auto: dot(n_v, v), the denominator at base's centre and its steps per
+    // texel in x and y, base's centre − tc, and MAX_SLOPE × texel_m.
+    numerator: f32,
+    denominator: f32,
+    step: vec2<f32>,
+    offset: vec2<f32>,
+    reach: f32,
+}
+
+fn own_face(r: Receiver, base: vec2<i32>) -> OwnFace {
+    let f = frustum();
+    let centre = vec2<f32>(base) + 0.5;
+    let t = tangent_of_texel(centre);
+    let per_texel = vec2<f32>(f.tan_right - f.tan_left, f.tan_bottom - f.tan_top) / resolution();
+    return OwnFace(
+        f.depth_a,
+        f.depth_b,
+        fixed_compared_depth(r),
+        dot(r.n_v, r.v),
+        dot(r.n_v, vec3<f32>(t, -1.0)),
+        r.n_v.xy * per_texel,
+        centre - r.tc,
+        MAX_SLOPE * r.texel_m,
+    );
+}
+
+// own_face_test for the texel base + k holding the stored value d (the
+// same formulas; plane_depth's terms stepped from o's).
+fn own_face_tap(o: OwnFace, r: Receiver, k: vec2<f32>, d: f32) -> f32 {
+    let stored = stored_linear(d, o.depth_a, o.depth_b);
+    var compared = o.fixed;
+    if bias_mode() == BIAS_AUTO {
+        let denom = o.denominator + dot(o.step, k);
+        let reach = o.reach * max(length(o.offset + k), 0.5);
+        compared = auto_compared_depth(r, plane_along(r, o.numerator, denom, reach));
+    }
+    return select(0.0, 1.0, compared <= stored);
+}
+
+// The weighted test of texel base + k of an n×n kernel at fraction f: 0 off
+// the kernel (k > n) and off the face (the second loop of filter_pcf).
+fn own_face_texel(o: OwnFace, r: Receiver, base: vec2<i32>, k: vec2<i32>, n: i32, f: vec2<f32>, d: f32) -> f32 {
+    let w = pcf_weight(k.x, n, f.x) * pcf_weight(k.y, n, f.y);
+    let counted = in_map(base + k) && all(k <= vec2<i32>(n));
+    return select(0.0, w * own_face_tap(o, r, vec2<f32>(k), d), counted);
+}
+
+// n×n bilinear PCF: the average of n×n bilinear tests one texel apart,
+// summed as separable weights over the (n + 1)² texels they touch.
+fn filter_pcf(r: Receiver) -> f32 {
+    let n = i32(shadow.pcf_size);
+    let c = r.tc - 0.5;
+    let base = vec2<i32>(floor(c)) - vec2<i32>((n - 1) / 2);
+    let f = fract(c);
+    let o = own_face(r, base);
+    let verdict = range_verdict(o, r, base, n);
+    // Decided pixels run the loops below zero times (lavapipe skips a loop
+    // no pixel of a block enters, where it would run both sides of an if).
+    let last = select(n, -1, verdict >= 0.0);
+    var sum = 0.0;
+    // The taps on the receiver's own face first, 2×2 texels a gather, then,
+    // only where the kernel reaches past the face's edge, those beyond it
+    // (depth_test's cube addressing). A software rasterizer runs both sides
+    // of a branch for a block of pixels, but a loop stops once no pixel in
+    // the block is active: kernels inside their face pay for one tap's
+    // addressing, not (n + 1)² of them. The same taps and weights as one
+    // loop over depth_test.
+    for (var j = 0; j <= last; j += 2) {
+        for (var i = 0; i <= last; i += 2) {
+            let k = vec2<i32>(i, j);
+            // Texels k + (0, 1), (1, 1), (1, 0), k (textureGather's order).
+            let d = gather_depths(r.layer, base + k);
+            sum += own_face_texel(o, r, base, k + vec2<i32>(0, 1), n, f, d.x)
+                + own_face_texel(o, r, base, k + vec2<i32>(1, 1), n, f, d.y)
+                + own_face_texel(o, r, base, k + vec2<i32>(1, 0), n, f, d.z)
+                + own_face_texel(o, r, base, k, n, f, d.w);
+        }
+    }
+    if !(in_map(base) && in_map(base + vec2<i32>(n))) {
+        for (var j = 0; j <= n; j++) {
+            for (var i = 0; i <= n; i++) {
+                let texel = base + vec2<i32>(i, j);
+                if !in_map(texel) {
+                    sum += pcf_weight(i, n, f.x) * pcf_weight(j, n, f.y) * depth_test(r, texel);
+                }
+            }
+        }
+    }
+    return select(sum / f32(n * n), verdict, verdict >= 0.0);
+}
+
+// What the window of depth_ranges holding the kernel's texels base …
+// base + n says of all its tests at once: 1 every texel lights the
+// receiver, 0 every texel hides it, −1 undecided (each is tested). The
+// compared depth of own_face_tap is at most r.z − slack (auto) and at least
+// r.z − reach − slack, reach taken at the kernel's corner farthest from tc;
+// the other biases compare one depth. The margin covers rounding: deciding
+// fewer pixels is always right, and the decided ones get the value the
+// loops would have summed (1 up to the weights' rounding, or exactly 0).
+fn range_verdict(o: OwnFace, r: Receiver, base: vec2<i32>, n: i32) -> f32 {
+    let block = i32(shadow.range_block);
+    let known = block > 0 && in_map(base) && in_map(base + vec2<i32>(n)) && (shadow.layer_mask & (1u << r.layer)) != 0u;
+    let range = textureLoad(depth_ranges, base / max(block, 1), i32(r.layer), 0).xy;
+    let nearest = stored_linear(range.x, o.depth_a, o.depth_b);
+    let farthest = stored_linear(range.y, o.depth_a, o.depth_b);
+    var highest = o.fixed;
+    var lowest = o.fixed;
+    if bias_mode() == BIAS_AUTO {
+        let corner = max(abs(o.offset), abs(o.offset + f32(n)));
+        highest = r.z - auto_bias_slack(r);
+        lowest = highest - o.reach * max(length(corner), 0.5);
+    }
+    let margin = 1e-5 * r.z;
+    let verdict = select(select(-1.0, 0.0, lowest - margin > farthest), 1.0, highest + margin <= nearest);
+    return select(-1.0, verdict, known);
+}
+
+// The stored values of texels t + (0, 1), (1, 1), (1, 0) and t of a layer
+// (textureGather's order), clamped to the map's edge: one fetch for four.
+// The sample point is the corner the four share.
+fn gather_depths(layer: u32, t: vec2<i32>) -> vec4<f32> {
+    let corner = vec2<f32>(t + 1) / resolution();
+    return textureGather(0, shadow_depth_values, shadow_depth_gather, corner, i32(layer));
+}

@@ -1,0 +1,221 @@
+//! The range of stored depths over windows of the shadow map, read by PCF
+//! to decide a whole kernel at once (shaders/depth_ranges.wgsl, and
+//! `range_verdict` in shaders/pcf.wgsl). Where every texel under a kernel
+//! is farther than the receiver, or every one nearer by more than the bias
+//! can reach, one read gives V = 1 or V = 0 instead of (n + 1)² depth
+//! tests: on lavapipe a texel fetch costs about a flat pass, and most
+//! pixels are fully lit or fully shadowed.
+//!
+//! Only where the map's depth is flat across a window: the receiver's own
+//! surface, sloped in the light's view, is nearer than the receiver on one
+//! side of its kernel, so a sloped receiver is always tested texel by
+//! texel (the ranges know no plane).
+//!
+//! Built per map and kernel size on the first frame that reuses a map (a
+//! map drawn for one frame, under a moving light, never pays for them), in
+//! two passes per layer: blocks of B×B texels, then windows of 2×2 blocks.
+//! The build reads every texel of the map once, about what drawing the map
+//! costs on lavapipe.
+
+use super::binding;
+use super::shaders::Shader;
+use super::timing::{GpuTimer, Pass};
+use super::uniforms::{DYNAMIC_STRIDE, RangeParamsRaw};
+use wgpu::ShaderStages;
+
+/// The block sides B (texels) built: a kernel of n + 1 texels a side fits
+/// in one window when n ≤ B.
+const BLOCKS: [u32; 3] = [4, 8, 16];
+const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+
+/// Which level serves an n×n PCF kernel: the smallest block with n ≤ B.
+pub fn level_for(pcf_size: u32) -> Option<usize> {
+    BLOCKS.iter().position(|&b| pcf_size <= b)
+}
+
+/// Block side B (texels) of a level.
+pub fn block_texels(level: usize) -> u32 {
+    BLOCKS[level]
+}
+
+/// Bytes per shadow-map texel the ranges of every level take, rounded up.
+pub const BYTES_PER_TEXEL: u64 = 2;
+
+/// One level's blocks and windows, each a 2D array with a layer per map layer.
+struct Level {
+    blocks: (wgpu::TextureView, Vec<wgpu::TextureView>),
+    windows: (wgpu::TextureView, Vec<wgpu::TextureView>),
+    /// The windows hold the current map's ranges.
+    built: bool,
+}
+
+/// The ranges of one shadow map, at every level.
+pub struct RangeTextures {
+    levels: Vec<Level>,
+}
+
+impl RangeTextures {
+    pub fn new(device: &wgpu::Device, resolution: u32, layers: u32) -> Self {
+        let views = |label: &str, side: u32| {
+            let (_, array, per_layer) = super::shadow::array_texture(device, label, side, layers, FORMAT);
+            (array, per_layer)
+        };
+        let levels = BLOCKS
+            .iter()
+            .map(|&b| {
+                let side = resolution.div_ceil(b);
+                Level {
+                    blocks: views("shadow depth blocks", side),
+                    windows: views("shadow depth ranges", side),
+                    built: false,
+                }
+            })
+            .collect();
+        Self { levels }
+    }
+
+    /// The map was drawn again: no range holds.
+    pub fn invalidate(&mut self) {
+        for level in &mut self.levels {
+            level.built = false;
+        }
+    }
+
+    pub fn is_built(&self, level: usize) -> bool {
+        self.levels[level].built
+    }
+
+    /// The windows of a level, as the camera pass binds them.
+    pub fn windows(&self, level: usize) -> &wgpu::TextureView {
+        &self.levels[level].windows.0
+    }
+}
+
+/// The two pipelines, their bind group layout and per-layer parameters.
+pub struct RangePass {
+    layout: wgpu::BindGroupLayout,
+    blocks: wgpu::RenderPipeline,
+    windows: wgpu::RenderPipeline,
+    sampler: wgpu::Sampler,
+    params: wgpu::Buffer,
+}
+
+impl RangePass {
+    pub fn new(device: &wgpu::Device, max_layers: u32) -> Self {
+        let layout = binding::layout(
+            device,
+            "depth ranges",
+            &[
+                binding::texture(
+                    0,
+                    ShaderStages::FRAGMENT,
+                    wgpu::TextureSampleType::Float { filterable: false },
+                    wgpu::TextureViewDimension::D2Array,
+                ),
+                binding::sampler(1, ShaderStages::FRAGMENT, wgpu::SamplerBindingType::NonFiltering),
+                binding::dynamic_uniform(2, ShaderStages::FRAGMENT),
+            ],
+        );
+        let pipeline_layout = binding::pipeline_layout(device, "depth ranges", &[&layout]);
+        let module = Shader::DepthRanges.module(device);
+        let pipeline = |entry: &str| {
+            binding::fullscreen_pipeline(
+                device,
+                "depth ranges",
+                &pipeline_layout,
+                &module,
+                entry,
+                &[],
+                FORMAT,
+            )
+        };
+        Self {
+            blocks: pipeline("fs_blocks"),
+            windows: pipeline("fs_windows"),
+            sampler: device.create_sampler(&wgpu::SamplerDescriptor {
+                label: Some("depth ranges"),
+                ..Default::default()
+            }),
+            params: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("depth range params"),
+                size: DYNAMIC_STRIDE * max_layers as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+            layout,
+        }
+    }
+
+    /// Builds `level` of `ranges` from the depth map `depth` (its layers
+    /// `layers`), timed as the map's prefilter.
+    #[allow(clippy::too_many_arguments)]
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        depth: &wgpu::TextureView,
+        ranges: &mut RangeTextures,
+        level: usize,
+        layers: &[usize],
+        mut timer: Option<&mut GpuTimer>,
+    ) {
+        let group = |source: &wgpu::TextureView| {
+            binding::group(
+                device,
+                "depth ranges",
+                &self.layout,
+                &[
+                    wgpu::BindingResource::TextureView(source),
+                    wgpu::BindingResource::Sampler(&self.sampler),
+                    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &self.params,
+                        offset: 0,
+                        // 16: std140 backends (GL) round a uniform block up to 16 bytes.
+                        size: wgpu::BufferSize::new(16),
+                    }),
+                ],
+            )
+        };
+        let target = &ranges.levels[level];
+        let from_depth = group(depth);
+        let from_blocks = group(&target.blocks.0);
+        let steps = 2 * layers.len();
+        for (n, &layer) in layers.iter().enumerate() {
+            let params = RangeParamsRaw {
+                block_texels: BLOCKS[level] as i32,
+                layer: layer as i32,
+                ..Default::default()
+            };
+            let offset = layer as u64 * DYNAMIC_STRIDE;
+            queue.write_buffer(&self.params, offset, bytemuck::bytes_of(&params));
+            for (step, (pipeline, source, output)) in [
+                (&self.blocks, &from_depth, &target.blocks.1[layer]),
+                (&self.windows, &from_blocks, &target.windows.1[layer]),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                let index = 2 * n + step;
+                let timestamp_writes = timer
+                    .as_deref_mut()
+                    .and_then(|t| t.writes(Pass::Blur, index == 0, index + 1 == steps));
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("depth ranges"),
+                    color_attachments: &[binding::color_attachment(
+                        output,
+                        wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    )],
+                    depth_stencil_attachment: None,
+                    timestamp_writes,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, source, &[offset as u32]);
+                pass.draw(0..3, 0..1);
+            }
+        }
+        ranges.levels[level].built = true;
+    }
+}
