@@ -128,19 +128,24 @@ fn filter_pcf(r: Receiver) -> f32 {
 fn range_verdict(o: OwnFace, r: Receiver, base: vec2<i32>, n: i32) -> f32 {
     let block = i32(shadow.range_block);
     let known = block > 0 && in_map(base) && in_map(base + vec2<i32>(n)) && (shadow.layer_mask & (1u << r.layer)) != 0u;
-    let range = textureLoad(depth_ranges, base / max(block, 1), i32(r.layer), 0).xy;
-    let nearest = stored_linear(range.x, o.depth_a, o.depth_b);
-    let farthest = stored_linear(range.y, o.depth_a, o.depth_b);
-    var highest = o.fixed;
-    var lowest = o.fixed;
-    if bias_mode() == BIAS_AUTO {
-        let corner = max(abs(o.offset), abs(o.offset + f32(n)));
-        highest = r.z - auto_bias_slack(r);
-        lowest = highest - o.reach * max(length(corner), 0.5);
+    var verdict = -1.0;
+    // One trip, or none where no range is read: lavapipe skips a loop that
+    // no pixel of a block enters (a map without ranges costs no read).
+    for (var once = known; once; once = false) {
+        let range = textureLoad(depth_ranges, base / block, i32(r.layer), 0).xy;
+        let nearest = stored_linear(range.x, o.depth_a, o.depth_b);
+        let farthest = stored_linear(range.y, o.depth_a, o.depth_b);
+        var highest = o.fixed;
+        var lowest = o.fixed;
+        if bias_mode() == BIAS_AUTO {
+            let corner = max(abs(o.offset), abs(o.offset + f32(n)));
+            highest = r.z - auto_bias_slack(r);
+            lowest = highest - o.reach * max(length(corner), 0.5);
+        }
+        let margin = 1e-5 * r.z;
+        verdict = select(select(-1.0, 0.0, lowest - margin > farthest), 1.0, highest + margin <= nearest);
     }
-    let margin = 1e-5 * r.z;
-    let verdict = select(select(-1.0, 0.0, lowest - margin > farthest), 1.0, highest + margin <= nearest);
-    return select(-1.0, verdict, known);
+    return verdict;
 }
 
 // The stored values of texels t + (0, 1), (1, 1), (1, 0) and t of a layer
