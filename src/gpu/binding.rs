@@ -56,11 +56,20 @@ pub fn texture(
 
 /// A float texture read with `textureLoad` only (any float format).
 pub fn float_texture(binding: u32, visibility: ShaderStages) -> Entry {
+    unfilterable(binding, visibility, wgpu::TextureViewDimension::D2)
+}
+
+/// A 2D texture array read with `textureLoad` or a non-filtering sampler.
+pub fn float_array(binding: u32, visibility: ShaderStages) -> Entry {
+    unfilterable(binding, visibility, wgpu::TextureViewDimension::D2Array)
+}
+
+fn unfilterable(binding: u32, visibility: ShaderStages, dimension: wgpu::TextureViewDimension) -> Entry {
     texture(
         binding,
         visibility,
         wgpu::TextureSampleType::Float { filterable: false },
-        wgpu::TextureViewDimension::D2,
+        dimension,
     )
 }
 
@@ -158,6 +167,32 @@ pub fn fullscreen_pipeline(
         multiview_mask: None,
         cache: None,
     })
+}
+
+/// A pass of [`fullscreen_pipeline`]'s triangle into `target` (cleared
+/// first), with `group` bound at a dynamic offset.
+pub fn fullscreen_pass(
+    encoder: &mut wgpu::CommandEncoder,
+    label: &str,
+    target: &wgpu::TextureView,
+    pipeline: &wgpu::RenderPipeline,
+    (group, offset): (&wgpu::BindGroup, u32),
+    timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+) {
+    let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[color_attachment(
+            target,
+            wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+        )],
+        depth_stencil_attachment: None,
+        timestamp_writes,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    });
+    pass.set_pipeline(pipeline);
+    pass.set_bind_group(0, group, &[offset]);
+    pass.draw(0..3, 0..1);
 }
 
 /// A colour attachment that loads or clears `view` and stores the result.

@@ -19,7 +19,7 @@
 
 use super::binding;
 use super::shaders::Shader;
-use super::timing::{GpuTimer, Pass};
+use super::timing::GpuTimer;
 use super::uniforms::{DYNAMIC_STRIDE, RangeParamsRaw};
 use wgpu::ShaderStages;
 
@@ -106,12 +106,7 @@ impl RangePass {
             device,
             "depth ranges",
             &[
-                binding::texture(
-                    0,
-                    ShaderStages::FRAGMENT,
-                    wgpu::TextureSampleType::Float { filterable: false },
-                    wgpu::TextureViewDimension::D2Array,
-                ),
+                binding::float_array(0, ShaderStages::FRAGMENT),
                 binding::sampler(1, ShaderStages::FRAGMENT, wgpu::SamplerBindingType::NonFiltering),
                 binding::dynamic_uniform(2, ShaderStages::FRAGMENT),
             ],
@@ -136,28 +131,24 @@ impl RangePass {
                 label: Some("depth ranges"),
                 ..Default::default()
             }),
-            params: device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("depth range params"),
-                size: DYNAMIC_STRIDE * max_layers as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }),
+            params: binding::buffer(
+                device,
+                "depth range params",
+                DYNAMIC_STRIDE * max_layers as u64,
+                wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            ),
             layout,
         }
     }
 
     /// Builds `level` of `ranges` from the depth map `depth` (its layers
     /// `layers`), timed as the map's prefilter.
-    #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
         encoder: &mut wgpu::CommandEncoder,
-        depth: &wgpu::TextureView,
-        ranges: &mut RangeTextures,
-        level: usize,
-        layers: &[usize],
+        (depth, layers): (&wgpu::TextureView, &[usize]),
+        (ranges, level): (&mut RangeTextures, usize),
         mut timer: Option<&mut GpuTimer>,
     ) {
         let group = |source: &wgpu::TextureView| {
@@ -196,24 +187,13 @@ impl RangePass {
             .into_iter()
             .enumerate()
             {
-                let index = 2 * n + step;
-                let timestamp_writes = timer
-                    .as_deref_mut()
-                    .and_then(|t| t.writes(Pass::Blur, index == 0, index + 1 == steps));
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("depth ranges"),
-                    color_attachments: &[binding::color_attachment(
-                        output,
-                        wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    )],
-                    depth_stencil_attachment: None,
-                    timestamp_writes,
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                pass.set_pipeline(pipeline);
-                pass.set_bind_group(0, source, &[offset as u32]);
-                pass.draw(0..3, 0..1);
+                super::shadow::prefilter_pass(
+                    encoder,
+                    ("depth ranges", output, pipeline),
+                    (source, offset as u32),
+                    timer.as_deref_mut(),
+                    (2 * n + step, steps),
+                );
             }
         }
         ranges.levels[level].built = true;

@@ -74,19 +74,9 @@ impl ShadePass {
                     wgpu::TextureViewDimension::D2Array,
                 ),
                 binding::sampler(3, fragment, wgpu::SamplerBindingType::Filtering),
-                binding::texture(
-                    4,
-                    fragment,
-                    wgpu::TextureSampleType::Float { filterable: false },
-                    wgpu::TextureViewDimension::D2Array,
-                ),
+                binding::float_array(4, fragment),
                 binding::sampler(5, fragment, wgpu::SamplerBindingType::NonFiltering),
-                binding::texture(
-                    6,
-                    fragment,
-                    wgpu::TextureSampleType::Float { filterable: false },
-                    wgpu::TextureViewDimension::D2Array,
-                ),
+                binding::float_array(6, fragment),
             ],
         );
         let raytrace_layout = super::raytrace::layout(device);

@@ -372,12 +372,7 @@ impl BlurPass {
             device,
             "moment blur",
             &[
-                binding::texture(
-                    0,
-                    ShaderStages::FRAGMENT,
-                    wgpu::TextureSampleType::Float { filterable: false },
-                    wgpu::TextureViewDimension::D2Array,
-                ),
+                binding::float_array(0, ShaderStages::FRAGMENT),
                 binding::dynamic_uniform(1, ShaderStages::FRAGMENT),
             ],
         );
@@ -453,25 +448,28 @@ impl BlurPass {
                     layer: layer as i32,
                 };
                 queue.write_buffer(&self.params, slot * DYNAMIC_STRIDE, bytemuck::bytes_of(&params));
-                let index = 2 * n + direction;
-                let timestamp_writes = timer
-                    .as_deref_mut()
-                    .and_then(|t| t.writes(Pass::Blur, index == 0, index + 1 == steps));
-                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                    label: Some("moment blur"),
-                    color_attachments: &[binding::color_attachment(
-                        target,
-                        wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    )],
-                    depth_stencil_attachment: None,
-                    timestamp_writes,
-                    occlusion_query_set: None,
-                    multiview_mask: None,
-                });
-                pass.set_pipeline(&self.pipeline);
-                pass.set_bind_group(0, source, &[(slot * DYNAMIC_STRIDE) as u32]);
-                pass.draw(0..3, 0..1);
+                prefilter_pass(
+                    encoder,
+                    ("moment blur", target, &self.pipeline),
+                    (source, (slot * DYNAMIC_STRIDE) as u32),
+                    timer.as_deref_mut(),
+                    (2 * n + direction, steps),
+                );
             }
         }
     }
+}
+
+/// Step `index` of the `steps` passes of a map's prefilter (the moment
+/// blur, or the depth ranges): a full-screen pass into `target`, the steps
+/// timed as one span.
+pub(super) fn prefilter_pass(
+    encoder: &mut wgpu::CommandEncoder,
+    (label, target, pipeline): (&str, &wgpu::TextureView, &wgpu::RenderPipeline),
+    group: (&wgpu::BindGroup, u32),
+    timer: Option<&mut GpuTimer>,
+    (index, steps): (usize, usize),
+) {
+    let timestamp_writes = timer.and_then(|t| t.writes(Pass::Blur, index == 0, index + 1 == steps));
+    binding::fullscreen_pass(encoder, label, target, pipeline, group, timestamp_writes);
 }

@@ -361,13 +361,10 @@ impl SharedScene {
                 .filter(|&i| layout.layers[i].active)
                 .collect();
             self.shadow.ranges.encode(
-                &self.device,
-                &self.queue,
+                (&self.device, &self.queue),
                 encoder,
-                &slot.textures.depth_array,
-                ranges,
-                level,
-                &active,
+                (&slot.textures.depth_array, &active),
+                (ranges, level),
                 timer,
             );
         }
