@@ -191,6 +191,8 @@ pub fn ui(ui: &mut egui::Ui, clock: &FrameClock, gpu: Option<&GpuViews>) {
                         tr!("timings-redrawn")
                     } else if r.shadow_map_unused {
                         tr!("timings-unused")
+                    } else if let Some(block) = r.depth_ranges {
+                        tr!("timings-reused-ranges", block = block)
                     } else {
                         tr!("timings-reused")
                     },
