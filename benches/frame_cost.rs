@@ -288,11 +288,24 @@ fn breakdown(renderer: &mut Renderer) {
         ..ShadeOptions::default()
     };
     type Variant = (&'static str, fn(&mut Settings), ShadeOptions);
-    let variants: [Variant; 8] = [
+    let variants: [Variant; 10] = [
         ("default: PCF 3×3, shaded, quantity only", |_| {}, plain),
         (
             "PCF 3×3, every texel tested (no depth ranges)",
             |_| {},
+            ShadeOptions {
+                depth_ranges: false,
+                ..plain
+            },
+        ),
+        (
+            "Poisson 16 taps, decided from the depth ranges",
+            |s| s.shadow.filter = Filter::Poisson,
+            plain,
+        ),
+        (
+            "Poisson 16 taps, every tap tested",
+            |s| s.shadow.filter = Filter::Poisson,
             ShadeOptions {
                 depth_ranges: false,
                 ..plain

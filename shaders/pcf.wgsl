@@ -117,8 +117,9 @@ fn filter_pcf(r: Receiver) -> f32 {
     return select(sum / f32(n * n), verdict, verdict >= 0.0);
 }
 
-// What the window of depth_ranges holding the kernel's texels base …
-// base + n says of all its tests at once: 1 every texel lights the
+// What the window of depth_ranges holding the texels base … base + n a
+// filter reads (PCF's kernel, or the square around a Poisson disc) says
+// of all its tests at once: 1 every texel lights the
 // receiver, 0 every texel hides it, −1 undecided (each is tested). The
 // compared depth of own_face_tap is at most r.z − slack (auto) and at least
 // r.z − reach − slack, reach taken at the kernel's corner farthest from tc;
@@ -127,7 +128,7 @@ fn filter_pcf(r: Receiver) -> f32 {
 // loops would have summed (1 up to the weights' rounding, or exactly 0).
 fn range_verdict(o: OwnFace, r: Receiver, base: vec2<i32>, n: i32) -> f32 {
     let block = i32(shadow.range_block);
-    let known = block > 0 && in_map(base) && in_map(base + vec2<i32>(n)) && (shadow.layer_mask & (1u << r.layer)) != 0u;
+    let known = block >= n && n >= 0 && block > 0 && in_map(base) && in_map(base + vec2<i32>(n)) && (shadow.layer_mask & (1u << r.layer)) != 0u;
     var verdict = -1.0;
     // One trip, or none where no range is read: lavapipe skips a loop that
     // no pixel of a block enters (a map without ranges costs no read).

@@ -312,14 +312,22 @@ fn rotate(v: vec2<f32>, angle: f32) -> vec2<f32> {
 }
 
 fn filter_poisson(r: Receiver, pixel: vec2<f32>) -> f32 {
-    let count = shadow.poisson_samples;
+    // The taps lie within R of tc: the texels from floor(tc − R) to
+    // floor(tc + R), one more each side for the rotation's rounding
+    // (gpu::depth_ranges::level_for bounds the span alike).
+    let radius = shadow.poisson_radius_texels;
+    let base = vec2<i32>(floor(r.tc - radius)) - 1;
+    let span = vec2<i32>(floor(r.tc + radius)) + 1 - base;
+    let verdict = range_verdict(own_face(r, base), r, base, max(span.x, span.y));
+    // Decided pixels take no tap (a loop of zero trips, as in filter_pcf).
+    let count = select(shadow.poisson_samples, 0u, verdict >= 0.0);
     let angle = pixel_angle(pixel);
     var sum = 0.0;
     for (var s = 0u; s < count; s++) {
         let offset = rotate(POISSON_DISC[s], angle) * shadow.poisson_radius_texels;
         sum += depth_test(r, vec2<i32>(floor(r.tc + offset)));
     }
-    return sum / f32(count);
+    return select(sum / f32(shadow.poisson_samples), verdict, verdict >= 0.0);
 }
 
 // Percentage-closer soft shadows for the sphere light of radius R: the

@@ -1,7 +1,8 @@
-//! PCF decided from the depth ranges (gpu::depth_ranges: one read settles a
-//! kernel whose texels all light, or all hide, the receiver) gives the V of
-//! the same kernel tested texel by texel, for every kernel size, bias mode
-//! and map layout. Tests elsewhere hold PCF itself to the CPU reference.
+//! PCF and Poisson decided from the depth ranges (gpu::depth_ranges: one
+//! read settles a kernel whose texels all light, or all hide, the receiver)
+//! give the V of the same taps tested one by one, for every PCF kernel
+//! size, bias mode and map layout. Tests elsewhere hold the filters
+//! themselves to the CPU reference.
 
 mod common;
 
@@ -11,7 +12,7 @@ use lumlab::gpu::{Renderer, ShadeOptions};
 use lumlab::settings::{BiasMode, Filter, Settings};
 
 #[test]
-fn pcf_decided_from_depth_ranges_matches_every_texel_tested() {
+fn filters_decided_from_depth_ranges_match_every_tap_tested() {
     let gpu = gpu();
     let scene = lumlab::scene::default_scene();
     let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
@@ -27,16 +28,26 @@ fn pcf_decided_from_depth_ranges_matches_every_texel_tested() {
         for &bias in BiasMode::ALL {
             cases.push((light_y_m, layout, 3, bias));
         }
+        // n = 0: the Poisson disc (its default radius, 2 texels).
+        cases.push((light_y_m, layout, 0, auto));
     }
     for (i, (light_y_m, layout, n, bias)) in cases.into_iter().enumerate() {
         let mut s = Settings::default();
         // A light that moved a little: each case draws its own map.
         s.light.position.x += 1e-3 * i as f32;
         s.light.position.y = light_y_m;
-        s.shadow.filter = Filter::Pcf;
-        s.shadow.pcf_size = n;
+        if n == 0 {
+            s.shadow.filter = Filter::Poisson;
+        } else {
+            s.shadow.filter = Filter::Pcf;
+            s.shadow.pcf_size = n;
+        }
         s.shadow.bias.mode = bias;
-        let what = format!("PCF {n}×{n}, bias {bias:?}, {layout:?} map");
+        let filter = match n {
+            0 => "Poisson".to_owned(),
+            _ => format!("PCF {n}×{n}"),
+        };
+        let what = format!("{filter}, bias {bias:?}, {layout:?} map");
         // The frame that draws the map tests every texel; the next one
         // builds the ranges and reads them.
         let drawn = renderer.render(&s, size);

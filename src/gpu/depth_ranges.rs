@@ -1,6 +1,6 @@
 //! The range of stored depths over windows of the shadow map, read by PCF
-//! to decide a whole kernel at once (shaders/depth_ranges.wgsl, and
-//! `range_verdict` in shaders/pcf.wgsl). Where every texel under a kernel
+//! and the Poisson disc to decide a whole kernel at once
+//! (shaders/depth_ranges.wgsl, and `range_verdict` in shaders/pcf.wgsl). Where every texel under a kernel
 //! is farther than the receiver, or every one nearer by more than the bias
 //! can reach, one read gives V = 1 or V = 0 instead of (n + 1)² depth
 //! tests: on lavapipe a texel fetch costs about a flat pass, and most
@@ -21,6 +21,7 @@ use super::binding;
 use super::shaders::Shader;
 use super::timing::GpuTimer;
 use super::uniforms::{DYNAMIC_STRIDE, RangeParamsRaw};
+use crate::settings::{Filter, ShadowSettings};
 use wgpu::ShaderStages;
 
 /// The block sides B (texels) built: a kernel of n + 1 texels a side fits
@@ -28,9 +29,18 @@ use wgpu::ShaderStages;
 const BLOCKS: [u32; 3] = [4, 8, 16];
 const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 
-/// Which level serves an n×n PCF kernel: the smallest block with n ≤ B.
-pub fn level_for(pcf_size: u32) -> Option<usize> {
-    BLOCKS.iter().position(|&b| pcf_size <= b)
+/// Which level serves the filter of `shadow`: the smallest block B with
+/// n ≤ B for a filter whose taps span at most n + 1 texels a side (PCF n×n;
+/// a Poisson disc of radius R, ⌈2R⌉ + 3 with a texel of slack each side,
+/// as `filter_poisson` bounds them). None: the filter reads no ranges, or
+/// its taps spread wider than any window.
+pub fn level_for(shadow: &ShadowSettings) -> Option<usize> {
+    let n = match shadow.filter {
+        Filter::Pcf => shadow.pcf_size,
+        Filter::Poisson => (2.0 * shadow.poisson_radius_texels).ceil() as u32 + 3,
+        _ => return None,
+    };
+    BLOCKS.iter().position(|&b| n <= b)
 }
 
 /// Block side B (texels) of a level.

@@ -31,8 +31,8 @@ pub struct FrameReport {
     /// The triangles drawn when the frame drew the simplified meshes (None:
     /// the full ones).
     pub simplified_triangles: Option<usize>,
-    /// The block side (texels) of the depth ranges PCF read this frame
-    /// (gpu::depth_ranges); None: every kernel was tested texel by texel.
+    /// The block side (texels) of the depth ranges the filter read this
+    /// frame (gpu::depth_ranges); None: every tap was tested.
     pub depth_ranges: Option<u32>,
 }
 

@@ -359,7 +359,7 @@ impl Renderer {
             &self.device,
             shadow_textures,
             &shared.dummy_moments,
-            settings.shadow.pcf_size,
+            &settings.shadow,
         );
         self.layout_kind = layout.map(|l| l.kind);
         let (raytrace_group, accumulating) = self.raytrace.prepare(

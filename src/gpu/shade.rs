@@ -166,20 +166,20 @@ impl ShadePass {
     }
 
     /// The bind group of the shadow map's textures, with the depth ranges
-    /// an n×n PCF kernel reads (`pcf_size` n).
+    /// the filter of `settings` reads.
     pub fn shadow_group(
         &self,
         device: &wgpu::Device,
         shadow: &ShadowTextures,
         dummy_moments: &wgpu::TextureView,
-        pcf_size: u32,
+        settings: &crate::settings::ShadowSettings,
     ) -> wgpu::BindGroup {
         let moments = shadow.moments.as_ref().map_or(dummy_moments, |m| &m.array);
         // Unread (Shadow::range_block = 0) where no ranges were built.
         let ranges = shadow
             .ranges
             .as_ref()
-            .zip(depth_ranges::level_for(pcf_size))
+            .zip(depth_ranges::level_for(settings))
             .map_or(dummy_moments, |(r, level)| r.windows(level));
         binding::group(
             device,

@@ -260,16 +260,11 @@ impl SharedScene {
                 (view, redraw)
             }
         };
-        // PCF reads the ranges of a map drawn before this frame, built on
-        // the first frame that reads them.
+        // PCF and Poisson read the ranges of a map drawn before this frame,
+        // built on the first frame that reads them.
         let ranges = self.slots[slot].as_ref().and_then(|s| s.textures.ranges.as_ref());
-        let level = depth_ranges::level_for(s.pcf_size).filter(|_| {
-            depth_ranges
-                && s.filter == Filter::Pcf
-                && !report.shadow_map_unused
-                && !redraw
-                && ranges.is_some()
-        });
+        let level = depth_ranges::level_for(s)
+            .filter(|_| depth_ranges && !report.shadow_map_unused && !redraw && ranges.is_some());
         let build_ranges = level.filter(|&l| !ranges.is_some_and(|r| r.is_built(l)));
         report.depth_ranges = level.map(depth_ranges::block_texels);
         raw.range_block = report.depth_ranges.unwrap_or(0);

@@ -44,10 +44,10 @@ pub struct ShadeOptions {
     /// a change ends after a frame or two (the still frame after it traces
     /// them all, and its accumulation starts anew).
     pub one_light_sample: bool,
-    /// PCF reads the depth ranges of a map that has held still for a frame
-    /// (gpu::depth_ranges), built on the first frame that reuses it: a map
-    /// drawn for one frame (a moving light) never pays for them. False:
-    /// every kernel is tested texel by texel (a baseline to compare with).
+    /// PCF and Poisson read the depth ranges of a map that has held still
+    /// for a frame (gpu::depth_ranges), built on the first frame that
+    /// reuses it: a map drawn for one frame (a moving light) never pays for
+    /// them. False: every tap is tested (a baseline to compare with).
     pub depth_ranges: bool,
 }
 
