@@ -16,6 +16,10 @@ fn filters_decided_from_depth_ranges_match_every_tap_tested() {
     let gpu = gpu();
     let scene = lumlab::scene::default_scene();
     let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    // Lavapipe (the tests' adapter) renders their format; llvmpipe's GL
+    // does not, and tests every tap (the held frame below reads none).
+    let ranges = renderer.capabilities().depth_ranges;
+    assert!(ranges || renderer.capabilities().gl, "only GL lacks the ranges");
     let size = (160, 120);
     let auto = Settings::default().shadow.bias.mode;
     let mut cases = Vec::new();
@@ -57,6 +61,10 @@ fn filters_decided_from_depth_ranges_match_every_tap_tested() {
         let tested = renderer.read_aux();
         let held = renderer.render(&s, size);
         assert!(!held.shadow_redrawn, "{what}: the map holds");
+        if !ranges {
+            assert_eq!(held.depth_ranges, None, "{what}: the device has no ranges");
+            continue;
+        }
         let block = held.depth_ranges.unwrap_or_else(|| panic!("{what}: ranges read"));
         assert!(n <= block, "{what}: a kernel fits in a window of B = {block}");
         let decided = renderer.read_aux();

@@ -1,5 +1,7 @@
 //! What a device can do, as the lab uses it: formats, limits, timestamps.
 
+use super::depth_ranges;
+
 /// What this device can do, as the lab uses it.
 #[derive(Clone, Debug)]
 pub struct Capabilities {
@@ -11,6 +13,9 @@ pub struct Capabilities {
     /// VSM/EVSM moments: Rgba32Float where renderable and filterable.
     pub moments_format: wgpu::TextureFormat,
     pub timestamps: bool,
+    /// Rg32Float is renderable: the depth ranges PCF and Poisson read
+    /// (gpu::depth_ranges) can be built; without, every tap is tested.
+    pub depth_ranges: bool,
     /// The GL backend decides a texture's kind from its layer count.
     pub gl: bool,
 }
@@ -37,6 +42,7 @@ impl Capabilities {
             hdr_format: pick(f32_ok),
             moments_format: pick(f32_ok && device.features().contains(wgpu::Features::FLOAT32_FILTERABLE)),
             timestamps: device.features().contains(wgpu::Features::TIMESTAMP_QUERY),
+            depth_ranges: renderable(depth_ranges::FORMAT),
             gl: adapter.get_info().backend == wgpu::Backend::Gl,
         }
     }

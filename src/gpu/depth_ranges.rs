@@ -27,7 +27,7 @@ use wgpu::ShaderStages;
 /// The block sides B (texels) built: a kernel of n + 1 texels a side fits
 /// in one window when n ≤ B.
 const BLOCKS: [u32; 3] = [4, 8, 16];
-const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 
 /// Which level serves the filter of `shadow`: the smallest block B with
 /// n ≤ B for a filter whose taps span at most n + 1 texels a side (PCF n×n;

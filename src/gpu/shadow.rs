@@ -102,11 +102,14 @@ pub(super) fn array_texture(
 }
 
 impl ShadowTextures {
+    /// `depth_ranges`: a depth map gets its ranges' textures (the device
+    /// renders their format, `Capabilities::depth_ranges`).
     pub fn new(
         device: &wgpu::Device,
         resolution: u32,
         layers: u32,
         moments_format: Option<wgpu::TextureFormat>,
+        depth_ranges: bool,
     ) -> Self {
         let (depth, depth_array, depth_layers) =
             array_texture(device, "shadow depth", resolution, layers, DEPTH_FORMAT);
@@ -122,9 +125,8 @@ impl ShadowTextures {
                 scratch_layers,
             }
         });
-        let ranges = moments
-            .is_none()
-            .then(|| RangeTextures::new(device, resolution, layers));
+        let ranges =
+            (moments.is_none() && depth_ranges).then(|| RangeTextures::new(device, resolution, layers));
         Self {
             resolution,
             layers,
@@ -182,7 +184,8 @@ pub struct ShadowPass {
     depth_pipeline: wgpu::RenderPipeline,
     moments_pipeline: wgpu::RenderPipeline,
     blur: BlurPass,
-    pub ranges: RangePass,
+    /// None where the device cannot render the ranges' format.
+    pub ranges: Option<RangePass>,
     pub moments_format: wgpu::TextureFormat,
 }
 
@@ -234,7 +237,7 @@ fn shadow_pipeline(
 }
 
 impl ShadowPass {
-    pub fn new(device: &wgpu::Device, moments_format: wgpu::TextureFormat) -> Self {
+    pub fn new(device: &wgpu::Device, moments_format: wgpu::TextureFormat, depth_ranges: bool) -> Self {
         let uniform = uniform_buffer::<ShadowRaw>(device, "shadow uniforms");
         let layer_index = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("shadow layer index"),
@@ -275,7 +278,7 @@ impl ShadowPass {
             depth_pipeline: shadow_pipeline(device, &pipeline_layout, &module, None),
             moments_pipeline: shadow_pipeline(device, &pipeline_layout, &module, Some(moments_format)),
             blur: BlurPass::new(device, moments_format),
-            ranges: RangePass::new(device, MAX_LAYERS),
+            ranges: depth_ranges.then(|| RangePass::new(device, MAX_LAYERS)),
             uniform,
             layer_index,
             bind_group,

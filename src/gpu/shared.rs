@@ -85,13 +85,14 @@ pub struct SharedScene {
 
 impl SharedScene {
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, caps: Capabilities, scene: &Scene) -> Self {
-        let shadow = ShadowPass::new(device, caps.moments_format);
+        let shadow = ShadowPass::new(device, caps.moments_format, caps.depth_ranges);
         shadow.init(queue);
         let dummy_moments = ShadowTextures::new(
             device,
             1,
             caps.array_layers(1),
             Some(wgpu::TextureFormat::Rgba16Float),
+            false,
         )
         .moments
         .map(|m| m.array)
@@ -118,7 +119,13 @@ impl SharedScene {
     /// A slot for a new view; returns its id.
     pub(super) fn add_view(&mut self) -> usize {
         let slot = ShadowSlot {
-            textures: ShadowTextures::new(&self.device, 256, self.caps.array_layers(1), None),
+            textures: ShadowTextures::new(
+                &self.device,
+                256,
+                self.caps.array_layers(1),
+                None,
+                self.caps.depth_ranges,
+            ),
             key: None,
             spare: None,
         };
@@ -247,7 +254,13 @@ impl SharedScene {
                     let (textures, spare_key) = match own.spare.take() {
                         Some(spare) if holds || fits(&spare.0) => spare,
                         _ => (
-                            ShadowTextures::new(&self.device, resolution, texture_layers, moments_format),
+                            ShadowTextures::new(
+                                &self.device,
+                                resolution,
+                                texture_layers,
+                                moments_format,
+                                self.caps.depth_ranges,
+                            ),
                             None,
                         ),
                     };
@@ -351,11 +364,15 @@ impl SharedScene {
                 ranges.invalidate();
             }
         }
-        if let (Some(level), Some(ranges)) = (prepared.build_ranges, &mut slot.textures.ranges) {
+        if let (Some(level), Some(ranges), Some(pass)) = (
+            prepared.build_ranges,
+            &mut slot.textures.ranges,
+            &self.shadow.ranges,
+        ) {
             let active: Vec<usize> = (0..layout.layers.len())
                 .filter(|&i| layout.layers[i].active)
                 .collect();
-            self.shadow.ranges.encode(
+            pass.encode(
                 (&self.device, &self.queue),
                 encoder,
                 (&slot.textures.depth_array, &active),
