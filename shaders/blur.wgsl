@@ -13,12 +13,6 @@ struct BlurParams {
 @group(0) @binding(0) var source: texture_2d_array<f32>;
 @group(0) @binding(1) var<uniform> params: BlurParams;
 
-@vertex
-fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
-
 @fragment
 fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let step = params.step;

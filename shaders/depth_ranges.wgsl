@@ -23,12 +23,6 @@ struct RangeParams {
 @group(0) @binding(1) var nearest_clamped: sampler;
 @group(0) @binding(2) var<uniform> params: RangeParams;
 
-@vertex
-fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
-
 // Where textureGather reads the 2×2 texels t … t + 1: the corner they share.
 fn corner(t: vec2<i32>) -> vec2<f32> {
     return vec2<f32>(t + 1) / vec2<f32>(textureDimensions(source));

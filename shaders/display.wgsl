@@ -18,12 +18,6 @@ fn display_view() -> u32 {
     return select(SPECIALISED_VIEW, params.view, SPECIALISED_VIEW == SPECIALISE_ANY);
 }
 
-@vertex
-fn vs(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
-
 // A grey level that displays as `value` (the target re-encodes to sRGB).
 fn grey(value: f32) -> vec3<f32> {
     return vec3<f32>(srgb_decode(clamp(value, 0.0, 1.0)));

@@ -1,10 +1,10 @@
 //! The range of stored depths over windows of the shadow map, read by PCF
 //! and the Poisson disc to decide a whole kernel at once
-//! (shaders/depth_ranges.wgsl, and `range_verdict` in shaders/pcf.wgsl). Where every texel under a kernel
-//! is farther than the receiver, or every one nearer by more than the bias
-//! can reach, one read gives V = 1 or V = 0 instead of (n + 1)² depth
-//! tests: on lavapipe a texel fetch costs about a flat pass, and most
-//! pixels are fully lit or fully shadowed.
+//! (shaders/depth_ranges.wgsl, and `range_verdict` in shaders/pcf.wgsl).
+//! Where every texel under a kernel is farther than the receiver, or every
+//! one nearer by more than the bias can reach, one read gives V = 1 or
+//! V = 0 instead of (n + 1)² depth tests: on lavapipe a texel fetch costs
+//! about a flat pass, and most pixels are fully lit or fully shadowed.
 //!
 //! Only where the map's depth is flat across a window: the receiver's own
 //! surface, sloped in the light's view, is nearer than the receiver on one

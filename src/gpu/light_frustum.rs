@@ -244,14 +244,16 @@ impl ShadowLayout {
         }
     }
 
+    /// The indices of the layers drawn.
+    pub fn active_layers(&self) -> Vec<usize> {
+        (0..self.layers.len())
+            .filter(|&i| self.layers[i].active)
+            .collect()
+    }
+
     /// Bit i set when layer i is drawn.
     pub fn active_mask(&self) -> u32 {
-        self.layers
-            .iter()
-            .enumerate()
-            .filter(|(_, l)| l.active)
-            .map(|(i, _)| 1 << i)
-            .sum()
+        self.active_layers().into_iter().map(|i| 1 << i).sum()
     }
 }
 

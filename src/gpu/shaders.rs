@@ -85,8 +85,14 @@ impl Shader {
     fn own_source(self) -> &'static str {
         match self {
             Self::Shadow => include_str!("../../shaders/shadow.wgsl"),
-            Self::Blur => include_str!("../../shaders/blur.wgsl"),
-            Self::DepthRanges => include_str!("../../shaders/depth_ranges.wgsl"),
+            Self::Blur => concat!(
+                include_str!("../../shaders/fullscreen.wgsl"),
+                include_str!("../../shaders/blur.wgsl")
+            ),
+            Self::DepthRanges => concat!(
+                include_str!("../../shaders/fullscreen.wgsl"),
+                include_str!("../../shaders/depth_ranges.wgsl")
+            ),
             Self::Shade => concat!(
                 include_str!("../../shaders/shadow_map.wgsl"),
                 include_str!("../../shaders/pcf.wgsl"),
@@ -96,7 +102,10 @@ impl Shader {
                 include_str!("../../shaders/shade.wgsl")
             ),
             Self::Reduce => include_str!("../../shaders/reduce.wgsl"),
-            Self::Display => include_str!("../../shaders/display.wgsl"),
+            Self::Display => concat!(
+                include_str!("../../shaders/fullscreen.wgsl"),
+                include_str!("../../shaders/display.wgsl")
+            ),
             Self::Lines => include_str!("../../shaders/lines.wgsl"),
             Self::Stability => include_str!("../../shaders/stability.wgsl"),
             Self::ViewportImage => include_str!("../../shaders/viewport_image.wgsl"),

@@ -312,9 +312,7 @@ impl ShadowPass {
         blur_radius: u32,
         mut timer: Option<&mut GpuTimer>,
     ) {
-        let active: Vec<usize> = (0..layout.layers.len())
-            .filter(|&i| layout.layers[i].active)
-            .collect();
+        let active = layout.active_layers();
         for (n, &layer) in active.iter().enumerate() {
             let moments = textures.moments.as_ref().zip(moments_clear);
             let color = moments.map(|(m, clear)| {

@@ -369,13 +369,10 @@ impl SharedScene {
             &mut slot.textures.ranges,
             &self.shadow.ranges,
         ) {
-            let active: Vec<usize> = (0..layout.layers.len())
-                .filter(|&i| layout.layers[i].active)
-                .collect();
             pass.encode(
                 (&self.device, &self.queue),
                 encoder,
-                (&slot.textures.depth_array, &active),
+                (&slot.textures.depth_array, &layout.active_layers()),
                 (ranges, level),
                 timer,
             );
