@@ -79,6 +79,8 @@ struct Globals {
     use_scene_materials: u32,
     // 0/1.
     use_color_override: u32,
+    // N(m) for m under `normalization` (computed on the CPU).
+    norm_factor: f32,
     // Where the shadow map is drawn from, relative to the eye (m): the light,
     // or its stand-in on the same line for a far light.
     shadow_apex_rel: vec3<f32>,
@@ -171,6 +173,8 @@ struct Material {
     double_sided: u32,
     // The base colour under the other colour model (the `delta-e` view).
     other_model_color: vec4<f32>,
+    // N(own_m) under each normalization, indexed by NORM_*.
+    own_norm_factors: vec4<f32>,
 }
 
 // How a view is displayed (gpu::uniforms::DisplayParamsRaw).
@@ -232,6 +236,11 @@ fn norm_factor(norm: u32, m: f32) -> f32 {
 
 // f_r / c split into k/π and (1 − k) N(m) cos^m θ_h (physics::brdf::blinn_phong).
 fn blinn_phong(n: vec3<f32>, l: vec3<f32>, o: vec3<f32>, k: f32, m: f32, norm: u32) -> vec2<f32> {
+    return blinn_phong_scaled(n, l, o, k, m, norm_factor(norm, m));
+}
+
+// blinn_phong given N(m) = n_m.
+fn blinn_phong_scaled(n: vec3<f32>, l: vec3<f32>, o: vec3<f32>, k: f32, m: f32, n_m: f32) -> vec2<f32> {
     if !(dot(n, l) > 0.0 && dot(n, o) > 0.0) {
         return vec2<f32>(0.0);
     }
@@ -249,7 +258,7 @@ fn blinn_phong(n: vec3<f32>, l: vec3<f32>, o: vec3<f32>, k: f32, m: f32, norm: u
     let h = sum * (1.0 / sqrt(len2));
     let cos_h = dot(n, h);
     let gap = min(dot(n - h, n - h) * 0.5, 1.0);
-    return vec2<f32>(diffuse, (1.0 - k) * norm_factor(norm, m) * lobe(cos_h, gap, m));
+    return vec2<f32>(diffuse, (1.0 - k) * n_m * lobe(cos_h, gap, m));
 }
 
 // Where the light is seen from a surface point (physics::radiometry::incidence).

@@ -27,19 +27,13 @@ struct RayTrace {
 
 @group(2) @binding(0) var<uniform> rt: RayTrace;
 
-// Pipeline-overridable constants (gpu::specialise), SPECIALISE_ANY to read
-// the uniforms. A software rasterizer runs the code of a branch the uniforms
-// skip under an empty mask: a point light's pipeline compiles none of the
-// cone's sampling, and a frame that starts the mean none of the history's
-// loads. The light is a sphere (1) or a point (0):
-override SPECIALISED_SPHERE_LIGHT: u32 = SPECIALISE_ANY;
-// This frame is folded into the history (1) or starts it (0):
+// A pipeline-overridable constant (gpu::specialise), SPECIALISE_ANY to read
+// the uniform. A software rasterizer runs the code of a branch the uniforms
+// skip under an empty mask: a frame that starts the mean compiles none of
+// the history's loads (and a point light's, shade.wgsl's sphere_light, none
+// of the cone's sampling). This frame is folded into the history (1) or
+// starts it (0):
 override SPECIALISED_ACCUMULATING: u32 = SPECIALISE_ANY;
-
-fn sphere_light() -> bool {
-    let radius_read = u32(globals.light_radius_m > 0.0);
-    return select(SPECIALISED_SPHERE_LIGHT, radius_read, SPECIALISED_SPHERE_LIGHT == SPECIALISE_ANY) != 0u;
-}
 
 fn accumulating() -> bool {
     let history_read = u32(rt.frames_before > 0u);

@@ -7,6 +7,7 @@
 
 @group(0) @binding(0) var<uniform> globals: Globals;
 @group(0) @binding(1) var<uniform> shadow: Shadow;
+// Read by the vertex stage (VsOut carries a triangle's material).
 @group(0) @binding(2) var<storage, read> materials: array<Material>;
 @group(0) @binding(3) var base_textures: texture_2d_array<f32>;
 @group(0) @binding(4) var base_sampler: sampler;
@@ -24,6 +25,10 @@ override SPECIALISED_SHADOWS: u32 = SPECIALISE_ANY;
 // The scene has vertex colours (1) or none (0: every vertex's is 1, and
 // the colour is not read), or SPECIALISE_ANY to read them anyway.
 override SPECIALISED_VERTEX_COLOURS: u32 = SPECIALISE_ANY;
+// The light is a sphere (1) or a point (0), or SPECIALISE_ANY to read its
+// radius: a point light's pipeline keeps neither the sphere's horizon case
+// of the irradiance nor, under ray-traced V, the cone's sampling.
+override SPECIALISED_SPHERE_LIGHT: u32 = SPECIALISE_ANY;
 
 // The vertex colour at a fragment (1 where the scene has none).
 fn vertex_colour(in: VsOut) -> vec3<f32> {
@@ -36,6 +41,11 @@ fn view_mode() -> u32 {
 
 fn visibility_mode() -> u32 {
     return select(SPECIALISED_VISIBILITY, globals.visibility, SPECIALISED_VISIBILITY == SPECIALISE_ANY);
+}
+
+fn sphere_light() -> bool {
+    let radius_read = u32(globals.light_radius_m > 0.0);
+    return select(SPECIALISED_SPHERE_LIGHT, radius_read, SPECIALISED_SPHERE_LIGHT == SPECIALISE_ANY) != 0u;
 }
 
 fn shadows_enabled() -> bool {
@@ -58,10 +68,16 @@ struct VsOut {
     @location(0) rel: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
-    @location(3) @interpolate(flat) material: u32,
     // 0: the object receives no shadows (V = 1).
     @location(4) @interpolate(flat) receives_shadows: u32,
     @location(5) colour: vec3<f32>,
+    // The triangle's material, read once per vertex (`material_of`): a
+    // software rasterizer loads a per-pixel index's fields lane by lane.
+    @location(3) @interpolate(flat) texture_layer_plus_one: u32,
+    @location(6) @interpolate(flat) base_color: vec3<f32>,
+    @location(7) @interpolate(flat) other_model_color: vec3<f32>,
+    // k, m and N(m) (the settings' or the material's own), double-sided (0/1).
+    @location(8) @interpolate(flat) brdf: vec4<f32>,
 }
 
 // gpu::scene_buffers::Vertex::NO_SHADOWS_RECEIVED: set in a vertex's material
@@ -87,9 +103,21 @@ fn vs(in: VsIn) -> VsOut {
     out.clip = clip_position(in.position);
     out.normal = in.normal;
     out.uv = in.uv;
-    out.material = in.material & ~NO_SHADOWS_RECEIVED;
     out.receives_shadows = u32((in.material & NO_SHADOWS_RECEIVED) == 0u);
     out.colour = in.colour;
+    let mat = materials[in.material & ~NO_SHADOWS_RECEIVED];
+    out.texture_layer_plus_one = mat.texture_layer_plus_one;
+    out.base_color = mat.base_color.rgb;
+    out.other_model_color = mat.other_model_color.rgb;
+    var k = globals.k;
+    var m = globals.m;
+    var norm_factor = globals.norm_factor;
+    if globals.use_scene_materials != 0u {
+        k = select(k, mat.own_k, mat.has_own_k != 0u);
+        m = select(m, mat.own_m, mat.has_own_m != 0u);
+        norm_factor = select(norm_factor, mat.own_norm_factors[globals.normalization], mat.has_own_m != 0u);
+    }
+    out.brdf = vec4<f32>(k, m, norm_factor, f32(mat.double_sided));
     return out;
 }
 
@@ -109,6 +137,9 @@ struct Surface {
     other_c: vec3<f32>,
     k: f32,
     m: f32,
+    // N(m) under the chosen normalization, computed on the CPU (globals, or
+    // the material's own m): no switch on a uniform, nor its exp2.
+    norm_factor: f32,
     // The object receives shadows (Object::receives_shadows).
     receives_shadows: bool,
 }
@@ -116,7 +147,6 @@ struct Surface {
 // Normals, colour, k and m at the fragment. Uses derivatives: call it in
 // uniform control flow.
 fn surface_at(in: VsOut, front_facing: bool) -> Surface {
-    let mat = materials[in.material];
     var s: Surface;
     s.o = normalize(-in.rel);
     let facet = normalize(cross(dpdx(in.rel), dpdy(in.rel)));
@@ -130,23 +160,20 @@ fn surface_at(in: VsOut, front_facing: bool) -> Surface {
     // (1e-30, not 0: GPUs that flush denormals would make inverseSqrt infinite.)
     let len2 = dot(in.normal, in.normal);
     s.n = select(face, in.normal * inverseSqrt(len2), len2 > 1e-30);
-    if mat.double_sided != 0u && dot(s.n, s.o) < 0.0 {
+    if in.brdf.w != 0.0 && dot(s.n, s.o) < 0.0 {
         s.n = -s.n;
     }
     s.n_geo = select(facet, -facet, dot(facet, s.n) < 0.0);
     s.receives_shadows = in.receives_shadows != 0u;
 
-    s.k = globals.k;
-    s.m = globals.m;
-    if globals.use_scene_materials != 0u {
-        s.k = select(s.k, mat.own_k, mat.has_own_k != 0u);
-        s.m = select(s.m, mat.own_m, mat.has_own_m != 0u);
-    }
+    s.k = in.brdf.x;
+    s.m = in.brdf.y;
+    s.norm_factor = in.brdf.z;
     let colour = vertex_colour(in);
-    s.c = mat.base_color.rgb * colour;
-    s.other_c = mat.other_model_color.rgb * colour;
-    if mat.texture_layer_plus_one > 0u {
-        let layer = i32(mat.texture_layer_plus_one - 1u);
+    s.c = in.base_color * colour;
+    s.other_c = in.other_model_color * colour;
+    if in.texture_layer_plus_one > 0u {
+        let layer = i32(in.texture_layer_plus_one - 1u);
         let texel = textureSampleLevel(base_textures, base_sampler, in.uv, layer, 0.0).rgb;
         s.c *= texel;
         s.other_c *= texel;
@@ -199,11 +226,20 @@ fn delta_e_quantity(s: Surface, radiance: vec3<f32>, scale: f32) -> f32 {
     return pixel_delta_e(radiance * exposure, other * exposure, globals.lab_white_relative);
 }
 
+// E at the fragment: the sphere's closed form only where the light is one
+// (for a point light sphere_irradiance gives point_irradiance's value too).
+fn light_irradiance(incidence: LightIncidence) -> f32 {
+    if sphere_light() {
+        return sphere_irradiance(globals.light_power_w, globals.light_radius_m, incidence.cos_theta, incidence.r);
+    }
+    return point_irradiance(globals.light_power_w / (4.0 * PI), incidence.cos_theta, incidence.r);
+}
+
 // The quantity the chosen view shows, L = tint · (f_d + f_s) E V for
 // `shaded`, given the visibility v from whichever source.
 fn view_quantity(s: Surface, incidence: LightIncidence, v: f32, density: f32) -> vec3<f32> {
-    let e = sphere_irradiance(globals.light_power_w, globals.light_radius_m, incidence.cos_theta, incidence.r);
-    let f = blinn_phong(s.n, incidence.l, s.o, s.k, s.m, globals.normalization);
+    let e = light_irradiance(incidence);
+    let f = blinn_phong_scaled(s.n, incidence.l, s.o, s.k, s.m, s.norm_factor);
     let radiance_scale = tint(s.c, globals.light_color) * e * v;
     switch view_mode() {
         case VIEW_VISIBILITY: { return vec3<f32>(v); }

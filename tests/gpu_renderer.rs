@@ -44,6 +44,9 @@ fn unshadowed_pixels_equal_the_f64_physics() {
     let gpu = gpu();
     let mut worst = 0.0_f64;
     let scene = fine_plane_scene(40.0);
+    // The same plane whose material carries k and m itself: its N(m) comes
+    // from the material's table, the settings' from the globals.
+    let mut own = fine_plane_scene(40.0);
     let setups = [
         (Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 2.0, 3.0)),
         (Vec3::new(1.0, 4.0, -2.0), Vec3::new(-1.0, 3.0, 4.0)),
@@ -62,6 +65,15 @@ fn unshadowed_pixels_equal_the_f64_physics() {
                 s.camera.fovy_deg = (300.0 / m.sqrt()).clamp(1.0, 45.0);
                 look_at_highlight(&mut s, eye);
                 let (_, quantity, aux) = render(&gpu, &scene, &s);
+                (own.materials[0].k, own.materials[0].m) = (Some(k), Some(m));
+                let mut global = s.clone();
+                (global.material.k, global.material.m) = (0.3, 5.0);
+                global.material.use_scene_materials = true;
+                let (_, own_quantity, _) = render(&gpu, &own, &global);
+                assert!(
+                    own_quantity == quantity,
+                    "m={m} k={k} {norm:?}: the material's own m shades alike"
+                );
                 let expected: Vec<Option<f64>> = (0..s.image.height)
                     .flat_map(|j| (0..s.image.width).map(move |i| (i, j)))
                     .map(|(i, j)| plane_hit(&s, i, j).map(|p| expected_radiance(&s, p)))

@@ -180,24 +180,30 @@ fn a_pipeline_compiled_ahead_draws_what_one_compiled_when_needed_draws() {
     assert!(images[0] == images[1], "the same pixels either way");
 }
 
-/// Under ray-traced V a point light's drag pipeline is compiled ahead with
-/// the sphere light's: a radius slider's drag switches to it without
-/// compiling.
+/// A point light's drag pipeline is compiled ahead with the sphere light's,
+/// under either visibility source: a radius slider's drag switches to it
+/// without compiling.
 #[test]
-fn a_ray_traced_drag_finds_both_lights_pipelines_compiled_ahead() {
+fn a_drag_finds_both_lights_pipelines_compiled_ahead() {
     let gpu = gpu();
     let scene = lumlab::scene::default_scene();
-    let mut settings = lumlab::settings::Settings::default();
-    settings.shadow.visibility = Visibility::RayTraced;
-    settings.light.radius_m = 0.0;
-    let size = (64, 48);
-    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
-    renderer.render(&settings, size);
-    renderer.compile_ahead(&settings, ShadeOptions::INTERACTION);
-    renderer.set_shade_options(ShadeOptions::INTERACTION);
-    for (radius_m, ahead) in [(0.0, 1), (0.2, 2), (0.0, 2)] {
-        settings.light.radius_m = radius_m;
+    for &visibility in Visibility::ALL {
+        let mut settings = lumlab::settings::Settings::default();
+        settings.shadow.visibility = visibility;
+        settings.light.radius_m = 0.0;
+        let size = (64, 48);
+        let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
         renderer.render(&settings, size);
-        assert_eq!(renderer.pipelines_compiled_ahead(), ahead, "R = {radius_m} m");
+        renderer.compile_ahead(&settings, ShadeOptions::INTERACTION);
+        renderer.set_shade_options(ShadeOptions::INTERACTION);
+        for (radius_m, ahead) in [(0.0, 1), (0.2, 2), (0.0, 2)] {
+            settings.light.radius_m = radius_m;
+            renderer.render(&settings, size);
+            assert_eq!(
+                renderer.pipelines_compiled_ahead(),
+                ahead,
+                "{visibility:?}, R = {radius_m} m"
+            );
+        }
     }
 }

@@ -169,9 +169,9 @@ impl Renderer {
     /// Starts compiling, on a thread of its own, the camera pass that a
     /// frame with `settings` and `options` will need (the shadow map laid out
     /// as in the last frame): the app asks for a drag's pipeline after each
-    /// full frame, so the drag's first frame does not wait for it. Under
-    /// ray-traced V the other light's too: the radius slider turns a point
-    /// light into a sphere, or back, during its drag.
+    /// full frame, so the drag's first frame does not wait for it, and the
+    /// other light's too: the radius slider turns a point light into a
+    /// sphere, or back, during its drag.
     pub fn compile_ahead(&mut self, settings: &Settings, options: ShadeOptions) {
         // A drag's first frame starts its mean, if V is ray traced.
         let (simplified, colours) = {
@@ -290,6 +290,7 @@ impl Renderer {
             m: m.m,
             view: code(DebugView::ALL, &settings.view.mode),
             normalization: code(Normalization::ALL, &m.norm),
+            norm_factor: m.norm.factor(f64::from(m.m)) as f32,
             visibility: code(Visibility::ALL, &settings.shadow.visibility),
             use_scene_materials: m.use_scene_materials as u32,
             use_color_override: m.color_override.is_some() as u32,

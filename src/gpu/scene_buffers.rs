@@ -6,6 +6,7 @@
 
 use super::bvh::{FlatBvh, GpuBvh};
 use super::uniforms::MaterialRaw;
+use crate::physics::brdf::Normalization;
 use crate::scene::simplify::SimplifiedMeshes;
 use crate::scene::{Aabb, Material, Scene};
 use bytemuck::{Pod, Zeroable};
@@ -203,6 +204,9 @@ impl GpuScene {
                     .map_or(0, |l| l + 1),
                 double_sided: m.double_sided as u32,
                 other_model_color: m.base_color.to_array(),
+                own_norm_factors: std::array::from_fn(|n| {
+                    Normalization::ALL[n].factor(f64::from(m.m.unwrap_or(0.0))) as f32
+                }),
                 ..Default::default()
             })
             .collect();

@@ -46,7 +46,7 @@ impl ShadePass {
             &[
                 binding::uniform(0, ShaderStages::VERTEX_FRAGMENT),
                 binding::uniform(1, fragment),
-                binding::storage(2, fragment, true),
+                binding::storage(2, ShaderStages::VERTEX, true),
                 binding::texture(
                     3,
                     fragment,

@@ -2,9 +2,10 @@
 //! shaders/shade.wgsl and shadow_map.wgsl read their mode through
 //! pipeline-overridable constants (`SPECIALISED_VIEW`, `SPECIALISED_FILTER`,
 //! `SPECIALISED_VISIBILITY`, `SPECIALISED_BIAS`, `SPECIALISED_CUBE`: the
-//! shadow map's layout, `SPECIALISED_SHADOWS`: shadows on or off, and under
-//! ray-traced V `SPECIALISED_SPHERE_LIGHT` and `SPECIALISED_ACCUMULATING`,
-//! and `SPECIALISED_VERTEX_COLOURS`: the scene has vertex colours); a
+//! shadow map's layout, `SPECIALISED_SHADOWS`: shadows on or off,
+//! `SPECIALISED_SPHERE_LIGHT`: a sphere or a point light, under ray-traced
+//! V `SPECIALISED_ACCUMULATING`, and `SPECIALISED_VERTEX_COLOURS`: the
+//! scene has vertex colours); a
 //! pipeline given one value keeps only that case of each `switch` (the
 //! compiler folds the rest away), the default
 //! value `SPECIALISE_ANY` reads the uniforms: the generic pipeline the tests
@@ -92,12 +93,13 @@ pub struct Specialisation {
     pub bias: Option<BiasMode>,
     /// The shadow map's layout (None also when no map is drawn).
     pub layout: Option<LayoutKind>,
-    /// Under ray-traced V only: the light is a sphere (its cone sampled)
-    /// or a point (one ray), and the frame folds in the history of the
-    /// frames before or starts it (`SPECIALISED_SPHERE_LIGHT`,
+    /// The light is a sphere (its irradiance's horizon case, and under
+    /// ray-traced V its cone sampled) or a point (one ray), and, under
+    /// ray-traced V only, the frame folds in the history of the frames
+    /// before or starts it (`SPECIALISED_SPHERE_LIGHT`,
     /// `SPECIALISED_ACCUMULATING`). lavapipe runs a branch the uniforms
     /// skip under an empty mask: without these a point light's frame ran
-    /// the cone's code and every frame the history's loads.
+    /// the sphere's code and every frame the history's loads.
     pub sphere_light: Option<bool>,
     pub accumulating: Option<bool>,
     /// The scene has vertex colours (`SPECIALISED_VERTEX_COLOURS`): without
@@ -140,7 +142,7 @@ impl Specialisation {
             visibility: on.then_some(settings.shadow.visibility),
             bias: on.then_some(settings.shadow.bias.mode),
             layout: layout.filter(|_| on),
-            sphere_light: traced.then_some(settings.light.is_sphere()),
+            sphere_light: on.then_some(settings.light.is_sphere()),
             accumulating: traced.then_some(accumulating),
             vertex_colours: on.then_some(vertex_colours),
             aux: options.aux,

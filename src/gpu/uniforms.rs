@@ -37,7 +37,10 @@ pub struct GlobalsRaw {
     pub use_scene_materials: u32,
     /// `color_override` replaces the materials' colour (0/1).
     pub use_color_override: u32,
-    pub _padding: [u32; 3],
+    /// N(m) of `m` under `normalization`, computed here in f64: the camera
+    /// pass reads it instead of evaluating the normalization per pixel.
+    pub norm_factor: f32,
+    pub _padding: [u32; 2],
     /// Where the shadow map is drawn from, relative to the eye (m): the
     /// light, or its stand-in for a far light (`light_frustum::shadow_apex`).
     pub shadow_apex_rel: [f32; 3],
@@ -141,6 +144,9 @@ pub struct MaterialRaw {
     pub _padding: [u32; 2],
     /// The base colour under the other colour model (the `delta-e` view).
     pub other_model_color: [f32; 4],
+    /// N(own_m) under each normalization, in `Normalization::ALL`'s order
+    /// (`NORM_*`), where `has_own_m`: a change of normalization needs no upload.
+    pub own_norm_factors: [f32; 4],
 }
 
 /// `DisplayParams`: how the display pass shows the view.
