@@ -68,12 +68,12 @@ struct VsOut {
     @location(0) rel: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
+    // The triangle's material, read once per vertex (`vs`): a software
+    // rasterizer would load a per-pixel index's fields lane by lane.
+    @location(3) @interpolate(flat) texture_layer_plus_one: u32,
     // 0: the object receives no shadows (V = 1).
     @location(4) @interpolate(flat) receives_shadows: u32,
     @location(5) colour: vec3<f32>,
-    // The triangle's material, read once per vertex (`material_of`): a
-    // software rasterizer loads a per-pixel index's fields lane by lane.
-    @location(3) @interpolate(flat) texture_layer_plus_one: u32,
     @location(6) @interpolate(flat) base_color: vec3<f32>,
     @location(7) @interpolate(flat) other_model_color: vec3<f32>,
     // k, m and N(m) (the settings' or the material's own), double-sided (0/1).
