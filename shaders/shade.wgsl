@@ -226,13 +226,11 @@ fn delta_e_quantity(s: Surface, radiance: vec3<f32>, scale: f32) -> f32 {
     return pixel_delta_e(radiance * exposure, other * exposure, globals.lab_white_relative);
 }
 
-// E at the fragment: the sphere's closed form only where the light is one
-// (for a point light sphere_irradiance gives point_irradiance's value too).
+// E at the fragment. A point light's pipeline passes the radius 0 as a
+// constant, so that sphere_irradiance keeps only its point-light case.
 fn light_irradiance(incidence: LightIncidence) -> f32 {
-    if sphere_light() {
-        return sphere_irradiance(globals.light_power_w, globals.light_radius_m, incidence.cos_theta, incidence.r);
-    }
-    return point_irradiance(globals.light_power_w / (4.0 * PI), incidence.cos_theta, incidence.r);
+    let radius_m = select(0.0, globals.light_radius_m, sphere_light());
+    return sphere_irradiance(globals.light_power_w, radius_m, incidence.cos_theta, incidence.r);
 }
 
 // The quantity the chosen view shows, L = tint · (f_d + f_s) E V for
