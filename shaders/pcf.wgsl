@@ -3,10 +3,11 @@
 // receiver's own face, and decided at once where the depth range of the
 // texels under the kernel leaves no doubt (gpu::depth_ranges).
 
-// The stored values' range over windows of 2×2 blocks of B×B texels, B =
+// Bounds on the stored values over windows of 2×2 blocks of B×B texels, B =
 // shadow.range_block (0: not built for this map, nothing to read): window
-// e covers texels B e … B e + 2B − 1, x the largest stored value there (the
-// nearest surface), y the smallest (the farthest; 0 where nothing was drawn).
+// e covers texels B e … B e + 2B − 1, where every stored value d lies within
+// w of the plane x + y i + z j (i, j from the window's first texel;
+// gpu::depth_ranges). 0 is the far plane (nothing drawn).
 @group(1) @binding(6) var depth_ranges: texture_2d_array<f32>;
 
 // The separable weight of texel i of the n + 1 a row of n bilinear tests
@@ -82,17 +83,17 @@ fn filter_pcf(r: Receiver) -> f32 {
     let f = fract(c);
     let o = own_face(r, base);
     let verdict = range_verdict(o, r, base, n);
-    // Decided pixels run the loops below zero times (lavapipe skips a loop
-    // no pixel of a block enters, where it would run both sides of an if).
+    // Decided pixels run the loops below zero times. Lavapipe runs every
+    // branch of a block of pixels under a mask, and a loop's body at least
+    // once (its exit is tested at the end), but no more trips than its
+    // busiest pixel needs.
     let last = select(n, -1, verdict >= 0.0);
     var sum = 0.0;
     // The taps on the receiver's own face first, 2×2 texels a gather, then,
     // only where the kernel reaches past the face's edge, those beyond it
-    // (depth_test's cube addressing). A software rasterizer runs both sides
-    // of a branch for a block of pixels, but a loop stops once no pixel in
-    // the block is active: kernels inside their face pay for one tap's
-    // addressing, not (n + 1)² of them. The same taps and weights as one
-    // loop over depth_test.
+    // (depth_test's cube addressing): kernels inside their face pay for
+    // one masked trip of the second loop, not (n + 1)² of them. The same
+    // taps and weights as one loop over depth_test.
     for (var j = 0; j <= last; j += 2) {
         for (var i = 0; i <= last; i += 2) {
             let k = vec2<i32>(i, j);
@@ -119,34 +120,70 @@ fn filter_pcf(r: Receiver) -> f32 {
 
 // What the window of depth_ranges holding the texels base … base + n a
 // filter reads (PCF's kernel, or the square around a Poisson disc) says
-// of all its tests at once: 1 every texel lights the
-// receiver, 0 every texel hides it, −1 undecided (each is tested). The
-// compared depth of own_face_tap is at most r.z − slack (auto) and at least
+// of all its tests at once: 1 every texel lights the receiver, 0 every
+// texel hides it, −1 undecided (each is tested). The window's plane at the
+// kernel's corners bounds the stored values under it. The compared depth
+// of own_face_tap is at most r.z − slack (auto) and at least
 // r.z − reach − slack, reach taken at the kernel's corner farthest from tc;
-// the other biases compare one depth. The margin covers rounding: deciding
-// fewer pixels is always right, and the decided ones get the value the
-// loops would have summed (1 up to the weights' rounding, or exactly 0).
+// the other biases compare one depth. The auto bias also lights a receiver
+// whose own plane is what the map stored (plane_lights). The margin covers
+// rounding: deciding fewer pixels is always right, and the decided ones
+// get the value the loops would have summed (1 up to the weights'
+// rounding, or exactly 0).
 fn range_verdict(o: OwnFace, r: Receiver, base: vec2<i32>, n: i32) -> f32 {
     let block = i32(shadow.range_block);
     let known = block >= n && n >= 0 && block > 0 && in_map(base) && in_map(base + vec2<i32>(n)) && (shadow.layer_mask & (1u << r.layer)) != 0u;
     var verdict = -1.0;
-    // One trip, or none where no range is read: lavapipe skips a loop that
-    // no pixel of a block enters (a map without ranges costs no read).
-    for (var once = known; once; once = false) {
-        let range = textureLoad(depth_ranges, base / block, i32(r.layer), 0).xy;
-        let nearest = stored_linear(range.x, o.depth_a, o.depth_b);
-        let farthest = stored_linear(range.y, o.depth_a, o.depth_b);
+    if known {
+        let window = base / block;
+        let bound = textureLoad(depth_ranges, window, i32(r.layer), 0);
+        // The plane at the kernel's corners k = (0, 0), (n, 0), (0, n), (n, n).
+        let first = vec2<f32>(base - window * block);
+        let span = f32(n);
+        let along = bound.x + dot(bound.yz, first) + vec4<f32>(0.0, bound.y, bound.z, bound.y + bound.z) * span;
+        let nearest = stored_linear(max(max(along.x, along.y), max(along.z, along.w)) + bound.w, o.depth_a, o.depth_b);
+        let farthest = stored_linear(min(min(along.x, along.y), min(along.z, along.w)) - bound.w, o.depth_a, o.depth_b);
         var highest = o.fixed;
         var lowest = o.fixed;
+        var own_plane = false;
         if bias_mode() == BIAS_AUTO {
-            let corner = max(abs(o.offset), abs(o.offset + f32(n)));
-            highest = r.z - auto_bias_slack(r);
+            let corner = max(abs(o.offset), abs(o.offset + span));
+            let slack = auto_bias_slack(r);
+            highest = r.z - slack;
             lowest = highest - o.reach * max(length(corner), 0.5);
+            own_plane = plane_lights(o, r, along + bound.w, slack, nearest, span);
         }
         let margin = 1e-5 * r.z;
-        verdict = select(select(-1.0, 0.0, lowest - margin > farthest), 1.0, highest + margin <= nearest);
+        verdict = select(select(-1.0, 0.0, lowest - margin > farthest), 1.0, highest + margin <= nearest || own_plane);
     }
     return verdict;
+}
+
+// Whether every own_face_tap of the auto bias over a kernel of n + 1
+// texels a side lights the receiver, given `above`, the largest stored
+// value d at the kernel's corners (as range_verdict orders them) along the
+// window's plane, and `nearest`, the nearest stored depth under the kernel.
+// A tap at k compares max(min(P, r.z), r.z − reach) − slack with the stored
+// depth, P the receiver's plane along the texel's ray. It lights where
+//   the stored depth ≥ r.z − reach − slack: reach ≥ o.reach / 2 at every
+//     texel, so nearest ≥ r.z − o.reach / 2 − slack is enough; and
+//   the stored depth ≥ P − slack: in inverse depths, 1 / stored =
+//     (d − depth_b) / depth_a and 1 / P = denominator / numerator are both
+//     affine in k, and 1 / (P − slack) ≥ 1 / P + slack / P², so
+//     1 / stored − 1 / P ≤ slack / P_max² is enough. An affine difference
+//     is largest at a corner.
+// The receiver's plane must face the light over the whole kernel.
+fn plane_lights(o: OwnFace, r: Receiver, above: vec4<f32>, slack: f32, nearest: f32, span: f32) -> bool {
+    let denominators = o.denominator + vec4<f32>(0.0, o.step.x, o.step.y, o.step.x + o.step.y) * span;
+    let facing = o.numerator < 0.0 && all(denominators < vec4<f32>(-1e-4));
+    let inverse_plane = denominators / o.numerator;
+    let inverse_stored = (above - o.depth_b) / o.depth_a;
+    let gap = inverse_stored - inverse_plane;
+    let least = min(min(inverse_plane.x, inverse_plane.y), min(inverse_plane.z, inverse_plane.w));
+    let most = max(max(inverse_plane.x, inverse_plane.y), max(inverse_plane.z, inverse_plane.w));
+    let below_plane = max(max(gap.x, gap.y), max(gap.z, gap.w)) <= slack * least * least - 1e-5 * most;
+    let within_reach = nearest >= r.z - 0.5 * o.reach - slack + 1e-5 * r.z;
+    return facing && below_plane && within_reach;
 }
 
 // The stored values of texels t + (0, 1), (1, 1), (1, 0) and t of a layer

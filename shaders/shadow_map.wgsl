@@ -100,6 +100,22 @@ fn to_view(d: vec3<f32>, layer: u32) -> vec3<f32> {
     return vec3<f32>(x, y, z);
 }
 
+// The inverse of to_view: a direction v in the view of `layer` relative to
+// the light. The cube's faces undo their permutation and signs (the same
+// values as v · M for the face's rotation M, its transpose).
+fn from_view(v: vec3<f32>, layer: u32) -> vec3<f32> {
+    if !is_cube() {
+        return (vec4<f32>(v, 0.0) * shadow.layers[0].rotation).xyz;
+    }
+    let axis = layer / 2u;
+    let s = select(1.0, -1.0, (layer & 1u) == 1u);
+    // +X (−z, y, x), −X (z, y, −x), +Y (x, −z, y), −Y (−x, z, y), +Z (−x, y, −z), −Z (x, y, z).
+    let x = select(select(-s * v.x, s * v.x, axis == 1u), -s * v.z, axis == 0u);
+    let y = select(v.y, -s * v.z, axis == 1u);
+    let z = select(select(-s * v.z, v.y, axis == 1u), s * v.x, axis == 0u);
+    return vec3<f32>(x, y, z);
+}
+
 // Texel coordinates of the direction with tangents t (on any layer).
 fn texel_of_tangent(t: vec2<f32>) -> vec2<f32> {
     let f = frustum();
@@ -221,11 +237,7 @@ struct Tap {
 // The receiver r expressed in another layer's view (placed_on, as
 // make_receiver places it), so its depth is compared on that face.
 fn receiver_on_layer(r: Receiver, layer: u32) -> Receiver {
-    let own = shadow.layers[r.layer].rotation;
-    // The rotations are orthonormal: v · M applies M's transpose, its inverse.
-    let p_l = (vec4<f32>(r.v, 0.0) * own).xyz;
-    let n = (vec4<f32>(r.n_v, 0.0) * own).xyz;
-    return placed_on(layer, p_l, n, r.tan_theta);
+    return placed_on(layer, from_view(r.v, r.layer), from_view(r.n_v, r.layer), r.tan_theta);
 }
 
 // The texel a filter reads for the one it asks for. Beyond a single fitted
@@ -242,7 +254,7 @@ fn tap(r: Receiver, texel: vec2<i32>) -> Tap {
         return Tap(r, texel, false);
     }
     let dir_v = vec3<f32>(tangent_of_texel(vec2<f32>(texel) + 0.5), -1.0);
-    let dir = (vec4<f32>(dir_v, 0.0) * shadow.layers[r.layer].rotation).xyz;
+    let dir = from_view(dir_v, r.layer);
     let layer = choose_layer(dir);
     let q = receiver_on_layer(r, layer);
     let d = to_view(dir, layer);

@@ -24,8 +24,13 @@ fn filters_decided_from_depth_ranges_match_every_tap_tested() {
     let auto = Settings::default().shadow.bias.mode;
     let mut cases = Vec::new();
     // The light high above the scene: one fitted frustum; at its default
-    // height: six cube faces.
-    for (light_y_m, layout) in [(40.0, LayoutKind::Single), (6.0, LayoutKind::Cube)] {
+    // height: six cube faces; low: the ground steep in the light's view,
+    // lit kernels decided by its plane (the bounds' gradient).
+    for (light_y_m, layout) in [
+        (40.0, LayoutKind::Single),
+        (6.0, LayoutKind::Cube),
+        (2.0, LayoutKind::Cube),
+    ] {
         for n in lumlab::settings::ShadowSettings::PCF_SIZES {
             cases.push((light_y_m, layout, n, auto));
         }

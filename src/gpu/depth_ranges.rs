@@ -1,4 +1,4 @@
-//! The range of stored depths over windows of the shadow map, read by PCF
+//! Bounds on the stored depths over windows of the shadow map, read by PCF
 //! and the Poisson disc to decide a whole kernel at once
 //! (shaders/depth_ranges.wgsl, and `range_verdict` in shaders/pcf.wgsl).
 //! Where every texel under a kernel is farther than the receiver, or every
@@ -6,16 +6,20 @@
 //! V = 0 instead of (n + 1)² depth tests: on lavapipe a texel fetch costs
 //! about a flat pass, and most pixels are fully lit or fully shadowed.
 //!
-//! Only where the map's depth is flat across a window: the receiver's own
-//! surface, sloped in the light's view, is nearer than the receiver on one
-//! side of its kernel, so a sloped receiver is always tested texel by
-//! texel (the ranges know no plane).
+//! A bound is a plane in the texel coordinates and a half-width: every
+//! stored value of the window lies within it. A plane of the scene is
+//! affine in the texel coordinates (reversed Z stores an affine function of
+//! 1/z), so where the receiver's own surface, sloped in the light's view,
+//! fills the window the bound is that surface to rounding, and the auto
+//! bias's kernel is decided lit without a tap; a flat range (gradient 0)
+//! could not tell it from an occluder on the side nearer the light.
 //!
 //! Built per map and kernel size on the first frame that reuses a map (a
 //! map drawn for one frame, under a moving light, never pays for them), in
-//! two passes per layer: blocks of B×B texels, then windows of 2×2 blocks.
-//! The build reads every texel of the map once, about what drawing the map
-//! costs on lavapipe.
+//! two passes per layer: blocks of B×B texels (the plane through three
+//! corners, or the flat range where it bounds closer), then windows of 2×2
+//! blocks (the flat range or one block's plane, bounding all four). The
+//! build reads every texel of the map once.
 
 use super::binding;
 use super::shaders::Shader;
@@ -27,7 +31,7 @@ use wgpu::ShaderStages;
 /// The block sides B (texels) built: a kernel of n + 1 texels a side fits
 /// in one window when n ≤ B.
 const BLOCKS: [u32; 3] = [4, 8, 16];
-pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// Which level serves the filter of `shadow`: the smallest block B with
 /// n ≤ B for a filter whose taps span at most n + 1 texels a side (PCF n×n;
@@ -49,7 +53,7 @@ pub fn block_texels(level: usize) -> u32 {
 }
 
 /// Bytes per shadow-map texel the ranges of every level take, rounded up.
-pub const BYTES_PER_TEXEL: u64 = 2;
+pub const BYTES_PER_TEXEL: u64 = 3;
 
 /// One level's blocks and windows, each a 2D array with a layer per map layer.
 struct Level {
