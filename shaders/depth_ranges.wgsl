@@ -44,14 +44,14 @@ fn smallest(v: vec4<f32>) -> f32 {
     return min(min(v.x, v.y), min(v.z, v.w));
 }
 
-fn load(t: vec2<i32>) -> f32 {
-    let last = vec2<i32>(textureDimensions(source)) - 1;
-    return textureLoad(source, clamp(t, vec2<i32>(0), last), params.layer, 0).x;
-}
-
 // The plane c + g·p (p from the first texel).
 fn plane_at(c: f32, g: vec2<f32>, p: vec2<f32>) -> f32 {
     return c + dot(g, p);
+}
+
+// The plane c, g at the corners o + (0, 0), (s, 0), (0, s), (s, s).
+fn corners(c: f32, g: vec2<f32>, o: vec2<f32>, s: f32) -> vec4<f32> {
+    return plane_at(c, g, o) + vec4<f32>(0.0, g.x, g.y, g.x + g.y) * s;
 }
 
 // A bound's half-width grown by the rounding of the sums that make and
@@ -64,10 +64,12 @@ fn with_rounding(b: vec4<f32>, high: f32) -> vec4<f32> {
 fn fs_blocks(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     let b = params.block_texels;
     let first = vec2<i32>(position.xy) * b;
-    // The plane through three corners of the block: exact where one plane
-    // fills it, a guess whose residuals the loop measures anywhere else.
-    let c = load(first);
-    let g = vec2<f32>(load(first + vec2<i32>(b - 1, 0)) - c, load(first + vec2<i32>(0, b - 1)) - c) / f32(b - 1);
+    // The plane through the first texel and its neighbours in x and y:
+    // exact where one plane fills the block, a guess whose residuals the
+    // loop measures anywhere else.
+    let start = textureGather(0, source, nearest_clamped, corner(first), params.layer);
+    let c = start.w;
+    let g = vec2<f32>(start.z - c, start.x - c);
     var high = 0.0;
     var low = 3.0e38;
     var above = -3.0e38;
@@ -91,17 +93,34 @@ fn fs_blocks(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     return with_rounding(bound, high);
 }
 
-// The largest distance between the plane of bound `a` and the plane `c`, g
-// over the block of side B whose first texel is at `o` (both planes
-// relative to the window's first texel, a's from o): at a corner, as
+// How far the stored values of a block, bound b with its first texel at o
+// (from the window's first texel), can lie from the plane c, g: b's
+// half-width and the planes' largest gap over the block, at a corner, as
 // their difference is affine.
-fn apart(a: vec4<f32>, o: vec2<f32>, c: f32, g: vec2<f32>, side: f32) -> f32 {
-    var most = 0.0;
-    for (var k = 0; k < 4; k++) {
-        let p = vec2<f32>(f32(k & 1), f32(k >> 1u)) * side;
-        most = max(most, abs(plane_at(a.x, a.yz, p) - plane_at(c, g, o + p)));
-    }
-    return most;
+fn block_gap(b: vec4<f32>, o: vec2<f32>, c: f32, g: vec2<f32>, side: f32) -> f32 {
+    let gap = abs(corners(b.x, b.yz, vec2<f32>(0.0), side) - corners(c, g, o, side));
+    return b.w + max(max(gap.x, gap.y), max(gap.z, gap.w));
+}
+
+// The bound of plane c, g over the four blocks of a window (columns of m,
+// the blocks at (0, 0), (1, 0), (0, 1), (1, 1)), B texels a side.
+fn window_bound(c: f32, g: vec2<f32>, m: mat4x4<f32>, b: f32) -> vec4<f32> {
+    let s = b - 1.0;
+    let h = max(
+        max(block_gap(m[0], vec2<f32>(0.0, 0.0), c, g, s), block_gap(m[1], vec2<f32>(b, 0.0), c, g, s)),
+        max(block_gap(m[2], vec2<f32>(0.0, b), c, g, s), block_gap(m[3], vec2<f32>(b, b), c, g, s)),
+    );
+    return vec4<f32>(c, g, h);
+}
+
+// The plane of the block `own` (one of m's, its first texel at o), moved
+// to the window's first texel, and its bound over the window.
+fn block_plane(m: mat4x4<f32>, own: vec4<f32>, o: vec2<f32>, b: f32) -> vec4<f32> {
+    return window_bound(own.x - dot(own.yz, o), own.yz, m, b);
+}
+
+fn narrower(a: vec4<f32>, b: vec4<f32>) -> vec4<f32> {
+    return select(a, b, b.w < a.w);
 }
 
 @fragment
@@ -109,35 +128,29 @@ fn fs_windows(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> 
     let e = vec2<i32>(position.xy);
     let b = f32(params.block_texels);
     let last = vec2<i32>(textureDimensions(source)) - 1;
-    var blocks: array<vec4<f32>, 4>;
-    var high = 0.0;
-    var low = 3.0e38;
-    for (var q = 0; q < 4; q++) {
-        let o = vec2<i32>(q & 1, q >> 1u);
-        blocks[q] = textureLoad(source, min(e + o, last), params.layer, 0);
-        // The block's extreme values, at its corners.
-        for (var k = 0; k < 4; k++) {
-            let at = plane_at(blocks[q].x, blocks[q].yz, vec2<f32>(f32(k & 1), f32(k >> 1u)) * (b - 1.0));
-            high = max(high, at + blocks[q].w);
-            low = min(low, at - blocks[q].w);
-        }
-    }
+    let m = mat4x4<f32>(
+        textureLoad(source, e, params.layer, 0),
+        textureLoad(source, min(e + vec2<i32>(1, 0), last), params.layer, 0),
+        textureLoad(source, min(e + vec2<i32>(0, 1), last), params.layer, 0),
+        textureLoad(source, min(e + vec2<i32>(1, 1), last), params.layer, 0),
+    );
+    // The blocks' extreme values, at their corners.
+    let s = b - 1.0;
+    let zero = vec2<f32>(0.0);
+    let c0 = corners(m[0].x, m[0].yz, zero, s);
+    let c1 = corners(m[1].x, m[1].yz, zero, s);
+    let c2 = corners(m[2].x, m[2].yz, zero, s);
+    let c3 = corners(m[3].x, m[3].yz, zero, s);
+    let highs = max(max(c0 + m[0].w, c1 + m[1].w), max(c2 + m[2].w, c3 + m[3].w));
+    let lows = min(min(c0 - m[0].w, c1 - m[1].w), min(c2 - m[2].w, c3 - m[3].w));
+    let high = largest(highs);
+    let low = smallest(lows);
     // Candidates: the flat range, then each block's plane; the window takes
     // the one that bounds its four blocks closest.
     var best = vec4<f32>(0.5 * (high + low), 0.0, 0.0, 0.5 * (high - low));
-    for (var candidate = 0; candidate < 4; candidate++) {
-        let start = vec2<f32>(f32(candidate & 1), f32(candidate >> 1u)) * b;
-        let own = blocks[candidate];
-        // The candidate's plane from the window's first texel.
-        let c = own.x - dot(own.yz, start);
-        var h = 0.0;
-        for (var q = 0; q < 4; q++) {
-            let o = vec2<f32>(f32(q & 1), f32(q >> 1u)) * b;
-            h = max(h, blocks[q].w + apart(blocks[q], o, c, own.yz, b - 1.0));
-        }
-        if h < best.w {
-            best = vec4<f32>(c, own.yz, h);
-        }
-    }
+    best = narrower(best, block_plane(m, m[0], vec2<f32>(0.0, 0.0), b));
+    best = narrower(best, block_plane(m, m[1], vec2<f32>(b, 0.0), b));
+    best = narrower(best, block_plane(m, m[2], vec2<f32>(0.0, b), b));
+    best = narrower(best, block_plane(m, m[3], vec2<f32>(b, b), b));
     return with_rounding(best, high);
 }
