@@ -97,3 +97,108 @@ fn filters_decided_from_depth_ranges_match_every_tap_tested() {
         assert!(worst <= 1e-6, "{what}: V differs by {worst}");
     }
 }
+
+/// The bounds the ranges build from a map of known values: every stored
+/// value within its window's bound, and a window that one plane fills
+/// bounded by that plane to rounding (a flat range would be as wide as the
+/// plane's rise over the window).
+#[test]
+fn window_bounds_hold_every_texel_and_find_a_plane() {
+    use lumlab::gpu::depth_ranges::{FORMAT, RangePass, RangeTextures, block_texels};
+    let gpu = gpu();
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let renderable = gpu.adapter.get_texture_format_features(FORMAT).allowed_usages;
+    if !renderable.contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
+        assert!(
+            gpu.adapter.get_info().backend == wgpu::Backend::Gl,
+            "only GL lacks the ranges"
+        );
+        return;
+    }
+    // A sloped plane, a nearer occluder over 8×8 texels and a patch where
+    // nothing was drawn (0, the far plane).
+    let side = 64u32;
+    let plane = |i: u32, j: u32| 0.5 + 0.003 * f64::from(i) - 0.002 * f64::from(j);
+    let occluder = |i: u32, j: u32| (20..28).contains(&i) && (30..38).contains(&j);
+    let undrawn = |i: u32, j: u32| (48..56).contains(&i) && (8..16).contains(&j);
+    let stored = |i: u32, j: u32| match (occluder(i, j), undrawn(i, j)) {
+        (true, _) => 0.9,
+        (_, true) => 0.0,
+        _ => plane(i, j) as f32,
+    };
+    let values: Vec<f32> = (0..side * side).map(|t| stored(t % side, t / side)).collect();
+    let size = wgpu::Extent3d {
+        width: side,
+        height: side,
+        depth_or_array_layers: 1,
+    };
+    let depth = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("test depth values"),
+        size,
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::R32Float,
+        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+        view_formats: &[],
+    });
+    queue.write_texture(
+        depth.as_image_copy(),
+        bytemuck::cast_slice(&values),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(4 * side),
+            rows_per_image: Some(side),
+        },
+        size,
+    );
+    let view = depth.create_view(&wgpu::TextureViewDescriptor {
+        dimension: Some(wgpu::TextureViewDimension::D2Array),
+        ..Default::default()
+    });
+    let level = 0;
+    let b = block_texels(level);
+    let mut ranges = RangeTextures::new(device, side, 1);
+    let pass = RangePass::new(device, 1);
+    let mut encoder = device.create_command_encoder(&Default::default());
+    pass.encode(
+        (device, queue),
+        &mut encoder,
+        (&view, &[0]),
+        (&mut ranges, level),
+        None,
+    );
+    queue.submit([encoder.finish()]);
+    let windows = ranges.read_windows((device, queue), level, 0);
+    let count = side / b;
+    assert_eq!(windows.len(), (count * count) as usize);
+    let mut planes = 0;
+    for (e, bound) in windows.iter().enumerate() {
+        let (ex, ey) = (e as u32 % count, e as u32 / count);
+        let [c, gx, gy, w] = bound.map(f64::from);
+        // The window's texels in the map (the last windows reach past it).
+        let texels = (ey * b..(ey * b + 2 * b).min(side))
+            .flat_map(|j| (ex * b..(ex * b + 2 * b).min(side)).map(move |i| (i, j)));
+        let mut on_plane = true;
+        for (i, j) in texels {
+            let along = c + gx * f64::from(i - ex * b) + gy * f64::from(j - ey * b);
+            let d = f64::from(stored(i, j));
+            assert!(
+                (d - along).abs() <= w,
+                "window {ex}, {ey}: texel {i}, {j} holds {d}, bound {along} ± {w}"
+            );
+            on_plane &= !occluder(i, j) && !undrawn(i, j);
+        }
+        // Inside the map, a window that only the plane fills: the plane
+        // itself, to rounding.
+        if on_plane && ex + 1 < count && ey + 1 < count {
+            planes += 1;
+            assert!(w <= 4e-6, "window {ex}, {ey}: half-width {w} on one plane");
+            assert!(
+                (gx - 0.003).abs() < 1e-5 && (gy + 0.002).abs() < 1e-5,
+                "window {ex}, {ey}: slope {gx}, {gy}"
+            );
+        }
+    }
+    assert!(planes > 150, "{planes} windows on the plane alone");
+}

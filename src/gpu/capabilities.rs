@@ -13,7 +13,7 @@ pub struct Capabilities {
     /// VSM/EVSM moments: Rgba32Float where renderable and filterable.
     pub moments_format: wgpu::TextureFormat,
     pub timestamps: bool,
-    /// Rg32Float is renderable: the depth ranges PCF and Poisson read
+    /// Rgba32Float is renderable: the depth ranges PCF and Poisson read
     /// (gpu::depth_ranges) can be built; without, every tap is tested.
     pub depth_ranges: bool,
     /// The GL backend decides a texture's kind from its layer count.

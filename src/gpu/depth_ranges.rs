@@ -59,6 +59,8 @@ pub const BYTES_PER_TEXEL: u64 = 3;
 struct Level {
     blocks: (wgpu::TextureView, Vec<wgpu::TextureView>),
     windows: (wgpu::TextureView, Vec<wgpu::TextureView>),
+    /// The windows' texture, for reading them back.
+    windows_texture: wgpu::Texture,
     /// The windows hold the current map's ranges.
     built: bool,
 }
@@ -70,17 +72,18 @@ pub struct RangeTextures {
 
 impl RangeTextures {
     pub fn new(device: &wgpu::Device, resolution: u32, layers: u32) -> Self {
-        let views = |label: &str, side: u32| {
-            let (_, array, per_layer) = super::shadow::array_texture(device, label, side, layers, FORMAT);
-            (array, per_layer)
-        };
+        let textures =
+            |label: &str, side: u32| super::shadow::array_texture(device, label, side, layers, FORMAT);
         let levels = BLOCKS
             .iter()
             .map(|&b| {
                 let side = resolution.div_ceil(b);
+                let (_, blocks, per_layer) = textures("shadow depth blocks", side);
+                let (windows_texture, windows, windows_per_layer) = textures("shadow depth ranges", side);
                 Level {
-                    blocks: views("shadow depth blocks", side),
-                    windows: views("shadow depth ranges", side),
+                    blocks: (blocks, per_layer),
+                    windows: (windows, windows_per_layer),
+                    windows_texture,
                     built: false,
                 }
             })
@@ -102,6 +105,20 @@ impl RangeTextures {
     /// The windows of a level, as the camera pass binds them.
     pub fn windows(&self, level: usize) -> &wgpu::TextureView {
         &self.levels[level].windows.0
+    }
+
+    /// The bounds of one layer's windows at a level, row by row: (the
+    /// plane at the window's first texel, its steps per texel in x and y,
+    /// the half-width), as shaders/depth_ranges.wgsl writes them.
+    pub fn read_windows(
+        &self,
+        (device, queue): (&wgpu::Device, &wgpu::Queue),
+        level: usize,
+        layer: u32,
+    ) -> Vec<[f32; 4]> {
+        let bytes =
+            super::readback::read_texture(device, queue, &self.levels[level].windows_texture, layer, 16);
+        super::targets::decode_float_texels(&bytes, 16)
     }
 }
 
