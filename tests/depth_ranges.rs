@@ -104,15 +104,13 @@ fn filters_decided_from_depth_ranges_match_every_tap_tested() {
 /// plane's rise over the window).
 #[test]
 fn window_bounds_hold_every_texel_and_find_a_plane() {
-    use lumlab::gpu::depth_ranges::{FORMAT, RangePass, RangeTextures, block_texels};
+    use lumlab::gpu::Capabilities;
+    use lumlab::gpu::depth_ranges::{RangePass, RangeTextures, block_texels};
     let gpu = gpu();
     let (device, queue) = (&gpu.device, &gpu.queue);
-    let renderable = gpu.adapter.get_texture_format_features(FORMAT).allowed_usages;
-    if !renderable.contains(wgpu::TextureUsages::RENDER_ATTACHMENT) {
-        assert!(
-            gpu.adapter.get_info().backend == wgpu::Backend::Gl,
-            "only GL lacks the ranges"
-        );
+    let capabilities = Capabilities::of(&gpu.adapter, device);
+    if !capabilities.depth_ranges {
+        assert!(capabilities.gl, "only GL lacks the ranges");
         return;
     }
     // A sloped plane, a nearer occluder over 8×8 texels and a patch where

@@ -16,10 +16,10 @@
 //!
 //! Built per map and kernel size on the first frame that reuses a map (a
 //! map drawn for one frame, under a moving light, never pays for them), in
-//! two passes per layer: blocks of B×B texels (the plane through three
-//! corners, or the flat range where it bounds closer), then windows of 2×2
-//! blocks (the flat range or the first block's plane, bounding all four). The
-//! build reads every texel of the map once.
+//! two passes per layer: blocks of B×B texels (the plane through the first
+//! texel and its neighbours in x and y, or the flat range where it bounds
+//! closer), then windows of 2×2 blocks (the flat range or the first block's
+//! plane, bounding all four). The build reads every texel of the map once.
 
 use super::binding;
 use super::shaders::Shader;
