@@ -241,24 +241,18 @@ fn blinn_phong(n: vec3<f32>, l: vec3<f32>, o: vec3<f32>, k: f32, m: f32, norm: u
 
 // blinn_phong given N(m) = n_m.
 fn blinn_phong_scaled(n: vec3<f32>, l: vec3<f32>, o: vec3<f32>, k: f32, m: f32, n_m: f32) -> vec2<f32> {
-    if !(dot(n, l) > 0.0 && dot(n, o) > 0.0) {
-        return vec2<f32>(0.0);
-    }
-    let diffuse = k / PI;
-    if k >= 1.0 {
-        // Lambert alone: (1 − k) N(m) cos^m θ_h is not evaluated, so that an
-        // N(m) that overflows f32 (m ≳ 10^19 with exact) cannot give 0 · ∞.
-        return vec2<f32>(diffuse, 0.0);
-    }
+    // Written with selects, not early returns: a software rasterizer runs
+    // every branch anyway, and the branches cost it more than the selects.
+    let lit = dot(n, l) > 0.0 && dot(n, o) > 0.0;
     let sum = l + o;
     let len2 = dot(sum, sum);
-    if !(len2 > 0.0) {
-        return vec2<f32>(diffuse, 0.0);
-    }
-    let h = sum * (1.0 / sqrt(len2));
+    let h = sum * (1.0 / sqrt(max(len2, 1e-30)));
     let cos_h = dot(n, h);
     let gap = min(dot(n - h, n - h) * 0.5, 1.0);
-    return vec2<f32>(diffuse, (1.0 - k) * n_m * lobe(cos_h, gap, m));
+    // Lambert alone (k ≥ 1) keeps 0, not (1 − k) N(m) cos^m θ_h: an N(m)
+    // that overflows f32 (m ≳ 10^19 with exact) would give 0 · ∞.
+    let specular = select(0.0, (1.0 - k) * n_m * lobe(cos_h, gap, m), k < 1.0 && len2 > 0.0);
+    return select(vec2<f32>(0.0), vec2<f32>(k / PI, specular), lit);
 }
 
 // Where the light is seen from a surface point (physics::radiometry::incidence).

@@ -143,6 +143,33 @@ fn vertex_colours_modulate_the_base_colour_alike_on_both() {
     assert!((ratio - 0.5).abs() < 1e-9, "blue ratio {ratio}");
 }
 
+/// A base-colour texture tints the scene alike on both (the camera pass
+/// compiled with textures), and the colour override replaces colour and
+/// texture alike (applied per vertex on the GPU). The texel's bytes are 0
+/// and 255, which every adapter's sRGB decoding maps exactly (lavapipe's
+/// approximates others to ~0.3 %).
+#[test]
+fn textures_and_the_colour_override_shade_alike_on_both() {
+    let mut settings = unshadowed(160, 90);
+    let mut textured = lumlab::scene::default_scene();
+    textured.textures.push(lumlab::scene::Texture {
+        width: 1,
+        height: 1,
+        rgba8: vec![255, 0, 255, 255],
+    });
+    for material in &mut textured.materials {
+        material.base_color_texture = Some(0);
+    }
+    agree_on(&textured, &settings, "textured");
+    // Green, compared nowhere above (0 in the reference), is 0 on the GPU too.
+    let gpu = common::gpu();
+    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &textured);
+    renderer.render(&settings, (settings.image.width, settings.image.height));
+    assert!(renderer.read_quantity().iter().all(|q| q[1] == 0.0));
+    settings.material.color_override = Some(glam::Vec3::new(0.3, 0.6, 0.9));
+    agree_on(&textured, &settings, "colour override over a texture");
+}
+
 #[test]
 fn under_a_spectral_light_the_gpu_equals_the_spectral_reference() {
     // The GPU shades with each material's tristimulus computed once on the

@@ -174,16 +174,16 @@ impl Renderer {
     /// sphere, or back, during its drag.
     pub fn compile_ahead(&mut self, settings: &Settings, options: ShadeOptions) {
         // A drag's first frame starts its mean, if V is ray traced.
-        let (simplified, colours) = {
+        let (simplified, attributes) = {
             let shared = lock(&self.shared);
             let scene = &shared.scene;
             (
                 options.simplified && scene.simplified_triangles().is_some(),
-                scene.vertex_colours,
+                scene.attributes,
             )
         };
         let specialisation =
-            Specialisation::for_frame(settings, self.layout_kind, options, false, simplified, colours);
+            Specialisation::for_frame(settings, self.layout_kind, options, false, simplified, attributes);
         self.shade.compile_ahead(&self.device, specialisation);
         if let Some(sphere) = specialisation.sphere_light {
             let other = Specialisation {
@@ -380,7 +380,7 @@ impl Renderer {
             self.shade_options,
             accumulating,
             simplified,
-            shared.scene.vertex_colours,
+            shared.scene.attributes,
         );
         self.shade.prepare(&self.device, specialisation);
         // The pre-pass and the camera pass are timed as one span: the cost of shading.

@@ -5,6 +5,7 @@
 //! index buffer over the same vertices.
 
 use super::bvh::{FlatBvh, GpuBvh};
+use super::specialise::SceneAttributes;
 use super::uniforms::MaterialRaw;
 use crate::physics::brdf::Normalization;
 use crate::scene::simplify::SimplifiedMeshes;
@@ -110,8 +111,9 @@ const MAX_TEXTURE_SIDE: u32 = 2048;
 
 pub struct GpuScene {
     pub vertices: wgpu::Buffer,
-    /// Some object has vertex colours (the others' are uploaded as 1).
-    pub vertex_colours: bool,
+    /// Vertex colours (the objects without are uploaded as 1) and
+    /// textures the camera pass must read.
+    pub attributes: SceneAttributes,
     pub indices: wgpu::Buffer,
     pub draws: Vec<Draw>,
     /// Per object: its bounds when it casts shadows.
@@ -217,7 +219,10 @@ impl GpuScene {
             .map(|m| (m.name.clone(), m.base_color.truncate().as_dvec3()))
             .collect();
         Self {
-            vertex_colours: scene.objects.iter().any(|o| !o.mesh.colours.is_empty()),
+            attributes: SceneAttributes {
+                vertex_colours: scene.objects.iter().any(|o| !o.mesh.colours.is_empty()),
+                textures: materials.iter().any(|m| m.texture_layer_plus_one > 0),
+            },
             vertices: buffer(
                 "scene vertices",
                 bytemuck::cast_slice(&vertices),
