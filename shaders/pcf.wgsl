@@ -66,11 +66,12 @@ fn own_face_tap(o: OwnFace, r: Receiver, k: vec2<f32>, d: f32) -> f32 {
     return select(0.0, 1.0, compared <= stored);
 }
 
-// The weighted test of texel base + k of an n×n kernel at fraction f: 0 off
-// the kernel (k > n) and off the face (the second loop of filter_pcf).
-fn own_face_texel(o: OwnFace, r: Receiver, base: vec2<i32>, k: vec2<i32>, n: i32, f: vec2<f32>, d: f32) -> f32 {
+// The weighted test of texel base + k of an n×n kernel at fraction f: 0
+// outside the offsets lo … hi (off the kernel, k > n, or off the face: the
+// second loop of filter_pcf).
+fn own_face_texel(o: OwnFace, r: Receiver, lo: vec2<i32>, hi: vec2<i32>, k: vec2<i32>, n: i32, f: vec2<f32>, d: f32) -> f32 {
     let w = pcf_weight(k.x, n, f.x) * pcf_weight(k.y, n, f.y);
-    let counted = in_map(base + k) && all(k <= vec2<i32>(n));
+    let counted = all(k >= lo) && all(k <= hi);
     return select(0.0, w * own_face_tap(o, r, vec2<f32>(k), d), counted);
 }
 
@@ -93,16 +94,19 @@ fn filter_pcf(r: Receiver) -> f32 {
     // only where the kernel reaches past the face's edge, those beyond it
     // (depth_test's cube addressing): kernels inside their face pay for
     // one masked trip of the second loop, not (n + 1)² of them. The same
-    // taps and weights as one loop over depth_test.
+    // taps and weights as one loop over depth_test. The offsets k of the
+    // kernel's texels on the face: one bound per pixel, not in_map per texel.
+    let lo = max(-base, vec2<i32>(0));
+    let hi = min(vec2<i32>(i32(resolution()) - 1) - base, vec2<i32>(n));
     for (var j = 0; j <= last; j += 2) {
         for (var i = 0; i <= last; i += 2) {
             let k = vec2<i32>(i, j);
             // Texels k + (0, 1), (1, 1), (1, 0), k (textureGather's order).
             let d = gather_depths(r.layer, base + k);
-            sum += own_face_texel(o, r, base, k + vec2<i32>(0, 1), n, f, d.x)
-                + own_face_texel(o, r, base, k + vec2<i32>(1, 1), n, f, d.y)
-                + own_face_texel(o, r, base, k + vec2<i32>(1, 0), n, f, d.z)
-                + own_face_texel(o, r, base, k, n, f, d.w);
+            sum += own_face_texel(o, r, lo, hi, k + vec2<i32>(0, 1), n, f, d.x)
+                + own_face_texel(o, r, lo, hi, k + vec2<i32>(1, 1), n, f, d.y)
+                + own_face_texel(o, r, lo, hi, k + vec2<i32>(1, 0), n, f, d.z)
+                + own_face_texel(o, r, lo, hi, k, n, f, d.w);
         }
     }
     if !(in_map(base) && in_map(base + vec2<i32>(n))) {
