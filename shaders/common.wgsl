@@ -249,9 +249,10 @@ fn blinn_phong_scaled(n: vec3<f32>, l: vec3<f32>, o: vec3<f32>, k: f32, m: f32, 
     let h = sum * (1.0 / sqrt(max(len2, 1e-30)));
     let cos_h = dot(n, h);
     let gap = min(dot(n - h, n - h) * 0.5, 1.0);
-    // Lambert alone (k ≥ 1) keeps 0, not (1 − k) N(m) cos^m θ_h: an N(m)
-    // that overflows f32 (m ≳ 10^19 with exact) would give 0 · ∞.
-    let specular = select(0.0, (1.0 - k) * n_m * lobe(cos_h, gap, m), k < 1.0 && len2 > 0.0);
+    // Lambert alone (k ≥ 1) drops N(m) before the product: an N(m) that
+    // overflows f32 (m ≳ 10^19 with exact) would give 0 · ∞.
+    let n_kept = select(n_m, 0.0, k >= 1.0);
+    let specular = select(0.0, (1.0 - k) * n_kept * lobe(cos_h, gap, m), len2 > 0.0);
     return select(vec2<f32>(0.0), vec2<f32>(k / PI, specular), lit);
 }
 
