@@ -16,6 +16,12 @@ fn pcf_weight(i: i32, n: i32, f: f32) -> f32 {
     return select(select(1.0, f, i == n), 1.0 - f, i == 0);
 }
 
+// pcf_weight summed over the texels lo … hi of a row (none when hi < lo).
+fn pcf_weight_sum(lo: i32, hi: i32, n: i32, f: f32) -> f32 {
+    let sum = f32(hi - lo + 1) - select(0.0, f, lo == 0) - select(0.0, 1.0 - f, hi == n);
+    return select(0.0, sum, hi >= lo);
+}
+
 // What the taps of a PCF kernel on the receiver's own face share, computed
 // once per receiver instead of once per tap: the layer's depth conversion,
 // and compared_depth's terms as functions of the offset k (texels) from
@@ -109,7 +115,12 @@ fn filter_pcf(r: Receiver) -> f32 {
                 + own_face_texel(o, r, lo, hi, k, n, f, d.w);
         }
     }
-    if !(in_map(base) && in_map(base + vec2<i32>(n))) {
+    let crossing = !(in_map(base) && in_map(base + vec2<i32>(n)));
+    // A single frustum drew nothing past its edge: those taps are lit, the
+    // kernel's weight off the map in closed form (no loop to pay for).
+    let on_map = pcf_weight_sum(lo.x, hi.x, n, f.x) * pcf_weight_sum(lo.y, hi.y, n, f.y);
+    sum += select(0.0, f32(n * n) - on_map, crossing && !is_cube());
+    if crossing && is_cube() {
         for (var j = 0; j <= n; j++) {
             for (var i = 0; i <= n; i++) {
                 let texel = base + vec2<i32>(i, j);
