@@ -17,7 +17,6 @@ struct Case {
     f: f32,
 }
 
-/// Per case: the closed form, then pcf_weight summed over lo … hi.
 const KERNEL: &str = r#"
 struct Case {
     lo: i32,
@@ -30,18 +29,20 @@ struct Case {
 // Named by shadow_map.wgsl and pcf.wgsl; unused here.
 @group(2) @binding(0) var<uniform> shadow: Shadow;
 
-@compute @workgroup_size(64)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = id.x;
-    if i >= arrayLength(&cases) {
-        return;
-    }
-    let c = cases[i];
+// The closed form, then pcf_weight summed texel by texel.
+fn sums(c: Case) -> vec2<f32> {
     var one_by_one = 0.0;
     for (var k = c.lo; k <= c.hi; k++) {
         one_by_one += pcf_weight(k, c.n, c.f);
     }
-    results[i] = vec2<f32>(pcf_weight_sum(c.lo, c.hi, c.n, c.f), one_by_one);
+    return vec2<f32>(pcf_weight_sum(c.lo, c.hi, c.n, c.f), one_by_one);
+}
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x < arrayLength(&cases) {
+        results[id.x] = sums(cases[id.x]);
+    }
 }
 "#;
 
