@@ -189,6 +189,26 @@ struct DisplayParams {
     exposure_ev: f32,
 }
 
+// The largest and smallest of four values.
+fn largest(v: vec4<f32>) -> f32 {
+    return max(max(v.x, v.y), max(v.z, v.w));
+}
+
+fn smallest(v: vec4<f32>) -> f32 {
+    return min(min(v.x, v.y), min(v.z, v.w));
+}
+
+// A plane over texel offsets p (from its first texel): c + g·p (the
+// depth ranges' bounds, gpu::depth_ranges).
+fn plane_at(c: f32, g: vec2<f32>, p: vec2<f32>) -> f32 {
+    return c + dot(g, p);
+}
+
+// The plane c, g at the corners o + (0, 0), (s, 0), (0, s), (s, s).
+fn corners(c: f32, g: vec2<f32>, o: vec2<f32>, s: f32) -> vec4<f32> {
+    return plane_at(c, g, o) + vec4<f32>(0.0, g.x, g.y, g.x + g.y) * s;
+}
+
 // Y of a linear RGB colour (physics::colour::luminance).
 fn luminance(c: vec3<f32>) -> f32 {
     return dot(c, LUMINANCE_WEIGHTS);

@@ -36,24 +36,6 @@ fn corner(t: vec2<i32>) -> vec2<f32> {
     return vec2<f32>(t + 1) / vec2<f32>(textureDimensions(source));
 }
 
-fn largest(v: vec4<f32>) -> f32 {
-    return max(max(v.x, v.y), max(v.z, v.w));
-}
-
-fn smallest(v: vec4<f32>) -> f32 {
-    return min(min(v.x, v.y), min(v.z, v.w));
-}
-
-// The plane c + g·p (p from the first texel).
-fn plane_at(c: f32, g: vec2<f32>, p: vec2<f32>) -> f32 {
-    return c + dot(g, p);
-}
-
-// The plane c, g at the corners o + (0, 0), (s, 0), (0, s), (s, s).
-fn corners(c: f32, g: vec2<f32>, o: vec2<f32>, s: f32) -> vec4<f32> {
-    return plane_at(c, g, o) + vec4<f32>(0.0, g.x, g.y, g.x + g.y) * s;
-}
-
 // A bound's half-width grown by the rounding of the sums that make and
 // read it (relative to the largest stored value it covers).
 fn with_rounding(b: vec4<f32>, high: f32) -> vec4<f32> {
@@ -99,7 +81,7 @@ fn fs_blocks(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
 // their difference is affine.
 fn block_gap(b: vec4<f32>, o: vec2<f32>, c: f32, g: vec2<f32>, side: f32) -> f32 {
     let gap = abs(corners(b.x, b.yz, vec2<f32>(0.0), side) - corners(c, g, o, side));
-    return b.w + max(max(gap.x, gap.y), max(gap.z, gap.w));
+    return b.w + largest(gap);
 }
 
 // The bound of plane c, g over the four blocks of a window (columns of m,

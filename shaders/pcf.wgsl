@@ -115,7 +115,8 @@ fn filter_pcf(r: Receiver) -> f32 {
                 + own_face_texel(o, r, lo, hi, k, n, f, d.w);
         }
     }
-    let crossing = !(in_map(base) && in_map(base + vec2<i32>(n)));
+    // Some of the kernel is off the face: its bounds on the face are not 0 … n.
+    let crossing = any(lo != vec2<i32>(0)) || any(hi != vec2<i32>(n));
     // A single frustum drew nothing past its edge: those taps are lit, the
     // kernel's weight off the map in closed form (no loop to pay for).
     let on_map = pcf_weight_sum(lo.x, hi.x, n, f.x) * pcf_weight_sum(lo.y, hi.y, n, f.y);
@@ -155,9 +156,9 @@ fn range_verdict(o: OwnFace, r: Receiver, base: vec2<i32>, n: i32) -> f32 {
         // The plane at the kernel's corners k = (0, 0), (n, 0), (0, n), (n, n).
         let first = vec2<f32>(base - window * block);
         let span = f32(n);
-        let along = bound.x + dot(bound.yz, first) + vec4<f32>(0.0, bound.y, bound.z, bound.y + bound.z) * span;
-        let nearest = stored_linear(max(max(along.x, along.y), max(along.z, along.w)) + bound.w, o.depth_a, o.depth_b);
-        let farthest = stored_linear(min(min(along.x, along.y), min(along.z, along.w)) - bound.w, o.depth_a, o.depth_b);
+        let along = corners(bound.x, bound.yz, first, span);
+        let nearest = stored_linear(largest(along) + bound.w, o.depth_a, o.depth_b);
+        let farthest = stored_linear(smallest(along) - bound.w, o.depth_a, o.depth_b);
         var highest = o.fixed;
         var lowest = o.fixed;
         var own_plane = false;
@@ -189,14 +190,14 @@ fn range_verdict(o: OwnFace, r: Receiver, base: vec2<i32>, n: i32) -> f32 {
 //     is largest at a corner.
 // The receiver's plane must face the light over the whole kernel.
 fn plane_lights(o: OwnFace, r: Receiver, above: vec4<f32>, slack: f32, nearest: f32, span: f32) -> bool {
-    let denominators = o.denominator + vec4<f32>(0.0, o.step.x, o.step.y, o.step.x + o.step.y) * span;
+    let denominators = corners(o.denominator, o.step, vec2<f32>(0.0), span);
     let facing = o.numerator < 0.0 && all(denominators < vec4<f32>(-1e-4));
     let inverse_plane = denominators / o.numerator;
     let inverse_stored = (above - o.depth_b) / o.depth_a;
     let gap = inverse_stored - inverse_plane;
-    let least = min(min(inverse_plane.x, inverse_plane.y), min(inverse_plane.z, inverse_plane.w));
-    let most = max(max(inverse_plane.x, inverse_plane.y), max(inverse_plane.z, inverse_plane.w));
-    let below_plane = max(max(gap.x, gap.y), max(gap.z, gap.w)) <= slack * least * least - 1e-5 * most;
+    let least = smallest(inverse_plane);
+    let most = largest(inverse_plane);
+    let below_plane = largest(gap) <= slack * least * least - 1e-5 * most;
     let within_reach = nearest >= r.z - 0.5 * o.reach - slack + 1e-5 * r.z;
     return facing && below_plane && within_reach;
 }
