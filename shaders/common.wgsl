@@ -205,7 +205,7 @@ fn plane_at(c: f32, g: vec2<f32>, p: vec2<f32>) -> f32 {
 }
 
 // The plane c, g at the corners o + (0, 0), (s, 0), (0, s), (s, s).
-fn corners(c: f32, g: vec2<f32>, o: vec2<f32>, s: f32) -> vec4<f32> {
+fn plane_corners(c: f32, g: vec2<f32>, o: vec2<f32>, s: f32) -> vec4<f32> {
     return plane_at(c, g, o) + vec4<f32>(0.0, g.x, g.y, g.x + g.y) * s;
 }
 

@@ -80,7 +80,7 @@ fn fs_blocks(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
 // half-width and the planes' largest gap over the block, at a corner, as
 // their difference is affine.
 fn block_gap(b: vec4<f32>, o: vec2<f32>, c: f32, g: vec2<f32>, side: f32) -> f32 {
-    let gap = abs(corners(b.x, b.yz, vec2<f32>(0.0), side) - corners(c, g, o, side));
+    let gap = abs(plane_corners(b.x, b.yz, vec2<f32>(0.0), side) - plane_corners(c, g, o, side));
     return b.w + largest(gap);
 }
 
@@ -116,10 +116,10 @@ fn fs_windows(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> 
     // The blocks' extreme values, at their corners.
     let s = b - 1.0;
     let zero = vec2<f32>(0.0);
-    let c0 = corners(m[0].x, m[0].yz, zero, s);
-    let c1 = corners(m[1].x, m[1].yz, zero, s);
-    let c2 = corners(m[2].x, m[2].yz, zero, s);
-    let c3 = corners(m[3].x, m[3].yz, zero, s);
+    let c0 = plane_corners(m[0].x, m[0].yz, zero, s);
+    let c1 = plane_corners(m[1].x, m[1].yz, zero, s);
+    let c2 = plane_corners(m[2].x, m[2].yz, zero, s);
+    let c3 = plane_corners(m[3].x, m[3].yz, zero, s);
     let highs = max(max(c0 + m[0].w, c1 + m[1].w), max(c2 + m[2].w, c3 + m[3].w));
     let lows = min(min(c0 - m[0].w, c1 - m[1].w), min(c2 - m[2].w, c3 - m[3].w));
     let high = largest(highs);

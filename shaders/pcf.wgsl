@@ -156,7 +156,7 @@ fn range_verdict(o: OwnFace, r: Receiver, base: vec2<i32>, n: i32) -> f32 {
         // The plane at the kernel's corners k = (0, 0), (n, 0), (0, n), (n, n).
         let first = vec2<f32>(base - window * block);
         let span = f32(n);
-        let along = corners(bound.x, bound.yz, first, span);
+        let along = plane_corners(bound.x, bound.yz, first, span);
         let nearest = stored_linear(largest(along) + bound.w, o.depth_a, o.depth_b);
         let farthest = stored_linear(smallest(along) - bound.w, o.depth_a, o.depth_b);
         var highest = o.fixed;
@@ -190,7 +190,7 @@ fn range_verdict(o: OwnFace, r: Receiver, base: vec2<i32>, n: i32) -> f32 {
 //     is largest at a corner.
 // The receiver's plane must face the light over the whole kernel.
 fn plane_lights(o: OwnFace, r: Receiver, above: vec4<f32>, slack: f32, nearest: f32, span: f32) -> bool {
-    let denominators = corners(o.denominator, o.step, vec2<f32>(0.0), span);
+    let denominators = plane_corners(o.denominator, o.step, vec2<f32>(0.0), span);
     let facing = o.numerator < 0.0 && all(denominators < vec4<f32>(-1e-4));
     let inverse_plane = denominators / o.numerator;
     let inverse_stored = (above - o.depth_b) / o.depth_a;
