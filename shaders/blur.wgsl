@@ -13,10 +13,17 @@ struct BlurParams {
 @group(0) @binding(0) var source: texture_2d_array<f32>;
 @group(0) @binding(1) var<uniform> params: BlurParams;
 
+// The kernel's radius bounds the loop below.
+@vertex
+fn vs(@builtin(vertex_index) i: u32) -> FullscreenBound {
+    return fullscreen_bound(i, params.radius_texels);
+}
+
 @fragment
-fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+fn fs(in: FullscreenBound) -> @location(0) vec4<f32> {
+    let position = in.position;
     let step = params.step;
-    let radius = params.radius_texels;
+    let radius = in.bound;
     let layer = params.layer;
     let size = vec2<i32>(textureDimensions(source));
     let centre = vec2<i32>(position.xy);

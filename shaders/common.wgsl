@@ -365,3 +365,23 @@ fn srgb_decode(encoded: f32) -> f32 {
 fn linear_depth(d: f32, a: f32, b: f32) -> f32 {
     return a / (d - b);
 }
+
+// Vertex i of the one triangle that covers a fullscreen pass's target
+// (fullscreen.wgsl, and the passes with a vertex stage of their own).
+fn fullscreen_position(i: u32) -> vec4<f32> {
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+// The fullscreen triangle with a uniform that bounds a loop of the
+// fragment stage, handed over as a flat varying: lavapipe compiles a
+// shader anew whenever a uniform that alone bounds a loop changes
+// (tests/uniform_branches.rs).
+struct FullscreenBound {
+    @builtin(position) position: vec4<f32>,
+    @location(0) @interpolate(flat) bound: i32,
+}
+
+fn fullscreen_bound(i: u32, bound: i32) -> FullscreenBound {
+    return FullscreenBound(fullscreen_position(i), bound);
+}

@@ -42,9 +42,16 @@ fn with_rounding(b: vec4<f32>, high: f32) -> vec4<f32> {
     return vec4<f32>(b.xyz, b.w + 1e-6 * high);
 }
 
+// A block's side bounds fs_blocks' loops.
+@vertex
+fn vs(@builtin(vertex_index) i: u32) -> FullscreenBound {
+    return fullscreen_bound(i, params.block_texels);
+}
+
 @fragment
-fn fs_blocks(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
-    let b = params.block_texels;
+fn fs_blocks(in: FullscreenBound) -> @location(0) vec4<f32> {
+    let position = in.position;
+    let b = in.bound;
     let first = vec2<i32>(position.xy) * b;
     // The plane through the first texel and its neighbours in x and y:
     // exact where one plane fills the block, a guess whose residuals the

@@ -50,12 +50,10 @@ fn missing(position: vec2<f32>) -> vec3<f32> {
 // The light's depth map: one layer, or the six cube faces in a 3 × 2 grid.
 fn depth_view(position: vec2<f32>) -> vec3<f32> {
     let size = params.size_px;
-    var cols = 1.0;
-    var rows = 1.0;
-    if shadow.cube != 0u {
-        cols = 3.0;
-        rows = 2.0;
-    }
+    // Selects, not an `if` on the uniforms (tests/uniform_branches.rs).
+    let cube = shadow.cube != 0u;
+    let cols = select(1.0, 3.0, cube);
+    let rows = select(1.0, 2.0, cube);
     let cell_size = min(size.x / cols, size.y / rows);
     let origin = 0.5 * (size - vec2<f32>(cols, rows) * cell_size);
     let local = (position - origin) / cell_size;
@@ -109,19 +107,11 @@ fn fs(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
             color = ramp(0.5 - log2(max(q.x, 1e-6)) / 8.0, true);
         }
         case VIEW_REF_VISIBILITY: {
-            if has_reference {
-                color = grey(textureLoad(comparison, texel, 0).a);
-            } else {
-                color = missing(position.xy);
-            }
+            color = select(missing(position.xy), grey(textureLoad(comparison, texel, 0).a), has_reference);
         }
         case VIEW_ERROR: {
-            if has_reference {
-                let error = luminance(q) - luminance(textureLoad(comparison, texel, 0).rgb);
-                color = ramp(0.5 + 0.5 * error / scale_max(), true);
-            } else {
-                color = missing(position.xy);
-            }
+            let error = luminance(q) - luminance(textureLoad(comparison, texel, 0).rgb);
+            color = select(missing(position.xy), ramp(0.5 + 0.5 * error / scale_max(), true), has_reference);
         }
         case VIEW_DELTA_E: {
             // ΔE2000 on a fixed scale; negative: no spectral illuminant, no ΔE.

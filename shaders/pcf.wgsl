@@ -4,7 +4,7 @@
 // texels under the kernel leaves no doubt (gpu::depth_ranges).
 
 // Bounds on the stored values over windows of 2×2 blocks of B×B texels, B =
-// shadow.range_block (0: not built for this map, nothing to read): window
+// knobs.filters.y, Shadow's range_block (0: not built for this map, nothing to read): window
 // e covers texels B e … B e + 2B − 1, where every stored value d lies within
 // w of the plane x + y i + z j (i, j from the window's first texel;
 // gpu::depth_ranges). 0 is the far plane (nothing drawn).
@@ -84,7 +84,7 @@ fn own_face_texel(o: OwnFace, r: Receiver, lo: vec2<i32>, hi: vec2<i32>, k: vec2
 // n×n bilinear PCF: the average of n×n bilinear tests one texel apart,
 // summed as separable weights over the (n + 1)² texels they touch.
 fn filter_pcf(r: Receiver) -> f32 {
-    let n = i32(shadow.pcf_size);
+    let n = i32(knobs.filters.x);
     let c = r.tc - 0.5;
     let base = vec2<i32>(floor(c)) - vec2<i32>((n - 1) / 2);
     let f = fract(c);
@@ -147,7 +147,7 @@ fn filter_pcf(r: Receiver) -> f32 {
 // get the value the loops would have summed (1 up to the weights'
 // rounding, or exactly 0).
 fn range_verdict(o: OwnFace, r: Receiver, base: vec2<i32>, n: i32) -> f32 {
-    let block = i32(shadow.range_block);
+    let block = i32(knobs.filters.y);
     let known = block >= n && n >= 0 && block > 0 && in_map(base) && in_map(base + vec2<i32>(n)) && (shadow.layer_mask & (1u << r.layer)) != 0u;
     var verdict = -1.0;
     if known {

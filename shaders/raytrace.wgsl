@@ -68,7 +68,7 @@ fn rt_random(state: ptr<function, u32>) -> f32 {
 // Whether the segment from `origin_rel` along d (both relative to the eye)
 // is blocked before its end.
 fn rt_blocked(origin_rel: vec3<f32>, d: vec3<f32>) -> bool {
-    return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, rt.pair_count);
+    return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, knobs.rays.z);
 }
 
 // V at the point p = eye + rel with shading normal n and facet normal n_geo
@@ -81,7 +81,7 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
     let offset = RT_OFFSET_REL * max(max(abs(p.x), abs(p.y)), max(abs(p.z), length(rel)));
     let origin = rel + n_geo * offset;
     let to_centre = globals.light_rel - rel;
-    let radius = globals.light_radius_m;
+    let radius = knobs.radius.x;
     if !sphere_light() {
         // Attached shadow: the light below the surface's horizon.
         if dot(n, to_centre) <= 0.0 {
@@ -108,11 +108,11 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
     var state = rt_hash(u32(pixel.x) ^ rt_hash(u32(pixel.y) ^ rt_hash(rt.frame_seed)));
     var cos_sum = 0.0;
     var visible_cos_sum = 0.0;
-    for (var iy = 0u; iy < rt.strata_y; iy++) {
-        for (var ix = 0u; ix < rt.strata_x; ix++) {
+    for (var iy = 0u; iy < knobs.rays.y; iy++) {
+        for (var ix = 0u; ix < knobs.rays.x; ix++) {
             // Equal strata of (u, v) are equal solid angles of the cone.
-            let u = (f32(ix) + rt_random(&state)) / f32(rt.strata_x);
-            let v = (f32(iy) + rt_random(&state)) / f32(rt.strata_y);
+            let u = (f32(ix) + rt_random(&state)) / f32(knobs.rays.x);
+            let v = (f32(iy) + rt_random(&state)) / f32(knobs.rays.y);
             let gap = u * gap_max;
             let cos_theta = 1.0 - gap;
             let sin2_theta = max(gap * (2.0 - gap), 0.0);

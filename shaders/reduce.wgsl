@@ -7,11 +7,10 @@
 @group(0) @binding(3) var<uniform> params: DisplayParams;
 
 // The value a false-colour view scales by (its largest over the image).
+// A select, not an `if` on the uniform: lavapipe would compile the shader
+// anew for each value (tests/uniform_branches.rs).
 fn scaled_value(q: vec3<f32>, reference: vec3<f32>) -> f32 {
-    if params.view == VIEW_ERROR {
-        return abs(luminance(q) - luminance(reference));
-    }
-    return q.x;
+    return select(q.x, abs(luminance(q) - luminance(reference)), params.view == VIEW_ERROR);
 }
 
 var<workgroup> group_max: atomic<u32>;

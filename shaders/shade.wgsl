@@ -81,6 +81,10 @@ struct VsOut {
     @location(7) @interpolate(flat) other_model_color: vec3<f32>,
     // k, m and N(m) (the settings' or the material's own), double-sided (0/1).
     @location(8) @interpolate(flat) brdf: vec4<f32>,
+    // The knobs (shadow_map.wgsl), the same at every vertex.
+    @location(9) @interpolate(flat) knob_filter: vec4<u32>,
+    @location(10) @interpolate(flat) knob_rays: vec4<u32>,
+    @location(11) @interpolate(flat) knob_radius: vec2<f32>,
 }
 
 // gpu::scene_buffers::Vertex::NO_SHADOWS_RECEIVED: set in a vertex's material
@@ -116,15 +120,17 @@ fn vs(in: VsIn) -> VsOut {
     out.texture_layer_plus_one = select(mat.texture_layer_plus_one, 0u, overridden);
     out.base_color = select(mat.base_color.rgb, globals.color_override, overridden);
     out.other_model_color = select(mat.other_model_color.rgb, globals.other_color_override, overridden);
-    var k = globals.k;
-    var m = globals.m;
-    var norm_factor = globals.norm_factor;
-    if globals.use_scene_materials != 0u {
-        k = select(k, mat.own_k, mat.has_own_k != 0u);
-        m = select(m, mat.own_m, mat.has_own_m != 0u);
-        norm_factor = select(norm_factor, mat.own_norm_factors[globals.normalization], mat.has_own_m != 0u);
-    }
+    // Selects, not an `if` on the uniform: see Knobs in shadow_map.wgsl.
+    let scene = globals.use_scene_materials != 0u;
+    let own_k = scene & (mat.has_own_k != 0u);
+    let own_m = scene & (mat.has_own_m != 0u);
+    let k = select(globals.k, mat.own_k, own_k);
+    let m = select(globals.m, mat.own_m, own_m);
+    let norm_factor = select(globals.norm_factor, mat.own_norm_factors[globals.normalization], own_m);
     out.brdf = vec4<f32>(k, m, norm_factor, f32(mat.double_sided));
+    out.knob_filter = vec4<u32>(shadow.pcf_size, shadow.range_block, shadow.pcss_blocker_samples, shadow.poisson_samples);
+    out.knob_rays = vec4<u32>(rt.strata_x, rt.strata_y, rt.pair_count, globals.delta_e_defined);
+    out.knob_radius = vec2<f32>(globals.light_radius_m, shadow.light_radius_m);
     return out;
 }
 
@@ -221,7 +227,7 @@ fn visibility(p_l: vec3<f32>, s: Surface, incidence: LightIncidence, pixel: vec2
 // so the two radiances differ only by their tints: radiance = tint · scale,
 // scale = f_r/c · E · V.
 fn delta_e_quantity(s: Surface, radiance: vec3<f32>, scale: f32) -> f32 {
-    if globals.delta_e_defined == 0u {
+    if knobs.rays.w == 0u {
         return -1.0;
     }
     let exposure = exp2(globals.exposure_ev);
@@ -232,7 +238,7 @@ fn delta_e_quantity(s: Surface, radiance: vec3<f32>, scale: f32) -> f32 {
 // E at the fragment. A point light's pipeline passes the radius 0 as a
 // constant, so that sphere_irradiance keeps only its point-light case.
 fn light_irradiance(incidence: LightIncidence) -> f32 {
-    let radius_m = select(0.0, globals.light_radius_m, sphere_light());
+    let radius_m = select(0.0, knobs.radius.x, sphere_light());
     return sphere_irradiance(globals.light_power_w, radius_m, incidence.cos_theta, incidence.r);
 }
 
@@ -267,6 +273,7 @@ struct FsOut {
 
 // Both targets of a fragment; the entry points below write what they need.
 fn shade_fragment(in: VsOut, front_facing: bool) -> FsOut {
+    knobs = Knobs(in.knob_filter, in.knob_rays, in.knob_radius);
     let s = surface_at(in, front_facing);
     let incidence = light_incidence(globals.light_rel - in.rel, s.n);
     // The shadow map's own apex: the light, or a far light's stand-in.

@@ -27,17 +27,16 @@ fn vs(@location(0) position: vec3<f32>) -> VsOut {
 fn fs_moments(in: VsOut) -> @location(0) vec4<f32> {
     let f = shadow.layers[layer_index];
     let u = clamp((in.depth - f.near_m) / (f.far_m - f.near_m), 0.0, 1.0);
-    if shadow.filter_mode == FILTER_VSM {
-        return vec4<f32>(u, u * u, 0.0, 0.0);
-    }
-    if shadow.filter_mode == FILTER_MSM {
-        // MSM: the first four powers of u (Peters & Klein 2015).
-        let u2 = u * u;
-        return vec4<f32>(u, u2, u2 * u, u2 * u2);
-    }
+    let u2 = u * u;
     let c = shadow.evsm_exponent;
     let w = 2.0 * u - 1.0;
     let pos = exp(c * w);
     let neg = -exp(-c * w);
-    return vec4<f32>(pos, pos * pos, neg, neg * neg);
+    // MSM: the first four powers of u (Peters & Klein 2015).
+    let msm = vec4<f32>(u, u2, u2 * u, u2 * u2);
+    let evsm = vec4<f32>(pos, pos * pos, neg, neg * neg);
+    // Selects, not `if`s on the uniform: lavapipe would compile the shader
+    // anew for each value (tests/uniform_branches.rs).
+    let mode = shadow.filter_mode;
+    return select(select(evsm, msm, mode == FILTER_MSM), vec4<f32>(u, u2, 0.0, 0.0), mode == FILTER_VSM);
 }

@@ -13,6 +13,22 @@
 // Nearest, clamped to the edge: PCF gathers four stored values at a time.
 @group(1) @binding(5) var shadow_depth_gather: sampler;
 
+// The uniforms that decide branches and loop exits in the camera pass,
+// read per pixel: shade.wgsl's vertex stage copies them into flat varyings,
+// its fragment stage into `knobs`. lavapipe (Mesa 22.3) folds a uniform that
+// alone decides a branch into the shader each time the pipeline is bound,
+// and compiles the result anew whenever its value changed: a dragged light
+// or slider compiled a shader every frame (tests/uniform_branches.rs).
+struct Knobs {
+    // Shadow's pcf_size, range_block, pcss_blocker_samples, poisson_samples.
+    filters: vec4<u32>,
+    // RayTrace's strata_x, strata_y and pair_count, Globals' delta_e_defined.
+    rays: vec4<u32>,
+    // The light's radius (m), as Globals and Shadow hold it.
+    radius: vec2<f32>,
+}
+var<private> knobs: Knobs;
+
 // The filter a specialised pipeline is compiled for (FILTER_*), or
 // SPECIALISE_ANY to read shadow.filter_mode (see shade.wgsl).
 override SPECIALISED_FILTER: u32 = SPECIALISE_ANY;
@@ -332,14 +348,14 @@ fn filter_poisson(r: Receiver, pixel: vec2<f32>) -> f32 {
     let span = vec2<i32>(floor(r.tc + radius)) + 1 - base;
     let verdict = range_verdict(own_face(r, base), r, base, max(span.x, span.y));
     // Decided pixels take no tap (a loop of zero trips, as in filter_pcf).
-    let count = select(shadow.poisson_samples, 0u, verdict >= 0.0);
+    let count = select(knobs.filters.w, 0u, verdict >= 0.0);
     let angle = pixel_angle(pixel);
     var sum = 0.0;
     for (var s = 0u; s < count; s++) {
         let offset = rotate(POISSON_DISC[s], angle) * shadow.poisson_radius_texels;
         sum += depth_test(r, vec2<i32>(floor(r.tc + offset)));
     }
-    return select(sum / f32(shadow.poisson_samples), verdict, verdict >= 0.0);
+    return select(sum / f32(knobs.filters.w), verdict, verdict >= 0.0);
 }
 
 // Percentage-closer soft shadows for the sphere light of radius R: the
@@ -347,7 +363,7 @@ fn filter_poisson(r: Receiver, pixel: vec2<f32>) -> f32 {
 // light's diameter, w = 2R (z − z_blocker) / z_blocker, and a filter of
 // radius w/2 spreads the edge over w.
 fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
-    let radius_m = shadow.light_radius_m;
+    let radius_m = knobs.radius.y;
     if radius_m <= 0.0 {
         return bilinear_test(r, r.tc);
     }
@@ -358,7 +374,7 @@ fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
     let search = clamp(radius_m * (r.z - near) / (r.z * near) / (r.texel_m / r.z), 1.0, MAX_FILTER_RADIUS_TEXELS);
     var blocker_sum = 0.0;
     var blockers = 0.0;
-    for (var s = 0u; s < shadow.pcss_blocker_samples; s++) {
+    for (var s = 0u; s < knobs.filters.z; s++) {
         let t = tap(r, vec2<i32>(floor(r.tc + rotate(POISSON_DISC[s], angle) * search)));
         if t.drawn {
             // On a neighbouring face both depths are along that face's axis.
@@ -377,7 +393,7 @@ fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
     let penumbra_m = 2.0 * radius_m * (r.z - z_blocker) / z_blocker;
     let filter_texels = clamp(0.5 * penumbra_m / r.texel_m, 0.5, MAX_FILTER_RADIUS_TEXELS);
     var sum = 0.0;
-    let count = shadow.poisson_samples;
+    let count = knobs.filters.w;
     for (var s = 0u; s < count; s++) {
         sum += bilinear_test(r, r.tc + rotate(POISSON_DISC[s], angle) * filter_texels);
     }

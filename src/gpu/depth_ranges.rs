@@ -139,7 +139,8 @@ impl RangePass {
             &[
                 binding::float_array(0, ShaderStages::FRAGMENT),
                 binding::sampler(1, ShaderStages::FRAGMENT, wgpu::SamplerBindingType::NonFiltering),
-                binding::dynamic_uniform(2, ShaderStages::FRAGMENT),
+                // The vertex stage reads the block's side (depth_ranges.wgsl).
+                binding::dynamic_uniform(2, ShaderStages::VERTEX_FRAGMENT),
             ],
         );
         let pipeline_layout = binding::pipeline_layout(device, "depth ranges", &[&layout]);

@@ -55,7 +55,8 @@ pub fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
         device,
         "ray-traced visibility",
         &[
-            binding::uniform(0, fragment),
+            // The camera pass's vertex stage copies its knobs (shadow_map.wgsl).
+            binding::uniform(0, ShaderStages::VERTEX_FRAGMENT),
             binding::storage(1, fragment, true),
             binding::storage(2, fragment, true),
             binding::float_texture(3, fragment),

@@ -45,7 +45,8 @@ impl ShadePass {
             "camera pass scene",
             &[
                 binding::uniform(0, ShaderStages::VERTEX_FRAGMENT),
-                binding::uniform(1, fragment),
+                // The vertex stage copies the knobs (shadow_map.wgsl).
+                binding::uniform(1, ShaderStages::VERTEX_FRAGMENT),
                 binding::storage(2, ShaderStages::VERTEX, true),
                 binding::texture(
                     3,

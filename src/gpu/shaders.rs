@@ -85,14 +85,8 @@ impl Shader {
     fn own_source(self) -> &'static str {
         match self {
             Self::Shadow => include_str!("../../shaders/shadow.wgsl"),
-            Self::Blur => concat!(
-                include_str!("../../shaders/fullscreen.wgsl"),
-                include_str!("../../shaders/blur.wgsl")
-            ),
-            Self::DepthRanges => concat!(
-                include_str!("../../shaders/fullscreen.wgsl"),
-                include_str!("../../shaders/depth_ranges.wgsl")
-            ),
+            Self::Blur => include_str!("../../shaders/blur.wgsl"),
+            Self::DepthRanges => include_str!("../../shaders/depth_ranges.wgsl"),
             Self::Shade => concat!(
                 include_str!("../../shaders/shadow_map.wgsl"),
                 include_str!("../../shaders/pcf.wgsl"),

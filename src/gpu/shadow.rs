@@ -374,7 +374,8 @@ impl BlurPass {
             "moment blur",
             &[
                 binding::float_array(0, ShaderStages::FRAGMENT),
-                binding::dynamic_uniform(1, ShaderStages::FRAGMENT),
+                // The vertex stage reads the blur's radius (blur.wgsl).
+                binding::dynamic_uniform(1, ShaderStages::VERTEX_FRAGMENT),
             ],
         );
         let pipeline_layout = binding::pipeline_layout(device, "moment blur", &[&layout]);

@@ -169,7 +169,7 @@ impl Specialisation {
     }
 
     /// The override constants' values (absent ones keep SPECIALISE_ANY).
-    fn constants(&self) -> Vec<(&'static str, f64)> {
+    pub fn constants(&self) -> Vec<(&'static str, f64)> {
         let mut constants = Vec::new();
         if let Some(view) = self.view {
             constants.push(("SPECIALISED_VIEW", code(DebugView::ALL, &view) as f64));
