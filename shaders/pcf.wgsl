@@ -4,10 +4,10 @@
 // texels under the kernel leaves no doubt (gpu::depth_ranges).
 
 // Bounds on the stored values over windows of 2×2 blocks of B×B texels, B =
-// knobs.filters.y, Shadow's range_block (0: not built for this map, nothing to read): window
-// e covers texels B e … B e + 2B − 1, where every stored value d lies within
-// w of the plane x + y i + z j (i, j from the window's first texel;
-// gpu::depth_ranges). 0 is the far plane (nothing drawn).
+// knobs.filters.y, Shadow's range_block (0: not built for this map, nothing
+// to read): window e covers texels B e … B e + 2B − 1, where every stored
+// value d lies within w of the plane x + y i + z j (i, j from the window's
+// first texel; gpu::depth_ranges). 0 is the far plane (nothing drawn).
 @group(1) @binding(6) var depth_ranges: texture_2d_array<f32>;
 
 // The separable weight of texel i of the n + 1 a row of n bilinear tests
