@@ -81,7 +81,7 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
     let offset = RT_OFFSET_REL * max(max(abs(p.x), abs(p.y)), max(abs(p.z), length(rel)));
     let origin = rel + n_geo * offset;
     let to_centre = globals.light_rel - rel;
-    let radius = knobs.radius.x;
+    let radius = knobs.radius_m;
     if !sphere_light() {
         // Attached shadow: the light below the surface's horizon.
         if dot(n, to_centre) <= 0.0 {

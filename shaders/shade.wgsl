@@ -84,7 +84,7 @@ struct VsOut {
     // The knobs (shadow_map.wgsl), the same at every vertex.
     @location(9) @interpolate(flat) knob_filter: vec4<u32>,
     @location(10) @interpolate(flat) knob_rays: vec4<u32>,
-    @location(11) @interpolate(flat) knob_radius: vec2<f32>,
+    @location(11) @interpolate(flat) knob_radius_m: f32,
 }
 
 // gpu::scene_buffers::Vertex::NO_SHADOWS_RECEIVED: set in a vertex's material
@@ -130,7 +130,7 @@ fn vs(in: VsIn) -> VsOut {
     out.brdf = vec4<f32>(k, m, norm_factor, f32(mat.double_sided));
     out.knob_filter = vec4<u32>(shadow.pcf_size, shadow.range_block, shadow.pcss_blocker_samples, shadow.poisson_samples);
     out.knob_rays = vec4<u32>(rt.strata_x, rt.strata_y, rt.pair_count, globals.delta_e_defined);
-    out.knob_radius = vec2<f32>(globals.light_radius_m, shadow.light_radius_m);
+    out.knob_radius_m = globals.light_radius_m;
     return out;
 }
 
@@ -238,7 +238,7 @@ fn delta_e_quantity(s: Surface, radiance: vec3<f32>, scale: f32) -> f32 {
 // E at the fragment. A point light's pipeline passes the radius 0 as a
 // constant, so that sphere_irradiance keeps only its point-light case.
 fn light_irradiance(incidence: LightIncidence) -> f32 {
-    let radius_m = select(0.0, knobs.radius.x, sphere_light());
+    let radius_m = select(0.0, knobs.radius_m, sphere_light());
     return sphere_irradiance(globals.light_power_w, radius_m, incidence.cos_theta, incidence.r);
 }
 
@@ -273,7 +273,7 @@ struct FsOut {
 
 // Both targets of a fragment; the entry points below write what they need.
 fn shade_fragment(in: VsOut, front_facing: bool) -> FsOut {
-    knobs = Knobs(in.knob_filter, in.knob_rays, in.knob_radius);
+    knobs = Knobs(in.knob_filter, in.knob_rays, in.knob_radius_m);
     let s = surface_at(in, front_facing);
     let incidence = light_incidence(globals.light_rel - in.rel, s.n);
     // The shadow map's own apex: the light, or a far light's stand-in.

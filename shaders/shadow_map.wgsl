@@ -24,8 +24,8 @@ struct Knobs {
     filters: vec4<u32>,
     // RayTrace's strata_x, strata_y and pair_count, Globals' delta_e_defined.
     rays: vec4<u32>,
-    // The light's radius (m), as Globals and Shadow hold it.
-    radius: vec2<f32>,
+    // The light's radius (m): Globals' light_radius_m (Shadow holds the same).
+    radius_m: f32,
 }
 var<private> knobs: Knobs;
 
@@ -363,7 +363,7 @@ fn filter_poisson(r: Receiver, pixel: vec2<f32>) -> f32 {
 // light's diameter, w = 2R (z − z_blocker) / z_blocker, and a filter of
 // radius w/2 spreads the edge over w.
 fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
-    let radius_m = knobs.radius.y;
+    let radius_m = knobs.radius_m;
     if radius_m <= 0.0 {
         return bilinear_test(r, r.tc);
     }
