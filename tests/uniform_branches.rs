@@ -28,37 +28,60 @@ use lumlab::settings::{BiasMode, DebugView, Filter, Settings, Visibility};
 use shader_flow::{Source, Walk};
 use std::collections::BTreeSet;
 
-/// The findings of `entry` in `shader`'s module with `constants` applied.
-fn findings(shader: Shader, entry: &str, constants: &[(&str, f64)]) -> BTreeSet<String> {
-    let source = shader.source();
-    let module = naga::front::wgsl::parse_str(&source).expect("parses");
-    let info = naga::valid::Validator::new(
-        naga::valid::ValidationFlags::all(),
-        naga::valid::Capabilities::all(),
-    )
-    .validate(&module)
-    .expect("validates");
-    let mut values = naga::back::PipelineConstants::default();
-    for &(name, value) in constants {
-        values.insert(name.to_owned(), value);
+/// A shader's module as naga parses it, validated, with its name.
+struct Parsed {
+    name: &'static str,
+    module: naga::Module,
+    info: naga::valid::ModuleInfo,
+}
+
+impl Parsed {
+    fn of(shader: Shader) -> Self {
+        let module = naga::front::wgsl::parse_str(&shader.source()).expect("parses");
+        let info = naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::all(),
+        )
+        .validate(&module)
+        .expect("validates");
+        Self {
+            name: shader.name(),
+            module,
+            info,
+        }
     }
-    let ep = module
-        .entry_points
-        .iter()
-        .find(|e| e.name == entry)
-        .unwrap_or_else(|| panic!("{}: no entry point {entry}", shader.name()));
-    let (module, _) =
-        naga::back::pipeline_constants::process_overrides(&module, &info, Some((ep.stage, entry)), &values)
-            .unwrap_or_else(|e| panic!("{} {entry}: {e}", shader.name()));
-    let ep = module
-        .entry_points
-        .iter()
-        .find(|e| e.name == entry)
-        .expect("kept");
-    let mut walk = Walk::new(&module);
-    let inputs = vec![Source::Varying; ep.function.arguments.len()];
-    let top = walk.function(&ep.function, entry, inputs);
-    walk.reachable(&top)
+
+    /// The findings of `entry` with `constants` applied, each named by
+    /// the module and the entry point.
+    fn findings(&self, entry: &str, constants: &[(&str, f64)]) -> BTreeSet<String> {
+        let mut values = naga::back::PipelineConstants::default();
+        for &(name, value) in constants {
+            values.insert(name.to_owned(), value);
+        }
+        let stage = |module: &naga::Module| {
+            module
+                .entry_points
+                .iter()
+                .position(|e| e.name == entry)
+                .unwrap_or_else(|| panic!("{}: no entry point {entry}", self.name))
+        };
+        let ep = &self.module.entry_points[stage(&self.module)];
+        let (module, _) = naga::back::pipeline_constants::process_overrides(
+            &self.module,
+            &self.info,
+            Some((ep.stage, entry)),
+            &values,
+        )
+        .unwrap_or_else(|e| panic!("{} {entry}: {e}", self.name));
+        let ep = &module.entry_points[stage(&module)];
+        let mut walk = Walk::new(&module);
+        let inputs = vec![Source::Varying; ep.function.arguments.len()];
+        let top = walk.function(&ep.function, entry, inputs);
+        walk.reachable(&top)
+            .into_iter()
+            .map(|f| format!("{} {entry}: {f}", self.name))
+            .collect()
+    }
 }
 
 /// The camera pass's specialisations over the settings that select them.
@@ -105,27 +128,16 @@ fn camera_passes() -> BTreeSet<Vec<(&'static str, u64)>> {
             }
         }
     }
+    let mut off = Settings::default();
+    off.shadow.enabled = false;
     for (vertex_colours, textures) in [(true, false), (false, true), (true, true)] {
-        let mut s = Settings::default();
-        s.shadow.enabled = false;
-        add(
-            &Settings::default(),
-            LayoutKind::Single,
-            false,
-            SceneAttributes {
-                vertex_colours,
-                textures,
-            },
-        );
-        add(
-            &s,
-            LayoutKind::Single,
-            false,
-            SceneAttributes {
-                vertex_colours,
-                textures,
-            },
-        );
+        let attributes = SceneAttributes {
+            vertex_colours,
+            textures,
+        };
+        for s in [&Settings::default(), &off] {
+            add(s, LayoutKind::Single, false, attributes);
+        }
     }
     all
 }
@@ -133,18 +145,16 @@ fn camera_passes() -> BTreeSet<Vec<(&'static str, u64)>> {
 #[test]
 fn no_pipeline_branches_on_uniforms_alone() {
     let mut found = BTreeSet::new();
+    let shade = Parsed::of(Shader::Shade);
     for constants in camera_passes() {
         let constants: Vec<(&str, f64)> = constants.iter().map(|&(n, v)| (n, v as f64)).collect();
         for entry in ["vs", "vs_depth", "fs", "fs_quantity"] {
-            for f in findings(Shader::Shade, entry, &constants) {
-                found.insert(format!("shade.wgsl {entry}: {f}"));
-            }
+            found.extend(shade.findings(entry, &constants));
         }
     }
+    let display = Parsed::of(Shader::Display);
     for (i, _) in DebugView::ALL.iter().enumerate() {
-        for f in findings(Shader::Display, "fs", &[("SPECIALISED_VIEW", i as f64)]) {
-            found.insert(format!("display.wgsl fs: {f}"));
-        }
+        found.extend(display.findings("fs", &[("SPECIALISED_VIEW", i as f64)]));
     }
     let others: [(Shader, &[&str]); 7] = [
         (Shader::Shadow, &["vs", "fs_moments"]),
@@ -156,10 +166,9 @@ fn no_pipeline_branches_on_uniforms_alone() {
         (Shader::Reduce, &["main"]),
     ];
     for (shader, entries) in others {
+        let parsed = Parsed::of(shader);
         for entry in entries {
-            for f in findings(shader, entry, &[]) {
-                found.insert(format!("{} {entry}: {f}", shader.name()));
-            }
+            found.extend(parsed.findings(entry, &[]));
         }
     }
     assert!(
