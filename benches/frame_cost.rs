@@ -274,8 +274,8 @@ fn drag_end(renderer: &mut Renderer) {
 /// pass at full scale with one ingredient taken away at a time, against the
 /// flat pass: the depth pre-pass (timed with the pass, the flat pass has
 /// none), the filter's taps (PCF 3×3 decided from the depth ranges, or
-/// 16 depth tests each → one → no shadows),
-/// the BRDF (the `visibility` view), the second target (aux).
+/// 16 depth tests each → one → no shadows; PCSS's blocker search and
+/// bilinear taps under a sphere light), the BRDF (the `visibility` view), the second target (aux).
 fn breakdown(renderer: &mut Renderer) {
     println!(
         "viewport {}×{}, camera pass GPU ms, median of {FRAMES} orbiting frames; median (min–max) of {RUNS} runs\n",
@@ -288,7 +288,7 @@ fn breakdown(renderer: &mut Renderer) {
         ..ShadeOptions::default()
     };
     type Variant = (&'static str, fn(&mut Settings), ShadeOptions);
-    let variants: [Variant; 10] = [
+    let variants: [Variant; 11] = [
         ("default: PCF 3×3, shaded, quantity only", |_| {}, plain),
         (
             "PCF 3×3, every texel tested (no depth ranges)",
@@ -310,6 +310,14 @@ fn breakdown(renderer: &mut Renderer) {
                 depth_ranges: false,
                 ..plain
             },
+        ),
+        (
+            "PCSS 16 + 16 taps, sphere light R = 0.2 m",
+            |s| {
+                s.shadow.filter = Filter::Pcss;
+                s.light.radius_m = 0.2;
+            },
+            plain,
         ),
         (
             "+ aux target (two targets written)",

@@ -287,6 +287,12 @@ fn own_face_test(r: Receiver, texel: vec2<i32>) -> f32 {
     return select(0.0, 1.0, compared_depth(r, texel) <= stored_depth(r.layer, texel));
 }
 
+// own_face_test given the texel's stored value d.
+fn own_face_test_of(r: Receiver, texel: vec2<i32>, d: f32) -> f32 {
+    let f = frustum();
+    return select(0.0, 1.0, compared_depth(r, texel) <= stored_linear(d, f.depth_a, f.depth_b));
+}
+
 // 1 when the texel's stored depth does not hide the receiver.
 fn depth_test(r: Receiver, texel: vec2<i32>) -> f32 {
     let t = tap(r, texel);
@@ -326,78 +332,6 @@ fn filter_hw2x2(r: Receiver) -> f32 {
     let f = frustum();
     let d_ref = f.depth_a / z_ref + f.depth_b;
     return textureSampleCompareLevel(shadow_depth, shadow_compare, r.tc / resolution(), i32(r.layer), d_ref);
-}
-
-// Interleaved gradient noise: a per-pixel rotation that tiles without pattern.
-fn pixel_angle(pixel: vec2<f32>) -> f32 {
-    return 6.2831853 * fract(52.9829189 * fract(dot(pixel, vec2<f32>(0.06711056, 0.00583715))));
-}
-
-fn rotate(v: vec2<f32>, angle: f32) -> vec2<f32> {
-    let c = cos(angle);
-    let s = sin(angle);
-    return vec2<f32>(c * v.x - s * v.y, s * v.x + c * v.y);
-}
-
-fn filter_poisson(r: Receiver, pixel: vec2<f32>) -> f32 {
-    // The taps lie within R of tc: the texels from floor(tc − R) to
-    // floor(tc + R), one more each side for the rotation's rounding
-    // (gpu::depth_ranges::level_for bounds the span alike).
-    let radius = shadow.poisson_radius_texels;
-    let base = vec2<i32>(floor(r.tc - radius)) - 1;
-    let span = vec2<i32>(floor(r.tc + radius)) + 1 - base;
-    let verdict = range_verdict(own_face(r, base), r, base, max(span.x, span.y));
-    // Decided pixels take no tap (a loop of zero trips, as in filter_pcf).
-    let count = select(knobs.filters.w, 0u, verdict >= 0.0);
-    let angle = pixel_angle(pixel);
-    var sum = 0.0;
-    for (var s = 0u; s < count; s++) {
-        let offset = rotate(POISSON_DISC[s], angle) * shadow.poisson_radius_texels;
-        sum += depth_test(r, vec2<i32>(floor(r.tc + offset)));
-    }
-    return select(sum / f32(knobs.filters.w), verdict, verdict >= 0.0);
-}
-
-// Percentage-closer soft shadows for the sphere light of radius R: the
-// blockers' mean depth sizes the penumbra by similar triangles through the
-// light's diameter, w = 2R (z − z_blocker) / z_blocker, and a filter of
-// radius w/2 spreads the edge over w.
-fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
-    let radius_m = knobs.radius_m;
-    if radius_m <= 0.0 {
-        return bilinear_test(r, r.tc);
-    }
-    let near = frustum().near_m;
-    let angle = pixel_angle(pixel);
-    // Blockers lie between the light and the receiver: the light's disc seen
-    // from the receiver covers at most this many texels at the near plane.
-    let search = clamp(radius_m * (r.z - near) / (r.z * near) / (r.texel_m / r.z), 1.0, MAX_FILTER_RADIUS_TEXELS);
-    var blocker_sum = 0.0;
-    var blockers = 0.0;
-    for (var s = 0u; s < knobs.filters.z; s++) {
-        let t = tap(r, vec2<i32>(floor(r.tc + rotate(POISSON_DISC[s], angle) * search)));
-        if t.drawn {
-            // On a neighbouring face both depths are along that face's axis.
-            let z_s = stored_depth(t.r.layer, t.texel);
-            if z_s < compared_depth(t.r, t.texel) {
-                // In the receiver's face's terms: the same ratio z_s / z.
-                blocker_sum += z_s * (r.z / t.r.z);
-                blockers += 1.0;
-            }
-        }
-    }
-    if blockers == 0.0 {
-        return 1.0;
-    }
-    let z_blocker = blocker_sum / blockers;
-    let penumbra_m = 2.0 * radius_m * (r.z - z_blocker) / z_blocker;
-    let filter_texels = clamp(0.5 * penumbra_m / r.texel_m, 0.5, MAX_FILTER_RADIUS_TEXELS);
-    var sum = 0.0;
-    let count = knobs.filters.w;
-    for (var s = 0u; s < count; s++) {
-        sum += bilinear_test(r, r.tc + rotate(POISSON_DISC[s], angle) * filter_texels);
-    }
-    return sum / f32(count);
 }
 
 // One-sided Chebyshev bound P(z ≤ depth) ≤ σ² / (σ² + (t − μ)²), with the

@@ -26,7 +26,7 @@ struct Case {
 }
 @group(0) @binding(0) var<storage, read> cases: array<Case>;
 @group(0) @binding(1) var<storage, read_write> results: array<vec2<f32>>;
-// Named by shadow_map.wgsl and pcf.wgsl; unused here.
+// Named by shadow_map.wgsl, pcf.wgsl and disc.wgsl; unused here.
 @group(2) @binding(0) var<uniform> shadow: Shadow;
 
 // The closed form, then pcf_weight summed texel by texel.
@@ -60,9 +60,10 @@ fn kernel_weights_sum_in_closed_form_as_one_by_one() {
         }
     }
     let source = format!(
-        "{}{}{KERNEL}",
+        "{}{}{}{KERNEL}",
         include_str!("../shaders/shadow_map.wgsl"),
-        include_str!("../shaders/pcf.wgsl")
+        include_str!("../shaders/pcf.wgsl"),
+        include_str!("../shaders/disc.wgsl")
     );
     let results: Vec<[f32; 2]> = common::kernel::run(&with_common(&source), &cases);
     for (c, [closed, one_by_one]) in cases.iter().zip(results) {

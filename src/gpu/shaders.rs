@@ -90,6 +90,7 @@ impl Shader {
             Self::Shade => concat!(
                 include_str!("../../shaders/shadow_map.wgsl"),
                 include_str!("../../shaders/pcf.wgsl"),
+                include_str!("../../shaders/disc.wgsl"),
                 include_str!("../../shaders/bvh.wgsl"),
                 include_str!("../../shaders/raytrace.wgsl"),
                 include_str!("../../shaders/delta_e.wgsl"),
