@@ -380,26 +380,31 @@ fn breakdown(renderer: &mut Renderer) {
 /// prefilter span): the map drawn anew (the light moved a little), then
 /// reused by the frame that builds them.
 fn ranges_build(renderer: &mut Renderer) {
-    let mut settings = Settings::default();
-    let (mut build, mut layers) = (Vec::new(), String::new());
-    for run in 0..RUNS {
-        settings.light.position.x += if run % 2 == 0 { 0.01 } else { -0.01 };
-        renderer.render(&settings, VIEWPORT);
-        renderer.wait_idle();
-        let _ = renderer.wait_timings();
-        let report = renderer.render(&settings, VIEWPORT);
-        renderer.wait_idle();
-        assert!(report.depth_ranges.is_some(), "the reused map's ranges are built");
-        layers = report.layout_summary();
-        if let Some(ms) = renderer.wait_timings().and_then(|t| t.blur_ms) {
-            build.push(ms);
+    let mut pcss = Settings::default();
+    pcss.shadow.filter = Filter::Pcss;
+    pcss.light.radius_m = 0.2;
+    for (name, mut settings) in [("PCF 3×3", Settings::default()), ("PCSS's search", pcss)] {
+        let (mut build, mut layers, mut block) = (Vec::new(), String::new(), 0);
+        for run in 0..RUNS {
+            settings.light.position.x += if run % 2 == 0 { 0.01 } else { -0.01 };
+            renderer.render(&settings, VIEWPORT);
+            renderer.wait_idle();
+            let _ = renderer.wait_timings();
+            let report = renderer.render(&settings, VIEWPORT);
+            renderer.wait_idle();
+            block = report.depth_ranges.expect("the reused map's ranges are built");
+            layers = report.layout_summary();
+            if let Some(ms) = renderer.wait_timings().and_then(|t| t.blur_ms) {
+                build.push(ms);
+            }
         }
+        println!(
+            "depth ranges for {name} (B = {block}), built once per map ({layers}, {}²): {} GPU ms, median (min–max) of {RUNS}",
+            settings.shadow.resolution,
+            spread(&build)
+        );
     }
-    println!(
-        "depth ranges for PCF 3×3, built once per map ({layers}, {}²): {} GPU ms, median (min–max) of {RUNS}\n",
-        settings.shadow.resolution,
-        spread(&build)
-    );
+    println!();
 }
 
 fn main() {

@@ -129,7 +129,13 @@ fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
     var blocker_sum = 0.0;
     var blockers = 0.0;
     var past_edge = vec2<u32>(0u);
-    for (var s = 0u; s < select(knobs.filters.z, 0u, point); s++) {
+    // Where the depth ranges say that every texel of the search's square
+    // (as filter_poisson bounds a disc) lights the receiver, no tap finds a
+    // blocker: none is taken.
+    let base = vec2<i32>(floor(r.tc - search)) - 1;
+    let span = vec2<i32>(floor(r.tc + search)) + 1 - base;
+    let clear = range_verdict(own_face(r, base), r, base, max(span.x, span.y)) >= 1.0;
+    for (var s = 0u; s < select(knobs.filters.z, 0u, point || clear); s++) {
         let texel = search_texel(r, s, spin, search);
         let own = clamp(texel, vec2<i32>(0), last);
         let z_s = stored_depth(r.layer, own);

@@ -1,7 +1,7 @@
-//! PCF and Poisson decided from the depth ranges (gpu::depth_ranges: one
-//! read settles a kernel whose texels all light, or all hide, the receiver)
-//! give the V of the same taps tested one by one, for every PCF kernel
-//! size, bias mode and map layout. Tests elsewhere hold the filters
+//! PCF, Poisson and PCSS's blocker search decided from the depth ranges
+//! (gpu::depth_ranges: one read settles a kernel whose texels all light,
+//! or all hide, the receiver) give the V of the same taps tested one by
+//! one, for every PCF kernel size, bias mode and map layout. Tests elsewhere hold the filters
 //! themselves to the CPU reference.
 
 mod common;
@@ -32,29 +32,30 @@ fn filters_decided_from_depth_ranges_match_every_tap_tested() {
         (2.0, LayoutKind::Cube),
     ] {
         for n in lumlab::settings::ShadowSettings::PCF_SIZES {
-            cases.push((light_y_m, layout, n, auto));
+            cases.push((light_y_m, layout, Filter::Pcf, n, auto));
         }
         for &bias in BiasMode::ALL {
-            cases.push((light_y_m, layout, 3, bias));
+            cases.push((light_y_m, layout, Filter::Pcf, 3, bias));
         }
-        // n = 0: the Poisson disc (its default radius, 2 texels).
-        cases.push((light_y_m, layout, 0, auto));
+        // The Poisson disc (its default radius, 2 texels), and PCSS under a
+        // sphere light (its blocker search's square, up to 99 texels).
+        cases.push((light_y_m, layout, Filter::Poisson, 0, auto));
+        for &bias in BiasMode::ALL {
+            cases.push((light_y_m, layout, Filter::Pcss, 0, bias));
+        }
     }
-    for (i, (light_y_m, layout, n, bias)) in cases.into_iter().enumerate() {
+    for (i, (light_y_m, layout, filter, n, bias)) in cases.into_iter().enumerate() {
         let mut s = Settings::default();
         // A light that moved a little: each case draws its own map.
         s.light.position.x += 1e-3 * i as f32;
         s.light.position.y = light_y_m;
-        if n == 0 {
-            s.shadow.filter = Filter::Poisson;
-        } else {
-            s.shadow.filter = Filter::Pcf;
-            s.shadow.pcf_size = n;
-        }
+        s.light.radius_m = if filter == Filter::Pcss { 0.2 } else { 0.0 };
+        s.shadow.filter = filter;
+        s.shadow.pcf_size = n.max(3);
         s.shadow.bias.mode = bias;
-        let filter = match n {
-            0 => "Poisson".to_owned(),
-            _ => format!("PCF {n}×{n}"),
+        let filter = match filter {
+            Filter::Pcf => format!("PCF {n}×{n}"),
+            other => other.to_string(),
         };
         let what = format!("{filter}, bias {bias:?}, {layout:?} map");
         // The frame that draws the map tests every texel; the next one

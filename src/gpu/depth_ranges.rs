@@ -1,5 +1,5 @@
-//! Bounds on the stored depths over windows of the shadow map, read by PCF
-//! and the Poisson disc to decide a whole kernel at once
+//! Bounds on the stored depths over windows of the shadow map, read by PCF,
+//! the Poisson disc and PCSS's blocker search to decide a whole kernel at once
 //! (shaders/depth_ranges.wgsl, and `range_verdict` in shaders/pcf.wgsl).
 //! Where every texel under a kernel is farther than the receiver, or every
 //! one nearer by more than the bias can reach, one read gives V = 1 or
@@ -23,25 +23,31 @@
 
 use super::binding;
 use super::shaders::Shader;
+use super::shadow::MAX_FILTER_RADIUS_TEXELS;
 use super::timing::GpuTimer;
 use super::uniforms::{DYNAMIC_STRIDE, RangeParamsRaw};
 use crate::settings::{Filter, ShadowSettings};
 use wgpu::ShaderStages;
 
 /// The block sides B (texels) built: a kernel of n + 1 texels a side fits
-/// in one window when n ≤ B.
-const BLOCKS: [u32; 3] = [4, 8, 16];
+/// in one window when n ≤ B. 128 serves PCSS's blocker search (n ≤ 99):
+/// its windows are coarse, but where one plane fills 256² texels (the open
+/// ground) every pixel skips all of its blocker taps.
+const BLOCKS: [u32; 4] = [4, 8, 16, 128];
 pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// Which level serves the filter of `shadow`: the smallest block B with
 /// n ≤ B for a filter whose taps span at most n + 1 texels a side (PCF n×n;
 /// a Poisson disc of radius R, ⌈2R⌉ + 3 with a texel of slack each side,
-/// as `filter_poisson` bounds them). None: the filter reads no ranges, or
+/// as `filter_poisson` bounds them; PCSS's search, a disc of up to
+/// [`MAX_FILTER_RADIUS_TEXELS`]). None: the filter reads no ranges, or
 /// its taps spread wider than any window.
 pub fn level_for(shadow: &ShadowSettings) -> Option<usize> {
     let n = match shadow.filter {
         Filter::Pcf => shadow.pcf_size,
         Filter::Poisson => (2.0 * shadow.poisson_radius_texels).ceil() as u32 + 3,
+        // PCSS's blocker search: a disc of up to the widest filter radius.
+        Filter::Pcss => (2.0 * MAX_FILTER_RADIUS_TEXELS).ceil() as u32 + 3,
         _ => return None,
     };
     BLOCKS.iter().position(|&b| n <= b)

@@ -273,7 +273,7 @@ impl SharedScene {
                 (view, redraw)
             }
         };
-        // PCF and Poisson read the ranges of a map drawn before this frame,
+        // PCF, Poisson and PCSS read the ranges of a map drawn before this frame,
         // built on the first frame that reads them.
         let ranges = self.slots[slot].as_ref().and_then(|s| s.textures.ranges.as_ref());
         let level = depth_ranges::level_for(s)
