@@ -314,6 +314,17 @@ fn bilinear_test(r: Receiver, tc: vec2<f32>) -> f32 {
     return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
 }
 
+// The one texel under the receiver. A cube's faces reach two texels past
+// tan 1 (gpu::shared, CUBE_DEPTH_MARGIN_TEXELS), so that texel lies on the
+// receiver's own face, and depth_test's addressing of the neighbouring
+// face, which lavapipe would run for every pixel, is not needed. Past a
+// single frustum's edge nothing was drawn: lit.
+fn filter_none(r: Receiver) -> f32 {
+    let texel = vec2<i32>(floor(r.tc));
+    let last = vec2<i32>(i32(resolution()) - 1);
+    return select(1.0, own_face_test(r, clamp(texel, vec2<i32>(0), last)), in_map(texel) || is_cube());
+}
+
 fn filter_hw2x2(r: Receiver) -> f32 {
     var z_ref = r.z;
     switch bias_mode() {
@@ -410,7 +421,7 @@ fn filtered_visibility(r: Receiver, pixel: vec2<f32>) -> f32 {
 
 fn filter_taps(r: Receiver, pixel: vec2<f32>) -> f32 {
     switch filter_mode() {
-        case FILTER_NONE: { return depth_test(r, vec2<i32>(floor(r.tc))); }
+        case FILTER_NONE: { return filter_none(r); }
         case FILTER_HW2X2: { return filter_hw2x2(r); }
         case FILTER_PCF: { return filter_pcf(r); }
         case FILTER_POISSON: { return filter_poisson(r, pixel); }

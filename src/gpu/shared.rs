@@ -24,7 +24,8 @@ use glam::DVec3;
 const CUBE_MARGIN_TEXELS: f64 = MAX_FILTER_RADIUS_TEXELS as f64 + 2.0;
 
 /// Texels by which cube faces of a depth map overlap: the hardware 2×2
-/// comparison reads one texel around the receiver; every other depth filter
+/// comparison reads one texel around the receiver, `none` (shadow_map.wgsl,
+/// `filter_none`) the receiver's own texel on its own face; every other depth filter
 /// re-projects its taps onto the neighbouring face (shadow_map.wgsl, `tap`),
 /// so no texels are spent on a wide overlap.
 const CUBE_DEPTH_MARGIN_TEXELS: f64 = 2.0;
