@@ -96,12 +96,10 @@ fn filter_pcf(r: Receiver) -> f32 {
     // busiest pixel needs.
     let last = select(n, -1, verdict >= 0.0);
     var sum = 0.0;
-    // The taps on the receiver's own face first, 2×2 texels a gather, then,
-    // only where the kernel reaches past the face's edge, those beyond it
-    // (depth_test's cube addressing): kernels inside their face pay for
-    // one masked trip of the second loop, not (n + 1)² of them. The same
-    // taps and weights as one loop over depth_test. The offsets k of the
-    // kernel's texels on the face: one bound per pixel, not in_map per texel.
+    // The taps, 2×2 texels a gather. A cube's faces overlap by more than
+    // the widest kernel (gpu::shared, CUBE_DEPTH_MARGIN_TEXELS): a kernel
+    // never leaves its face. A single frustum's may: its offsets k on the
+    // map are one bound per pixel, not in_map per texel.
     let lo = max(-base, vec2<i32>(0));
     let hi = min(vec2<i32>(i32(resolution()) - 1) - base, vec2<i32>(n));
     for (var j = 0; j <= last; j += 2) {
@@ -115,22 +113,12 @@ fn filter_pcf(r: Receiver) -> f32 {
                 + own_face_texel(o, r, lo, hi, k, n, f, d.w);
         }
     }
-    // Some of the kernel is off the face: its bounds on the face are not 0 … n.
+    // Some of the kernel is off the map: its bounds on it are not 0 … n.
     let crossing = any(lo != vec2<i32>(0)) || any(hi != vec2<i32>(n));
     // A single frustum drew nothing past its edge: those taps are lit, the
     // kernel's weight off the map in closed form (no loop to pay for).
     let on_map = pcf_weight_sum(lo.x, hi.x, n, f.x) * pcf_weight_sum(lo.y, hi.y, n, f.y);
     sum += select(0.0, f32(n * n) - on_map, crossing && !is_cube());
-    if crossing && is_cube() {
-        for (var j = 0; j <= n; j++) {
-            for (var i = 0; i <= n; i++) {
-                let texel = base + vec2<i32>(i, j);
-                if !in_map(texel) {
-                    sum += pcf_weight(i, n, f.x) * pcf_weight(j, n, f.y) * depth_test(r, texel);
-                }
-            }
-        }
-    }
     return select(sum / f32(n * n), verdict, verdict >= 0.0);
 }
 

@@ -2,10 +2,11 @@
 //! inside the scene's bounds, so its map is six cube faces, and a box casts a
 //! shadow across the edge between the face looking down (−Y) and the face
 //! looking along +X (the ground at x = h, h the light's height, where the
-//! direction to the light is 45° off both axes). A wide kernel (PCF 9×9)
-//! whose taps cross that edge must read the neighbouring face: V agrees with
-//! the ray-traced reference's everywhere but on shadow edges, with no lit (or
-//! dark) line along the seam.
+//! direction to the light is 45° off both axes). A wide kernel near that
+//! edge must see what lies past it: PCF 9×9 on its own face, which overlaps
+//! the next by more than the kernel, and a Poisson disc as wide by reading
+//! the neighbouring face. V agrees with the ray-traced reference's
+//! everywhere but on shadow edges, with no lit (or dark) line along the seam.
 
 mod common;
 
@@ -15,7 +16,7 @@ use lumlab::gpu::light_frustum::LayoutKind;
 use lumlab::reference::{Reference, ReferenceOptions, RenderControl};
 use lumlab::report::metrics::{Comparison, Frame};
 use lumlab::scene::Aabb;
-use lumlab::settings::{Filter, Settings};
+use lumlab::settings::{Filter, Settings, ShadowSettings};
 
 const LIGHT_HEIGHT: f32 = 0.5;
 
@@ -44,12 +45,21 @@ fn wrong_shadow(filter: Filter, resolution: u32) -> (f64, f64, f64) {
         LayoutKind::Cube,
         "the light inside the bounds gets the cube"
     );
-    // Taps beyond a face read the next face: the faces need not overlap by
-    // the widest kernel (50 texels, 39 % of a 256² face's width wasted).
+    // The faces overlap by PCF's widest kernel; the disc's taps beyond a
+    // face read the next face: the faces need not overlap by the widest
+    // disc (50 texels, 39 % of a 256² face's width wasted).
     let half = layout.layers[0].frustum.tan[1];
     assert!(
-        half <= 1.0 + 6.0 / resolution as f64,
-        "{resolution}²: cube faces reach to tan {half}, overlapping by more than the 2×2 filter needs"
+        half <= 1.0 + 13.0 / resolution as f64,
+        "{resolution}²: cube faces reach to tan {half}, overlapping by more than PCF 9×9 needs"
+    );
+    // filter_pcf reads its own face only: the widest kernel around a
+    // receiver at tan 1 must stay on it, with a texel for rounding.
+    let overlap_texels = (half - 1.0) / (2.0 * half / resolution as f64);
+    let widest = ShadowSettings::PCF_SIZES.iter().max().copied().unwrap_or(0) as f64;
+    assert!(
+        overlap_texels >= 0.5 * widest + 1.0,
+        "{resolution}²: cube faces overlap by {overlap_texels} texels, too few for PCF {widest}×{widest}"
     );
     let (quantity, aux) = (renderer.read_quantity(), renderer.read_aux());
     let reference = Reference::new(&scene)

@@ -23,12 +23,15 @@ use glam::DVec3;
 /// so they cannot follow a tap onto the neighbouring face.
 const CUBE_MARGIN_TEXELS: f64 = MAX_FILTER_RADIUS_TEXELS as f64 + 2.0;
 
-/// Texels by which cube faces of a depth map overlap: the hardware 2×2
-/// comparison reads one texel around the receiver, `none` (shadow_map.wgsl,
-/// `filter_none`) the receiver's own texel on its own face; every other depth filter
-/// re-projects its taps onto the neighbouring face (shadow_map.wgsl, `tap`),
-/// so no texels are spent on a wide overlap.
-const CUBE_DEPTH_MARGIN_TEXELS: f64 = 2.0;
+/// Texels by which cube faces of a depth map overlap: PCF's widest kernel
+/// (9×9: 4.5 texels each side of the receiver) and more than a texel for
+/// rounding, so that the hardware 2×2 comparison, `none` and PCF read the
+/// receiver's own face only (shadow_map.wgsl, `filter_none`; pcf.wgsl,
+/// `filter_pcf`): lavapipe would run the neighbouring face's addressing for
+/// every pixel. The Poisson disc and PCSS, whose taps reach up to 48 texels,
+/// re-project those past the edge onto the neighbouring face (`tap`), so no
+/// more texels are spent on a wide overlap (12 of a 2048² face's width).
+const CUBE_DEPTH_MARGIN_TEXELS: f64 = 6.0;
 
 /// What a shadow map was drawn for: when it is unchanged, so is the map.
 #[derive(Clone, Debug, PartialEq)]
