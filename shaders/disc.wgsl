@@ -65,6 +65,7 @@ fn rotation(angle: f32) -> vec2<f32> {
     return vec2<f32>(cos(angle), sin(angle));
 }
 
+// v rotated by the rotation cs = (cos, sin).
 fn rotate(v: vec2<f32>, cs: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(cs.x * v.x - cs.y * v.y, cs.y * v.x + cs.x * v.y);
 }
