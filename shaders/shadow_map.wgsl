@@ -314,11 +314,11 @@ fn bilinear_test(r: Receiver, tc: vec2<f32>) -> f32 {
     return mix(mix(t00, t10, f.x), mix(t01, t11, f.x), f.y);
 }
 
-// The one texel under the receiver. A cube's faces reach two texels past
-// tan 1 (gpu::shared, CUBE_DEPTH_MARGIN_TEXELS), so that texel lies on the
-// receiver's own face, and depth_test's addressing of the neighbouring
-// face, which lavapipe would run for every pixel, is not needed. Past a
-// single frustum's edge nothing was drawn: lit.
+// The one texel under the receiver. A cube's faces reach past tan 1 by
+// more than PCF's widest kernel (gpu::shared, CUBE_DEPTH_MARGIN_TEXELS),
+// so that texel lies on the receiver's own face, and depth_test's
+// addressing of the neighbouring face, which lavapipe would run for every
+// pixel, is not needed. Past a single frustum's edge nothing was drawn: lit.
 fn filter_none(r: Receiver) -> f32 {
     let texel = vec2<i32>(floor(r.tc));
     let last = vec2<i32>(i32(resolution()) - 1);
