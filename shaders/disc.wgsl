@@ -70,45 +70,45 @@ fn rotate(v: vec2<f32>, cs: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(cs.x * v.x - cs.y * v.y, cs.y * v.x + cs.x * v.y);
 }
 
-// The texel Poisson tap s reads.
-fn poisson_texel(r: Receiver, s: u32, spin: vec2<f32>) -> vec2<i32> {
-    return vec2<i32>(floor(r.tc + rotate(POISSON_DISC[s], spin) * shadow.poisson_radius_texels));
+// Where tap s of a disc of `radius` texels around the receiver lies.
+fn disc_point(r: Receiver, s: u32, spin: vec2<f32>, radius: f32) -> vec2<f32> {
+    return r.tc + rotate(POISSON_DISC[s], spin) * radius;
+}
+
+// The texel tap s of a disc of `radius` texels reads.
+fn disc_texel(r: Receiver, s: u32, spin: vec2<f32>, radius: f32) -> vec2<i32> {
+    return vec2<i32>(floor(disc_point(r, s, spin, radius)));
+}
+
+// range_verdict for every texel a disc of `radius` texels around the
+// receiver reads: those from floor(tc − R) to floor(tc + R), one more each
+// side for the rotation's rounding (gpu::depth_ranges::level_for bounds
+// the span alike).
+fn disc_verdict(r: Receiver, radius: f32) -> f32 {
+    let base = vec2<i32>(floor(r.tc - radius)) - 1;
+    let span = vec2<i32>(floor(r.tc + radius)) + 1 - base;
+    return range_verdict(own_face(r, base), r, base, max(span.x, span.y));
 }
 
 fn filter_poisson(r: Receiver, pixel: vec2<f32>) -> f32 {
-    // The taps lie within R of tc: the texels from floor(tc − R) to
-    // floor(tc + R), one more each side for the rotation's rounding
-    // (gpu::depth_ranges::level_for bounds the span alike).
     let radius = shadow.poisson_radius_texels;
-    let base = vec2<i32>(floor(r.tc - radius)) - 1;
-    let span = vec2<i32>(floor(r.tc + radius)) + 1 - base;
-    let verdict = range_verdict(own_face(r, base), r, base, max(span.x, span.y));
+    let verdict = disc_verdict(r, radius);
     // Decided pixels take no tap (a loop of zero trips, as in filter_pcf).
     let count = select(knobs.filters.w, 0u, verdict >= 0.0);
     let spin = rotation(pixel_angle(pixel));
     var sum = 0.0;
     var past_edge = vec2<u32>(0u);
     for (var s = 0u; s < count; s++) {
-        let texel = poisson_texel(r, s, spin);
+        let texel = disc_texel(r, s, spin, radius);
         let v = own_layer_test(r, texel, stored_value(r.layer, texel));
         sum += max(v, 0.0);
         past_edge = with_tap(past_edge, s, v < 0.0);
     }
     // Each test is 0 or 1: their sum is the same in any order.
     for (var rest = past_edge; any(rest != vec2<u32>(0u)); rest = without_first(rest)) {
-        sum += depth_test(r, poisson_texel(r, first_tap(rest), spin));
+        sum += depth_test(r, disc_texel(r, first_tap(rest), spin, radius));
     }
     return select(sum / f32(knobs.filters.w), verdict, verdict >= 0.0);
-}
-
-// The texel PCSS's blocker search reads at tap s, `search` texels out.
-fn search_texel(r: Receiver, s: u32, spin: vec2<f32>, search: f32) -> vec2<i32> {
-    return vec2<i32>(floor(r.tc + rotate(POISSON_DISC[s], spin) * search));
-}
-
-// Where PCSS's filter tap s lies, `radius` texels out.
-fn pcss_tap(r: Receiver, s: u32, spin: vec2<f32>, radius: f32) -> vec2<f32> {
-    return r.tc + rotate(POISSON_DISC[s], spin) * radius;
 }
 
 // Percentage-closer soft shadows for the sphere light of radius R: the
@@ -121,32 +121,30 @@ fn pcss_tap(r: Receiver, s: u32, spin: vec2<f32>, radius: f32) -> vec2<f32> {
 fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
     let radius_m = knobs.radius_m;
     let point = radius_m <= 0.0;
-    let near = frustum().near_m;
+    let f = frustum();
+    let near = f.near_m;
     let spin = rotation(pixel_angle(pixel));
     // Blockers lie between the light and the receiver: the light's disc seen
     // from the receiver covers at most this many texels at the near plane.
     let search = clamp(radius_m * (r.z - near) / (r.z * near) / (r.texel_m / r.z), 1.0, MAX_FILTER_RADIUS_TEXELS);
-    let last = vec2<i32>(i32(resolution()) - 1);
     var blocker_sum = 0.0;
     var blockers = 0.0;
     var past_edge = vec2<u32>(0u);
     // Where the depth ranges say that every texel of the search's square
-    // (as filter_poisson bounds a disc) lights the receiver, no tap finds a
-    // blocker: none is taken.
-    let base = vec2<i32>(floor(r.tc - search)) - 1;
-    let span = vec2<i32>(floor(r.tc + search)) + 1 - base;
-    let clear = range_verdict(own_face(r, base), r, base, max(span.x, span.y)) >= 1.0;
+    // lights the receiver, no tap finds a blocker: none is taken.
+    let clear = disc_verdict(r, search) >= 1.0;
     for (var s = 0u; s < select(knobs.filters.z, 0u, point || clear); s++) {
-        let texel = search_texel(r, s, spin, search);
-        let own = clamp(texel, vec2<i32>(0), last);
-        let z_s = stored_depth(r.layer, own);
-        let blocks = in_map(texel) && z_s < compared_depth(r, own);
-        blocker_sum += select(0.0, z_s, blocks);
+        let texel = disc_texel(r, s, spin, search);
+        let d = stored_value(r.layer, texel);
+        // A blocker: a texel on the receiver's layer that hides it.
+        let v = own_layer_test(r, texel, d);
+        let blocks = v == 0.0;
+        blocker_sum += select(0.0, stored_linear(d, f.depth_a, f.depth_b), blocks);
         blockers += select(0.0, 1.0, blocks);
-        past_edge = with_tap(past_edge, s, !in_map(texel) && is_cube());
+        past_edge = with_tap(past_edge, s, v < 0.0);
     }
     for (var rest = past_edge; any(rest != vec2<u32>(0u)); rest = without_first(rest)) {
-        let t = tap(r, search_texel(r, first_tap(rest), spin, search));
+        let t = tap(r, disc_texel(r, first_tap(rest), spin, search));
         // On a neighbouring face both depths are along that face's axis.
         let z_s = stored_depth(t.r.layer, t.texel);
         let blocks = t.drawn && z_s < compared_depth(t.r, t.texel);
@@ -163,12 +161,12 @@ fn filter_pcss(r: Receiver, pixel: vec2<f32>) -> f32 {
     var sum = 0.0;
     past_edge = vec2<u32>(0u);
     for (var s = 0u; s < count; s++) {
-        let v = own_layer_bilinear(r, pcss_tap(r, s, spin, filter_texels));
+        let v = own_layer_bilinear(r, disc_point(r, s, spin, filter_texels));
         sum += max(v, 0.0);
         past_edge = with_tap(past_edge, s, v < 0.0);
     }
     for (var rest = past_edge; any(rest != vec2<u32>(0u)); rest = without_first(rest)) {
-        sum += bilinear_test(r, pcss_tap(r, first_tap(rest), spin, filter_texels));
+        sum += bilinear_test(r, disc_point(r, first_tap(rest), spin, filter_texels));
     }
     return select(sum / f32(max(count, 1u)), 1.0, lit);
 }

@@ -284,7 +284,7 @@ fn tap(r: Receiver, texel: vec2<i32>) -> Tap {
 // 1 when the stored depth of a texel on the receiver's own layer
 // (in_map(texel)) does not hide the receiver.
 fn own_face_test(r: Receiver, texel: vec2<i32>) -> f32 {
-    return select(0.0, 1.0, compared_depth(r, texel) <= stored_depth(r.layer, texel));
+    return own_face_test_of(r, texel, textureLoad(shadow_depth_values, texel, i32(r.layer), 0).x);
 }
 
 // own_face_test given the texel's stored value d.

@@ -39,7 +39,7 @@ pub const FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 /// Which level serves the filter of `shadow`: the smallest block B with
 /// n ≤ B for a filter whose taps span at most n + 1 texels a side (PCF n×n;
 /// a Poisson disc of radius R, ⌈2R⌉ + 3 with a texel of slack each side,
-/// as `filter_poisson` bounds them; PCSS's search, a disc of up to
+/// as `disc_verdict` bounds them; PCSS's search, a disc of up to
 /// [`MAX_FILTER_RADIUS_TEXELS`]). None: the filter reads no ranges, or
 /// its taps spread wider than any window.
 pub fn level_for(shadow: &ShadowSettings) -> Option<usize> {
