@@ -9,6 +9,7 @@ use crate::settings::Settings;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::sync::atomic::Ordering;
+use std::sync::mpsc::RecvTimeoutError;
 use std::time::{Duration, Instant};
 
 #[derive(Debug, clap::Args)]
@@ -124,20 +125,28 @@ pub fn render_with_progress(
 }
 
 /// Runs `work` on another thread; every 50 ms this one reports the pixels
-/// done and turns an interrupt into a cancel of `control`.
+/// done and turns an interrupt into a cancel of `control`. It returns as soon
+/// as the work ends (the wait is on a channel, not a sleep: a 15 ms render
+/// no longer waits out the rest of a 50 ms tick).
 pub(super) fn watch<T: Send>(
     control: &RenderControl,
     work: impl FnOnce() -> T + Send,
     mut progress: impl FnMut(usize),
 ) -> anyhow::Result<T> {
     let result = std::thread::scope(|s| {
-        let worker = s.spawn(work);
-        while !worker.is_finished() {
+        let (done, finished) = std::sync::mpsc::channel::<()>();
+        let worker = s.spawn(move || {
+            let result = work();
+            // The watcher may have gone (it never does before the join).
+            let _ = done.send(());
+            result
+        });
+        // A panic drops the sender: the wait ends too, and the join says so.
+        while let Err(RecvTimeoutError::Timeout) = finished.recv_timeout(Duration::from_millis(50)) {
             if crate::output::interrupted() {
                 control.cancel();
             }
             progress(control.pixels_done.load(Ordering::Relaxed));
-            std::thread::sleep(Duration::from_millis(50));
         }
         worker.join()
     });
