@@ -4,7 +4,7 @@
 use super::bvh::{Cone, PrimaryPacket};
 use super::grid::DirectionGrid;
 use super::image::{ReferenceImage, RenderStats, luminance};
-use super::sampling::{Rng, Strata, collapsed_strata_variance};
+use super::sampling::{PixelStreams, Rng, Strata, collapsed_strata_variance};
 use super::shading::{Scratch, Setup, Surface};
 use super::{Reference, ReferenceError, ReferenceOptions, RenderControl, pixel_index};
 use crate::settings::Settings;
@@ -402,10 +402,10 @@ fn block_cone(setup: &Setup, (x, y): (u32, u32), (width, height): (u32, u32)) ->
 /// random streams, stratum by stratum.
 fn sample_points(setup: &Setup, spp: Strata, i: u32, j: u32) -> impl Iterator<Item = (f64, f64, Rng)> + '_ {
     let n = spp.count();
-    let pixel = pixel_index(setup, i as f64, j as f64);
+    let streams = PixelStreams::new(setup.seed, pixel_index(setup, i as f64, j as f64));
     let (x, y) = (i as f64, j as f64);
     spp.cells().enumerate().map(move |(s, stratum)| {
-        let mut rng = Rng::new(setup.seed, pixel, s as u64);
+        let mut rng = streams.sample(s as u64);
         // DESIGN.md: one sample per pixel is the pixel centre.
         let (dx, dy) = if n == 1 {
             (0.5, 0.5)

@@ -15,11 +15,7 @@ pub struct Rng(u64);
 impl Rng {
     /// The stream of one sample of one pixel.
     pub fn new(seed: u64, pixel: u64, sample: u64) -> Self {
-        let mut rng = Rng(seed ^ 0x5851_f42d_4c95_7f2d);
-        let a = rng.next_u64() ^ pixel.wrapping_mul(0x9e37_79b9_7f4a_7c15);
-        let mut rng = Rng(a);
-        let b = rng.next_u64() ^ sample.wrapping_mul(0xc2b2_ae3d_27d4_eb4f);
-        Rng(b)
+        PixelStreams::new(seed, pixel).sample(sample)
     }
 
     pub fn next_u64(&mut self) -> u64 {
@@ -33,6 +29,25 @@ impl Rng {
     /// Uniform in [0, 1): the top 53 bits as the mantissa.
     pub fn next_f64(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+}
+
+/// The streams of one pixel's samples, [`Rng::new`] for each: the hashing
+/// of the seed and the pixel done once for all of them.
+#[derive(Clone, Copy, Debug)]
+pub struct PixelStreams(u64);
+
+impl PixelStreams {
+    pub fn new(seed: u64, pixel: u64) -> Self {
+        let mut rng = Rng(seed ^ 0x5851_f42d_4c95_7f2d);
+        let a = rng.next_u64() ^ pixel.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        Self(Rng(a).next_u64())
+    }
+
+    /// The stream of sample `sample`.
+    #[inline]
+    pub fn sample(self, sample: u64) -> Rng {
+        Rng(self.0 ^ sample.wrapping_mul(0xc2b2_ae3d_27d4_eb4f))
     }
 }
 
