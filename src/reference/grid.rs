@@ -21,6 +21,8 @@
 //! stored once, which is the first step of every test of a ray from it; and
 //! all rays through one pixel share their cell when its four corners do.
 
+mod depth;
+
 use super::bvh::{BvhTriangle, Hit, closer};
 use super::intersect::{ShearedRay, with_axes};
 use crate::scene::camera::PixelRays;
@@ -130,6 +132,7 @@ impl DirectionGrid {
         // Members are numbered as they are first listed by an uncrowded cell.
         let mut member_of = vec![u32::MAX; triangles.len()];
         let (mut members, mut relative, mut items) = (Vec::new(), Vec::new(), Vec::new());
+        let mut seen = Vec::new();
         let cells = lists
             .enumerate()
             .map(|(cell, list)| {
@@ -137,18 +140,20 @@ impl DirectionGrid {
                 if list.len() > MAX_LIST {
                     return (first as u32, CROWDED);
                 }
+                // A lone triangle needs no order and ends no search early.
+                let pyramid = (list.len() > 1).then(|| depth::Pyramid::new(cell));
                 for &(triangle, whole) in list {
                     let member = &mut member_of[triangle as usize];
                     if *member == u32::MAX {
                         *member = members.len() as u32;
                         members.push(triangle);
-                        relative.push(triangles[triangle as usize].corners.map(|p| p - centre));
+                        let corners = triangles[triangle as usize].corners.map(|p| p - centre);
+                        relative.push(corners);
+                        seen.push(depth::Seen::new(corners));
                     }
-                    // A lone triangle needs no order and ends no search early.
-                    let depth = if list.len() > 1 && !whole {
-                        round_down(depth_in_cell(&relative[*member as usize], cell))
-                    } else {
-                        0.0
+                    let depth = match &pyramid {
+                        Some(pyramid) if !whole => round_down(pyramid.depth_of(&seen[*member as usize])),
+                        _ => 0.0,
                     };
                     items.push(Item {
                         member: *member,
@@ -367,28 +372,6 @@ fn cell_range(relative: &[DVec3; 3], face: usize) -> Option<[usize; 4]> {
         to_cell(v0 - MARGIN),
         to_cell(v1 + MARGIN),
     ])
-}
-
-/// A lower bound of the depth (sign · w_k) over the part of the triangle
-/// (corners relative to the centre) inside the pyramid of `cell`, widened
-/// by `MARGIN` as the binning is: the depth is linear, so its least value
-/// is at a vertex of the clipped polygon; less the rounding of clipping
-/// (10⁻⁹ of the triangle's size, far above it), and never below 0.
-fn depth_in_cell(relative: &[DVec3; 3], cell: usize) -> f64 {
-    let (face, j, i) = (cell / (CELLS * CELLS), cell / CELLS % CELLS, cell % CELLS);
-    let (k, sign, _, _) = face_axes(face);
-    let edge = |n: usize| -1.0 + 2.0 * n as f64 / CELLS as f64;
-    let u = (edge(i) - MARGIN, edge(i + 1) + MARGIN);
-    let v = (edge(j) - MARGIN, edge(j + 1) + MARGIN);
-    let Some(polygon) = clip_to_pyramid(relative, face, u, v) else {
-        // Listed by the wider per-face bounds only: it cannot be hit here.
-        return f64::INFINITY;
-    };
-    let least = polygon
-        .points()
-        .iter()
-        .fold(f64::INFINITY, |m, w| m.min(sign * w[k]));
-    (least - 1e-9 * extent(relative)).max(0.0)
 }
 
 /// The largest |coordinate| of the corners: the triangle's size, seen from the centre.
