@@ -355,17 +355,32 @@ fn cell_range(relative: &[DVec3; 3], face: usize) -> Option<[usize; 4]> {
     let size = extent(relative);
     // The face's pyramid, widened: |u|, |v| ≤ 1 + WIDEN.
     let widened = (-1.0 - WIDEN, 1.0 + WIDEN);
-    let polygon = clip_to_pyramid(relative, face, widened, widened)?;
-    let (mut u0, mut u1, mut v0, mut v1) =
-        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for w in polygon.points() {
-        let depth = sign * w[k];
-        if depth <= APEX * size {
-            return Some(WHOLE_FACE);
+    // Wholly inside that pyramid (most triangles), the triangle is its own
+    // clipped polygon: its corners project to the same rectangle.
+    let rectangle = |points: &[DVec3]| {
+        let (mut u0, mut u1, mut v0, mut v1) =
+            (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+        for w in points {
+            let depth = sign * w[k];
+            if depth <= APEX * size {
+                return None;
+            }
+            let (u, v) = (w[ia] / depth, w[ib] / depth);
+            (u0, u1, v0, v1) = (u0.min(u), u1.max(u), v0.min(v), v1.max(v));
         }
-        let (u, v) = (w[ia] / depth, w[ib] / depth);
-        (u0, u1, v0, v1) = (u0.min(u), u1.max(u), v0.min(v), v1.max(v));
-    }
+        Some([u0, u1, v0, v1])
+    };
+    let inside = |&[u0, u1, v0, v1]: &[f64; 4]| {
+        u0 >= widened.0 && u1 <= widened.1 && v0 >= widened.0 && v1 <= widened.1
+    };
+    let [u0, u1, v0, v1] = match rectangle(relative).filter(inside) {
+        Some(corners) => corners,
+        None => {
+            let polygon = clip_to_pyramid(relative, face, widened, widened)?;
+            // A vertex at the centre's face plane: the whole face.
+            rectangle(polygon.points()).unwrap_or([-1.0, 1.0, -1.0, 1.0])
+        }
+    };
     Some([
         to_cell(u0 - MARGIN),
         to_cell(u1 + MARGIN),
@@ -388,10 +403,17 @@ fn clip_to_pyramid(
     (v0, v1): (f64, f64),
 ) -> Option<Polygon> {
     let (k, sign, ia, ib) = face_axes(face);
-    let mut polygon = Polygon::triangle(relative);
     // u ≥ u0 ⇔ w_a − u0 · depth ≥ 0, and so on, with depth = sign · w_k.
-    for (axis, side, bound) in [(ia, 1.0, u0), (ia, -1.0, u1), (ib, 1.0, v0), (ib, -1.0, v1)] {
-        polygon = polygon.clip(|w: DVec3| side * (w[axis] - bound * sign * w[k]));
+    let sides = [(ia, 1.0, u0), (ia, -1.0, u1), (ib, 1.0, v0), (ib, -1.0, v1)]
+        .map(|(axis, side, bound)| move |w: DVec3| side * (w[axis] - bound * sign * w[k]));
+    // Corners all outside one side (most faces of most triangles): nothing
+    // is left, as clipping would find at greater cost.
+    if sides.iter().any(|f| relative.iter().all(|&w| f(w) < 0.0)) {
+        return None;
+    }
+    let mut polygon = Polygon::triangle(relative);
+    for f in sides {
+        polygon = polygon.clip(f);
         if polygon.is_empty() {
             return None;
         }

@@ -169,8 +169,8 @@ mod tests {
     /// obliquely) and small: wherever the bound without clipping answers,
     /// it lies at or below the clipped one, equals it within 10⁻⁶ where the
     /// triangle covers the cell, and calls a cell empty only where
-    /// clipping leaves nothing. Making either bound slip (the planes' hits
-    /// or a separation taken without its margin) fails it.
+    /// clipping leaves nothing. Taking the planes' hits' greatest depth
+    /// instead of their least fails it.
     #[test]
     fn the_bound_without_clipping_never_exceeds_the_clipped_one() {
         let mut rng = Rng::new(41, 0, 0);
