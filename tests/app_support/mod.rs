@@ -75,7 +75,7 @@ pub fn harness_preloaded(
 }
 
 /// Steps until `done` holds (async readbacks), failing after a few seconds.
-pub fn step_until(harness: &mut Harness<'_, LabApp>, what: &str, done: impl Fn(&LabApp) -> bool) {
+pub fn step_until(harness: &mut Harness<'_, LabApp>, what: &str, mut done: impl FnMut(&LabApp) -> bool) {
     for _ in 0..300 {
         harness.step();
         if done(harness.state()) {
