@@ -373,13 +373,13 @@ fn cell_range(relative: &[DVec3; 3], face: usize) -> Option<[usize; 4]> {
     let inside = |&[u0, u1, v0, v1]: &[f64; 4]| {
         u0 >= widened.0 && u1 <= widened.1 && v0 >= widened.0 && v1 <= widened.1
     };
-    let [u0, u1, v0, v1] = match rectangle(relative).filter(inside) {
-        Some(corners) => corners,
-        None => {
-            let polygon = clip_to_pyramid(relative, face, widened, widened)?;
-            // A vertex at the centre's face plane: the whole face.
-            rectangle(polygon.points()).unwrap_or([-1.0, 1.0, -1.0, 1.0])
-        }
+    let projected = match rectangle(relative).filter(inside) {
+        Some(corners) => Some(corners),
+        None => rectangle(clip_to_pyramid(relative, face, widened, widened)?.points()),
+    };
+    // A vertex at the centre's face plane: the whole face.
+    let Some([u0, u1, v0, v1]) = projected else {
+        return Some(WHOLE_FACE);
     };
     Some([
         to_cell(u0 - MARGIN),
