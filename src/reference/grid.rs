@@ -65,6 +65,8 @@ pub struct DirectionGrid {
     /// first step of every ray test from the centre, done once).
     members: Vec<u32>,
     relative: Vec<[DVec3; 3]>,
+    /// Whether some cell defers to the BVH.
+    crowded: bool,
 }
 
 /// The cell range of a triangle seen on a whole face.
@@ -133,7 +135,7 @@ impl DirectionGrid {
         let mut member_of = vec![u32::MAX; triangles.len()];
         let (mut members, mut relative, mut items) = (Vec::new(), Vec::new(), Vec::new());
         let mut seen = Vec::new();
-        let cells = lists
+        let cells: Vec<(u32, u32)> = lists
             .enumerate()
             .map(|(cell, list)| {
                 let first = items.len();
@@ -166,6 +168,7 @@ impl DirectionGrid {
             .collect();
         Self {
             centre,
+            crowded: cells.iter().any(|&(_, count)| count == CROWDED),
             cells,
             items,
             members,
@@ -208,6 +211,12 @@ impl DirectionGrid {
     /// Whether the cell lists too many triangles and defers to the BVH.
     pub fn is_crowded(&self, cell: Cell) -> bool {
         self.cells[cell.0].1 == CROWDED
+    }
+
+    /// Whether some cell defers to the BVH (else every ray but one from the
+    /// centre itself is answered here).
+    pub fn is_crowded_anywhere(&self) -> bool {
+        self.crowded
     }
 
     /// The items of a cell, or None when it defers to the BVH.

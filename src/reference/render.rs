@@ -305,10 +305,16 @@ impl Reference {
     }
 
     /// Aims the light packet at the shadow rays of every sample in
-    /// `buffers.samples` (a pixel's, or a block's: one walk for them all).
+    /// `buffers.samples` (a pixel's, or a block's: one walk for them all),
+    /// unless the light's grid answers every cell: the rare ray it cannot
+    /// answer (one from the light's centre) then walks the BVH on its own.
     #[inline(always)]
     fn aim_light_packet(&self, setup: &Setup, buffers: &mut PixelBuffers) {
-        if setup.shadows && !setup.is_sphere_light() {
+        let grid_answers = setup
+            .light_grid
+            .as_ref()
+            .is_some_and(|grid| !grid.is_crowded_anywhere());
+        if setup.shadows && !setup.is_sphere_light() && !grid_answers {
             let origins = buffers
                 .samples
                 .iter()
