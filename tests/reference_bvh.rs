@@ -334,3 +334,125 @@ fn rays_through_a_pixel_that_shares_a_cell_find_what_brute_force_finds() {
         "{shared} pixels shared a cell, {hits} hits"
     );
 }
+
+/// The four corner rays of pixel (i, j).
+fn pixel_corners(rays: &lumlab::scene::camera::PixelRays, i: f64, j: f64) -> [DVec3; 4] {
+    [(i, j), (i + 1.0, j), (i, j + 1.0), (i + 1.0, j + 1.0)].map(|(x, y)| rays.towards(x, y))
+}
+
+#[test]
+fn pixels_one_triangle_covers_find_what_brute_force_finds() {
+    // The reference takes a covered pixel's hits from the covering triangle
+    // (`DirectionGrid::cover`): every ray through the pixel must find that
+    // triangle first, at the distance testing every triangle gives (to
+    // rounding). Near the scene (cells list many triangles, some stacked in
+    // depth) with pixels from a fifth of a cell to several cells wide.
+    let mut rng = Rng::new(23, 0, 0);
+    let triangles = generated_scene(&mut rng);
+    let (mut covered, mut tested) = (0, 0);
+    for (eye, w, h) in [
+        ((5.0, 2.5, 6.0), 640, 480),
+        ((2.0, 1.2, 2.5), 160, 120),
+        ((9.0, 6.0, -7.0), 48, 36),
+    ] {
+        let camera = Camera {
+            eye: Vec3::new(eye.0, eye.1, eye.2),
+            target: Vec3::new(0.0, 0.5, 0.0),
+            fovy_deg: 60.0,
+        };
+        let rays = camera.pixel_rays(w, h);
+        let grid = DirectionGrid::new(rays.eye, &triangles, |_| true);
+        for _ in 0..3000 {
+            let (i, j) = (
+                (rng.next_f64() * w as f64).floor(),
+                (rng.next_f64() * h as f64).floor(),
+            );
+            let Some(cover) = grid.cover(&pixel_corners(&rays, i, j)) else {
+                continue;
+            };
+            covered += 1;
+            for (dx, dy) in [
+                (0.0, 0.0),
+                (1.0, 1.0),
+                (1.0, rng.next_f64()),
+                (rng.next_f64(), rng.next_f64()),
+            ] {
+                let v = rays.towards(i + dx, j + dy);
+                let expected = closest_hit_brute_force(&triangles, rays.eye, v, 0.0, f64::INFINITY)
+                    .unwrap_or_else(|| panic!("pixel ({i}, {j}) at +({dx}, {dy}): a miss"));
+                let got = cover.hit(v);
+                assert_eq!(
+                    got.triangle, expected.triangle,
+                    "pixel ({i}, {j}) at +({dx}, {dy})"
+                );
+                assert!((got.at.t - expected.at.t).abs() <= 1e-12 * expected.at.t);
+                for (g, e) in got.at.barycentric.iter().zip(expected.at.barycentric) {
+                    assert!(
+                        (g - e).abs() <= 1e-12,
+                        "barycentrics {:?} vs {:?}",
+                        got.at.barycentric,
+                        expected.at.barycentric
+                    );
+                }
+                tested += 1;
+            }
+        }
+    }
+    assert!(
+        covered > 2000 && tested > 8000,
+        "{covered} pixels covered, {tested} rays"
+    );
+}
+
+#[test]
+fn shadow_rays_from_a_clear_patch_are_blocked_by_nothing() {
+    // The reference decides a covered pixel's shadow rays at once when the
+    // light's grid shows that nothing but their own triangle can block any
+    // ray from the lifted patch of plane the pixel sees
+    // (`DirectionGrid::clear_towards_centre`): brute force over every
+    // other triangle must then find every such ray unblocked. Patches from
+    // a millimetre to 2 cm across, on random triangles, lifted by the
+    // shadow offset towards the light; their own triangle skipped or not.
+    let mut rng = Rng::new(29, 0, 0);
+    let triangles = generated_scene(&mut rng);
+    let light = DVec3::new(0.5, 5.0, -0.3);
+    let grid = DirectionGrid::new(light, &triangles, |t| t.occludes);
+    let t_max = 1.0 - STOP_SHORT_REL;
+    let (mut clear, mut not_clear) = (0, 0);
+    for patch in 0..20_000 {
+        let own = random_triangle(&triangles, &mut rng);
+        let p = point_on_triangle(&triangles[own], &mut rng);
+        let [a, b, c] = triangles[own].corners;
+        let face = (b - a).cross(c - a).normalize();
+        let normal = if face.dot(light - p) > 0.0 { face } else { -face };
+        let largest = [a, b, c]
+            .iter()
+            .fold(0.0_f64, |m, q| m.max(q.abs().max_element()));
+        let lift = normal * SHADOW_OFFSET_REL * largest;
+        let size = 1e-3 * 20f64.powf(rng.next_f64());
+        let (e1, e2) = ((b - a).normalize() * size, (c - a).normalize() * size);
+        let origins = [p, p + e1, p + e2, p + e1 + e2].map(|q| q + lift);
+        let skip = rng.next_f64() < 0.5;
+        if !grid.clear_towards_centre(&origins, if skip { own } else { usize::MAX }) {
+            not_clear += 1;
+            continue;
+        }
+        clear += 1;
+        for _ in 0..4 {
+            let (s, t) = (rng.next_f64(), rng.next_f64());
+            let origin = origins[0] + (origins[1] - origins[0]) * s + (origins[2] - origins[0]) * t;
+            let (before, after) = if skip {
+                (&triangles[..own], &triangles[own + 1..])
+            } else {
+                (&triangles[..], &triangles[..0])
+            };
+            let d = light - origin;
+            assert!(
+                !occluded_brute_force(before, origin, d, 0.0, t_max)
+                    && !occluded_brute_force(after, origin, d, 0.0, t_max),
+                "patch {patch} on triangle {own} (skipped: {skip}): a shadow ray is blocked"
+            );
+        }
+    }
+    assert!(clear > 400 && not_clear > 3000, "{clear} clear, {not_clear} not");
+}

@@ -21,7 +21,10 @@
 //! stored once, which is the first step of every test of a ray from it; and
 //! all rays through one pixel share their cell when its four corners do.
 
+mod cover;
 mod depth;
+
+pub use cover::Cover;
 
 use super::bvh::{BvhTriangle, Hit, closer};
 use super::intersect::{ShearedRay, with_axes};

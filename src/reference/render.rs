@@ -13,6 +13,8 @@ use rayon::prelude::*;
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
+mod cover;
+
 /// Edge length of the square tiles the image is split into for the threads.
 const TILE: u32 = 16;
 /// Scenes with more triangles build no direction grids: most of their cells
@@ -36,20 +38,19 @@ impl Reference {
         options: &ReferenceOptions,
         control: &RenderControl,
     ) -> Result<ReferenceImage, ReferenceError> {
-        self.render_in_runs(settings, options, control, RUN, true)
+        self.render_in_runs(settings, options, control, RUN, Shortcuts::ALL)
     }
 
     /// [`Self::render`] with primary packets of `run` pixels where there is
-    /// no eye grid; `skip`: blocks of pixels that see only background are
-    /// told so without casting their samples (the same pixels; false for
-    /// the tests that show it).
+    /// no eye grid, and the `shortcuts` taken (all but for the tests that
+    /// show what they change).
     fn render_in_runs(
         &self,
         settings: &Settings,
         options: &ReferenceOptions,
         control: &RenderControl,
         run: u32,
-        skip: bool,
+        shortcuts: Shortcuts,
     ) -> Result<ReferenceImage, ReferenceError> {
         settings.validate()?;
         let start = Instant::now();
@@ -75,7 +76,7 @@ impl Reference {
         let spp = Strata::new(options.spp);
         let rendered: Vec<Option<Tile>> = tiles
             .par_iter()
-            .map(|&(x0, y0)| self.render_tile(&setup, spp, (x0, y0), run, skip, control))
+            .map(|&(x0, y0)| self.render_tile(&setup, spp, (x0, y0), run, shortcuts, control))
             .collect();
         if control.cancelled() {
             return Err(ReferenceError::Cancelled);
@@ -118,15 +119,13 @@ impl Reference {
 
     /// One tile from (x0, y0), with primary packets of `run` pixels (2 rows
     /// by run / 2 columns) where there is no eye grid, or None when cancelled.
-    /// `skip`: tiles, blocks and pixels whose cone meets no triangle are
-    /// background without a sample cast.
     fn render_tile(
         &self,
         setup: &Setup,
         spp: Strata,
         (x0, y0): (u32, u32),
         run: u32,
-        skip: bool,
+        shortcuts: Shortcuts,
         control: &RenderControl,
     ) -> Option<Tile> {
         let run = if setup.eye_grid.is_none() && spp.count() > 1 {
@@ -146,7 +145,7 @@ impl Reference {
         };
         let n = spp.count();
         let sees = |x: u32, y: u32, width: u32, height: u32| {
-            !skip || self.bvh.meets_cone(&block_cone(setup, (x, y), (width, height)))
+            !shortcuts.background || self.bvh.meets_cone(&block_cone(setup, (x, y), (width, height)))
         };
         if !sees(x0, y0, x1 - x0, y1 - y0) {
             if control.cancelled() {
@@ -172,7 +171,7 @@ impl Reference {
             for i in (x0..x1).step_by(cols as usize) {
                 let width = cols.min(x1 - i);
                 if width * band == 1 {
-                    let pixel_sees = self.trace_pixel_samples(setup, spp, i, j, skip, &mut buffers);
+                    let pixel_sees = self.trace_pixel_samples(setup, spp, (i, j), shortcuts, &mut buffers);
                     tile.add(if pixel_sees {
                         self.aim_light_packet(setup, &mut buffers);
                         self.shade_pixel(setup, 0, n, &mut buffers)
@@ -182,6 +181,7 @@ impl Reference {
                     continue;
                 }
                 let block_sees = sees(i, j, width, band);
+                buffers.scratch.shadows_clear = false;
                 if block_sees {
                     self.trace_run(setup, spp, (i, j), (width, band), &mut buffers);
                     self.run_samples(setup, &mut buffers);
@@ -259,18 +259,19 @@ impl Reference {
     /// primary ray, then (in `shade_pixel`) the light at every surface. Two
     /// short loops of independent iterations let the CPU overlap the
     /// samples' long chains of divisions and square roots better than one
-    /// long loop does (8 %). False, and no samples, when `skip` and the
-    /// pixel lies in an empty cell of the eye grid: it sees only background.
+    /// long loop does (8 %). False, and no samples, when the background
+    /// shortcut is taken and the pixel lies in an empty cell of the eye
+    /// grid: it sees only background.
     #[inline(always)]
     fn trace_pixel_samples(
         &self,
         setup: &Setup,
         spp: Strata,
-        i: u32,
-        j: u32,
-        skip: bool,
+        (i, j): (u32, u32),
+        shortcuts: Shortcuts,
         buffers: &mut PixelBuffers,
     ) -> bool {
+        buffers.scratch.shadows_clear = false;
         let n = spp.count();
         let (x, y) = (i as f64, j as f64);
         // Several samples: find their cell once when it is the same for all.
@@ -279,11 +280,18 @@ impl Reference {
             .as_ref()
             .filter(|_| n > 1)
             .and_then(|grid| grid.pixel_cell(&setup.rays, x, y));
-        if skip
+        if shortcuts.background
             && let (Some(grid), Some(cell)) = (&setup.eye_grid, cell)
             && grid.is_empty(cell)
         {
             return false;
+        }
+        if shortcuts.covers
+            && n > 1
+            && let Some(grid) = &setup.eye_grid
+            && self.trace_covered_samples(setup, spp, (i, j), grid, buffers)
+        {
+            return true;
         }
         // Crowded cells (or none): the pixel's rays go through the BVH
         // together, as one packet in the cone of its corner rays.
@@ -378,6 +386,26 @@ impl Reference {
             noise_known,
         }
     }
+}
+
+/// Ways of sparing work that leave every pixel's coverage and visibility
+/// as they are (the tests turn them off to show it).
+#[derive(Clone, Copy, Debug)]
+struct Shortcuts {
+    /// Tiles, blocks and pixels whose cone meets no triangle are
+    /// background without a sample cast: the same bits.
+    background: bool,
+    /// Pixels that one triangle covers, lit by a point light, take their
+    /// hits from it and their shadows from one test of the whole pixel
+    /// (`cover`): the same hits and visibility, radiance to ~10⁻¹⁵.
+    covers: bool,
+}
+
+impl Shortcuts {
+    const ALL: Self = Self {
+        background: true,
+        covers: true,
+    };
 }
 
 /// Buffers one thread reuses from pixel to pixel.
@@ -500,10 +528,10 @@ mod tests {
         };
         let control = RenderControl::default();
         let single = reference
-            .render_in_runs(&settings, &options, &control, 1, true)
+            .render_in_runs(&settings, &options, &control, 1, Shortcuts::ALL)
             .unwrap();
         let runs = reference
-            .render_in_runs(&settings, &options, &control, RUN, true)
+            .render_in_runs(&settings, &options, &control, RUN, Shortcuts::ALL)
             .unwrap();
         assert!(single.coverage.iter().any(|&c| c > 0.0) && single.visibility.iter().any(|&v| v < 1.0));
         assert_eq!(single.radiance, runs.radiance);
@@ -541,10 +569,19 @@ mod tests {
             assert!(reference.bvh.meets_cone(&block_cone(&setup, (0, 20), (16, 16))));
             let control = RenderControl::default();
             let cast = reference
-                .render_in_runs(&settings, &options, &control, RUN, false)
+                .render_in_runs(
+                    &settings,
+                    &options,
+                    &control,
+                    RUN,
+                    Shortcuts {
+                        background: false,
+                        ..Shortcuts::ALL
+                    },
+                )
                 .unwrap();
             let skipped = reference
-                .render_in_runs(&settings, &options, &control, RUN, true)
+                .render_in_runs(&settings, &options, &control, RUN, Shortcuts::ALL)
                 .unwrap();
             assert!(cast.coverage.contains(&0.0) && cast.coverage.contains(&1.0));
             assert_eq!(cast.radiance, skipped.radiance);

@@ -183,6 +183,9 @@ pub(super) struct Scratch {
     candidates: Vec<u32>,
     /// A pixel's shadow rays towards a point light.
     pub light_packet: LightPacket,
+    /// Whether nothing can block the current pixel's shadow rays towards
+    /// the point light (known for the whole pixel, see `render::cover`).
+    pub shadows_clear: bool,
 }
 
 /// Gathered occluders beyond this many: each shadow ray goes through the BVH.
@@ -207,7 +210,7 @@ pub(super) struct Surface {
     /// The shading normal (towards the viewer on double-sided materials).
     n: DVec3,
     /// The face's normal on the viewer's side.
-    geometric_normal: DVec3,
+    pub(super) geometric_normal: DVec3,
     /// Unit direction to the eye.
     o: DVec3,
     uv: DVec2,
@@ -218,7 +221,7 @@ pub(super) struct Surface {
     /// p lifted off the surface for shadow rays.
     shadow_origin: DVec3,
     /// Shadow rays are cast (shadows on and the object receives them).
-    shadowed: bool,
+    pub(super) shadowed: bool,
 }
 
 impl Surface {
@@ -388,10 +391,17 @@ impl Reference {
             .occluded(surface.shadow_origin, d, 0.0, 1.0 - STOP_SHORT_REL)
     }
 
-    /// L / (c · colour) = (f_d + f_s)(l) · E · V, with V from one shadow ray;
-    /// the BRDF is evaluated only where light arrives.
+    /// L / (c · colour) = (f_d + f_s)(l) · E · V, with V from one shadow ray
+    /// (known unblocked when `clear`); the BRDF is evaluated only where
+    /// light arrives.
     #[inline(always)]
-    fn point_light(&self, setup: &Setup, s: &Surface, packet: &mut LightPacket) -> LightEstimate {
+    fn point_light(
+        &self,
+        setup: &Setup,
+        s: &Surface,
+        clear: bool,
+        packet: &mut LightPacket,
+    ) -> LightEstimate {
         let q = setup.light_position;
         let inc = incidence(s.p, s.n, q);
         let (visibility, shadow_rays) = if !s.shadowed {
@@ -399,7 +409,7 @@ impl Reference {
         } else if inc.cos_theta <= 0.0 {
             // Attached shadow: the light is below the surface's horizon.
             (0.0, 0)
-        } else if self.blocked_from_light(setup, s, packet) {
+        } else if !clear && self.blocked_from_light(setup, s, packet) {
             (0.0, 1)
         } else {
             (1.0, 1)
@@ -429,7 +439,7 @@ impl Reference {
         scratch: &mut Scratch,
     ) -> LightEstimate {
         if !setup.is_sphere_light() {
-            return self.point_light(setup, s, &mut scratch.light_packet);
+            return self.point_light(setup, s, scratch.shadows_clear, &mut scratch.light_packet);
         }
         let (q, radius) = (setup.light_position, setup.radius_m);
         // Every shadow ray of this point runs from its shadow origin to the

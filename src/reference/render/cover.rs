@@ -1,0 +1,179 @@
+//! Pixels that one triangle covers: their samples' hits from the triple
+//! products of `grid::cover` instead of a search of the cell ray by ray,
+//! and, lit by a point light, their shadow rays decided once for the whole
+//! pixel where the light's grid shows that nothing can block any of them.
+//! The same triangle under every sample and the same visibility as the
+//! search ray by ray; the radiance to the rounding of the hit point.
+
+use super::{PixelBuffers, sample_points};
+use crate::reference::Reference;
+use crate::reference::grid::{Cover, DirectionGrid};
+use crate::reference::sampling::Strata;
+use crate::reference::shading::Setup;
+use glam::DVec3;
+
+/// The own-triangle test of a shadow ray (`Reference::blocked_from_light`)
+/// is trusted over the pixel when it passes at the corners by this factor.
+const OWN_SLACK: f64 = 2.0;
+
+impl Reference {
+    /// Pixel (i, j)'s samples into `buffers.samples` when one triangle
+    /// covers it in the eye grid (false, nothing done, when none surely
+    /// does), with `buffers.scratch.shadows_clear` set.
+    pub(super) fn trace_covered_samples(
+        &self,
+        setup: &Setup,
+        spp: Strata,
+        (i, j): (u32, u32),
+        grid: &DirectionGrid,
+        buffers: &mut PixelBuffers,
+    ) -> bool {
+        let (x, y) = (i as f64, j as f64);
+        let corners = [(x, y), (x + 1.0, y), (x, y + 1.0), (x + 1.0, y + 1.0)]
+            .map(|(cx, cy)| setup.rays.towards(cx, cy));
+        let Some(cover) = grid.cover(&corners) else {
+            return false;
+        };
+        buffers.samples.clear();
+        for (sx, sy, rng) in sample_points(setup, spp, i, j) {
+            let towards = setup.rays.towards(sx, sy);
+            buffers
+                .samples
+                .push((Some(self.surface_at(setup, towards, cover.hit(towards))), rng));
+        }
+        buffers.scratch.shadows_clear = self.shadows_clear(setup, &cover, &corners, buffers);
+        true
+    }
+
+    /// Whether no shadow ray of the covered pixel's samples (in
+    /// `buffers.samples`) can be blocked: they start on the lifted part of
+    /// the triangle's plane that the pixel sees, whose corners are lifted
+    /// from the corner rays' hits, and the light's grid lists nothing that
+    /// could block a ray from there but the triangle itself, which no ray
+    /// of the pixel tests (the light lies well on its lifted side).
+    fn shadows_clear(
+        &self,
+        setup: &Setup,
+        cover: &Cover,
+        corners: &[DVec3; 4],
+        buffers: &PixelBuffers,
+    ) -> bool {
+        let (Some(grid), Some((Some(first), _))) = (&setup.light_grid, buffers.samples.first()) else {
+            return false;
+        };
+        // Every sample's surface lifted the same way (its normal's side
+        // decided alike), and shadowed: V comes from its ray.
+        let g = first.geometric_normal;
+        let alike = buffers
+            .samples
+            .iter()
+            .all(|(s, _)| s.as_ref().is_some_and(|s| s.shadowed && s.geometric_normal == g));
+        if !alike {
+            return false;
+        }
+        let offset = self.triangles[cover.triangle()].shadow_offset_m;
+        let q = setup.light_position;
+        let points = corners.map(|d| setup.rays.eye + d * cover.hit(d).at.t);
+        // g · (q − p) is linear over the pixel's part of the plane and the
+        // allowance `clear` convex: both bounded by their corner values.
+        let least_lift = points.iter().fold(f64::INFINITY, |m, &p| m.min(g.dot(q - p)));
+        let most_clear = points.iter().fold(0.0_f64, |m, &p| {
+            m.max(offset + 1e-12 * (q - p).abs().element_sum())
+        });
+        let own = if least_lift > OWN_SLACK * most_clear {
+            cover.triangle()
+        } else {
+            usize::MAX
+        };
+        grid.clear_towards_centre(&points.map(|p| p + g * offset), own)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{RUN, Shortcuts};
+    use crate::reference::grid::DirectionGrid;
+    use crate::reference::{Reference, ReferenceOptions, RenderControl};
+    use crate::scene::{Aabb, Material, Object, Scene, shapes};
+    use crate::settings::Settings;
+    use glam::Vec3;
+
+    /// Covered pixels render what the search ray by ray renders: the same
+    /// coverage and visibility bit for bit, the radiance to 10⁻¹², under a
+    /// point light above, grazing the ground, and between two boxes.
+    #[test]
+    fn covered_pixels_render_what_the_search_ray_by_ray_renders() {
+        let boxes = [
+            Aabb {
+                min: Vec3::new(-0.6, 0.0, -0.4),
+                max: Vec3::new(0.2, 0.9, 0.3),
+            },
+            Aabb {
+                min: Vec3::new(0.5, 0.0, -0.2),
+                max: Vec3::new(0.9, 0.4, 0.6),
+            },
+        ];
+        let mut objects = vec![Object::new("ground", shapes::ground(Vec3::ZERO, 6.0), 0)];
+        objects.extend(boxes.map(|b| Object::new("box", shapes::cuboid(b), 0)));
+        let scene = Scene {
+            objects,
+            materials: vec![Material::default()],
+            ..Scene::default()
+        };
+        let reference = Reference::new(&scene);
+        let mut settings = Settings::default();
+        settings.camera.eye = Vec3::new(1.8, 1.6, 2.6);
+        settings.camera.target = Vec3::new(0.0, 0.2, 0.0);
+        (settings.image.width, settings.image.height) = (160, 120);
+        let options = ReferenceOptions {
+            spp: 4,
+            ..ReferenceOptions::default()
+        };
+        let rays = settings.camera.pixel_rays(160, 120);
+        let grid = DirectionGrid::new(rays.eye, &reference.bvh_triangles, |_| true);
+        let covered = (0..160 * 120)
+            .filter(|k| {
+                let (i, j) = ((k % 160) as f64, (k / 160) as f64);
+                let corners = [(i, j), (i + 1.0, j), (i, j + 1.0), (i + 1.0, j + 1.0)];
+                grid.cover(&corners.map(|(x, y)| rays.towards(x, y))).is_some()
+            })
+            .count();
+        assert!(covered > 160 * 120 / 2, "{covered} pixels covered");
+        let control = RenderControl::default();
+        for light in [
+            Vec3::new(-1.0, 3.0, 1.0),
+            Vec3::new(2.5, 0.05, -1.0),
+            Vec3::new(0.35, 0.3, 0.2),
+        ] {
+            settings.light.position = light;
+            let render = |covers| {
+                let shortcuts = Shortcuts {
+                    covers,
+                    ..Shortcuts::ALL
+                };
+                reference
+                    .render_in_runs(&settings, &options, &control, RUN, shortcuts)
+                    .unwrap()
+            };
+            let (searched, covered) = (render(false), render(true));
+            let differ = |a: &[f32], b: &[f32]| a.iter().zip(b).filter(|(a, b)| a != b).count();
+            assert_eq!(
+                differ(&searched.coverage, &covered.coverage),
+                0,
+                "coverage, light at {light}"
+            );
+            assert_eq!(
+                differ(&searched.visibility, &covered.visibility),
+                0,
+                "visibility, light at {light}"
+            );
+            assert!(searched.visibility.contains(&0.0) && searched.visibility.contains(&1.0));
+            assert_eq!(searched.stats.shadow_rays, covered.stats.shadow_rays);
+            for (s, c) in searched.radiance.iter().zip(&covered.radiance) {
+                for (s, c) in s.iter().zip(c) {
+                    assert!((s - c).abs() <= 1e-12 * s.abs().max(1e-30), "{s} vs {c}");
+                }
+            }
+        }
+    }
+}
