@@ -31,6 +31,7 @@ mod render;
 pub mod sampling;
 mod shading;
 mod spectral;
+mod surface;
 mod texture;
 
 pub use image::{NoiseSummary, ReferenceImage, RenderStats, luminance};

@@ -22,21 +22,20 @@
 //! distance stays negative whatever cos θ divides both by), while at 1 m
 //! from the origin it is 1 nm: no occluder closer than that exists in a scene.
 
-use super::bvh::Hit;
-use super::grid::{Answer, Cell, DirectionGrid};
+use super::grid::{Answer, DirectionGrid};
 use super::image::luminance;
 use super::light_packet::LightPacket;
+use super::surface::Surface;
 use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
 use super::spectral::SpectralLight;
 use super::{Reference, ReferenceOptions};
 use crate::colour::ColourModel;
 use crate::colour::chart::illuminant_linear_srgb;
 use crate::physics::brdf::blinn_phong;
-use crate::physics::colour::tint;
 use crate::physics::radiometry::{
     MIN_LIGHT_DISTANCE_M, incidence, intensity, point_irradiance, sphere_irradiance, sphere_radiance,
 };
-use crate::physics::{BrdfParams, BrdfTerms, Normalization};
+use crate::physics::{BrdfTerms, Normalization};
 use crate::scene::Material;
 use crate::scene::camera::PixelRays;
 use crate::settings::Settings;
@@ -56,6 +55,8 @@ pub(super) struct Setup {
     pub height: u32,
     pub light_position: DVec3,
     pub power_w: f64,
+    /// I = Φ / 4π (W/sr), the point light's intensity.
+    pub intensity_w_sr: f64,
     pub radius_m: f64,
     /// The light's RGB colour (under an illuminant in `rgb-approx`: the
     /// illuminant's linear sRGB at the light colour's luminance).
@@ -108,6 +109,7 @@ impl Setup {
             height: settings.image.height,
             light_position: l.position.as_dvec3(),
             power_w: l.power_w as f64,
+            intensity_w_sr: intensity(l.power_w as f64),
             radius_m: l.radius_m as f64,
             light_color,
             spectral,
@@ -201,135 +203,7 @@ pub(super) struct LightEstimate {
     pub shadow_rays: u32,
 }
 
-/// Where a primary ray lands, and the surface there as the light sees it.
-pub(super) struct Surface {
-    /// Index into `Reference::triangles`.
-    triangle: usize,
-    distance_m: f64,
-    p: DVec3,
-    /// The shading normal (towards the viewer on double-sided materials).
-    n: DVec3,
-    /// The face's normal on the viewer's side.
-    pub(super) geometric_normal: DVec3,
-    /// Unit direction to the eye.
-    o: DVec3,
-    uv: DVec2,
-    color: DVec3,
-    /// c · light colour: L = tint · LightEstimate::scaled_radiance.
-    pub tint: DVec3,
-    brdf: BrdfParams<f64>,
-    /// p lifted off the surface for shadow rays.
-    shadow_origin: DVec3,
-    /// Shadow rays are cast (shadows on and the object receives them).
-    pub(super) shadowed: bool,
-}
-
-impl Surface {
-    /// Where its shadow ray to a point light at `light` starts, None when
-    /// it casts none (nearly certainly: a light on its horizon may go either way).
-    pub(super) fn shadow_ray_origin(&self, light: DVec3) -> Option<DVec3> {
-        (self.shadowed && self.n.dot(light - self.p) > 0.0).then_some(self.shadow_origin)
-    }
-}
-
 impl Reference {
-    /// The surface seen through image point (x, y) (pixels, centres at
-    /// i + 0.5); None on background. `cell`: the eye grid's cell of the
-    /// point's pixel, when one holds it whole (see [`DirectionGrid::pixel_cell`]).
-    #[inline(always)]
-    pub(super) fn surface(&self, setup: &Setup, x: f64, y: f64, cell: Option<Cell>) -> Option<Surface> {
-        // The ray is cast along a direction that is not normalized: the
-        // normalization (a square root and a division) then runs beside
-        // the intersection instead of before it, which is 18 % faster.
-        let towards = setup.rays.towards(x, y);
-        let answer = setup.eye_grid.as_ref().map(|g| match cell {
-            Some(cell) => g.closest_in(cell, towards),
-            None => g.closest_from_centre(towards),
-        });
-        let hit = match answer {
-            Some(Answer::Known(hit)) => hit?,
-            _ => self
-                .bvh
-                .closest_hit(setup.rays.eye, towards, 0.0, f64::INFINITY)?,
-        };
-        Some(self.surface_at(setup, towards, hit))
-    }
-
-    /// The surface where the primary ray along `towards` (not normalized)
-    /// lands, its closest hit being `hit`.
-    #[inline(always)]
-    pub(super) fn surface_at(&self, setup: &Setup, towards: DVec3, hit: Hit) -> Surface {
-        let length = towards.length();
-        let tri = &self.triangles[hit.triangle];
-        let object = &self.objects[tri.object];
-        // An index out of range was mapped to the default material when the
-        // reference was built; the GPU's materials buffer does the same.
-        let material = &self.materials[object.material];
-        let [b0, b1, b2] = hit.at.barycentric;
-        let [a, b, c] = tri.corners.map(|p| p.as_dvec3());
-        let p = a * b0 + b * b1 + c * b2;
-        let o = -towards / length;
-        let face = tri.face_normal;
-        let geometric_normal = if face.dot(o) < 0.0 { -face } else { face };
-        // Missing vertex normals are zero: where the interpolated normal
-        // vanishes, the face's own (winding) normal is used, as on the GPU
-        // (shade.wgsl's surface_at); tests/wgsl_parity.rs holds both to it.
-        let mut n = tri.flat_normal.unwrap_or_else(|| {
-            let [n0, n1, n2] = tri.normals.map(|n| n.as_dvec3());
-            (n0 * b0 + n1 * b1 + n2 * b2).normalize_or(face)
-        });
-        if material.double_sided && n.dot(o) < 0.0 {
-            n = -n;
-        }
-        let [t0, t1, t2] = tri.uvs.map(|t| t.as_dvec2());
-        let uv = t0 * b0 + t1 * b1 + t2 * b2;
-        let texture = material
-            .base_color_texture
-            .and_then(|t| self.textures.get(t)?.as_ref())
-            .map(|texture| texture.sample(uv));
-        // The texture and the vertex colours modulate the base colour.
-        let vertex_colour = object
-            .corner_colours(tri.index)
-            .map_or(DVec3::ONE, |[c0, c1, c2]| {
-                c0.as_dvec3() * b0 + c1.as_dvec3() * b1 + c2.as_dvec3() * b2
-            });
-        let modulation = texture.unwrap_or(DVec3::ONE) * vertex_colour;
-        let color = match setup.color_override {
-            Some(c) => c,
-            None => material.base_color.truncate().as_dvec3() * modulation,
-        };
-        let surface_tint = match &setup.spectral {
-            None => tint(color, setup.light_color),
-            // They modulate the spectral colour as they do the RGB one.
-            Some(light) if setup.color_override.is_none() => {
-                light.reflected_rgb(object.material) * modulation
-            }
-            Some(light) => light.reflected_rgb(object.material),
-        };
-        let own = |value: Option<f32>, default: f64| match value {
-            Some(v) if setup.use_scene_materials => v as f64,
-            _ => default,
-        };
-        Surface {
-            triangle: hit.triangle,
-            distance_m: hit.at.t * length,
-            p,
-            n,
-            geometric_normal,
-            o,
-            uv,
-            color,
-            tint: surface_tint,
-            brdf: BrdfParams {
-                k: own(material.k, setup.k),
-                m: own(material.m, setup.m),
-                norm: setup.norm,
-            },
-            shadow_origin: p + geometric_normal * tri.shadow_offset_m,
-            shadowed: setup.shadows && object.receives_shadows,
-        }
-    }
-
     /// Everything about the primary sample through (x, y): the pixel probe.
     pub(super) fn probe(&self, setup: &Setup, x: f64, y: f64, rng: &mut Rng) -> Option<ShadingSample> {
         let s = self.surface(setup, x, y, None)?;
@@ -415,7 +289,7 @@ impl Reference {
             (1.0, 1)
         };
         let scaled_radiance = if visibility > 0.0 && inc.cos_theta > 0.0 {
-            let e = point_irradiance(intensity(setup.power_w), inc.cos_theta, inc.r);
+            let e = point_irradiance(setup.intensity_w_sr, inc.cos_theta, inc.r);
             blinn_phong(s.n, inc.l, s.o, &s.brdf).total() * e
         } else {
             0.0

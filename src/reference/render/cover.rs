@@ -10,6 +10,7 @@ use crate::reference::Reference;
 use crate::reference::grid::{Cover, DirectionGrid};
 use crate::reference::sampling::Strata;
 use crate::reference::shading::Setup;
+use crate::reference::surface::TriangleShading;
 use glam::DVec3;
 
 /// The own-triangle test of a shadow ray (`Reference::blocked_from_light`)
@@ -34,43 +35,32 @@ impl Reference {
         let Some(cover) = grid.cover(&corners) else {
             return false;
         };
+        let shading = TriangleShading::new(self, setup, cover.triangle());
         buffers.samples.clear();
         for (sx, sy, rng) in sample_points(setup, spp, i, j) {
             let towards = setup.rays.towards(sx, sy);
-            buffers
-                .samples
-                .push((Some(self.surface_at(setup, towards, cover.hit(towards))), rng));
+            let surface = shading.surface(self, towards, cover.hit(towards));
+            buffers.samples.push((Some(surface), rng));
         }
-        buffers.scratch.shadows_clear = self.shadows_clear(setup, &cover, &corners, buffers);
+        buffers.scratch.shadows_clear = self.shadows_clear(setup, &cover, &shading, &corners);
         true
     }
 
-    /// Whether no shadow ray of the covered pixel's samples (in
-    /// `buffers.samples`) can be blocked: they start on the lifted part of
-    /// the triangle's plane that the pixel sees, whose corners are lifted
-    /// from the corner rays' hits, and the light's grid lists nothing that
-    /// could block a ray from there but the triangle itself, which no ray
-    /// of the pixel tests (the light lies well on its lifted side).
-    fn shadows_clear(
-        &self,
-        setup: &Setup,
-        cover: &Cover,
-        corners: &[DVec3; 4],
-        buffers: &PixelBuffers,
-    ) -> bool {
-        let (Some(grid), Some((Some(first), _))) = (&setup.light_grid, buffers.samples.first()) else {
+    /// Whether no shadow ray of the covered pixel's samples can be blocked:
+    /// they start on the lifted part of the triangle's plane that the pixel
+    /// sees, whose corners are lifted from the corner rays' hits, and the
+    /// light's grid lists nothing that could block a ray from there but the
+    /// triangle itself, which no ray of the pixel tests (the light lies well
+    /// on its lifted side). Every sample is lifted alike: the cover's
+    /// margin puts the eye surely on one side of the triangle's plane.
+    fn shadows_clear(&self, setup: &Setup, cover: &Cover, shading: &TriangleShading, corners: &[DVec3; 4]) -> bool {
+        let Some(grid) = &setup.light_grid else {
             return false;
         };
-        // Every sample's surface lifted the same way (its normal's side
-        // decided alike), and shadowed: V comes from its ray.
-        let g = first.geometric_normal;
-        let alike = buffers
-            .samples
-            .iter()
-            .all(|(s, _)| s.as_ref().is_some_and(|s| s.shadowed && s.geometric_normal == g));
-        if !alike {
+        if !shading.shadowed() {
             return false;
         }
+        let g = shading.geometric_normal(corners[0]);
         let offset = self.triangles[cover.triangle()].shadow_offset_m;
         let q = setup.light_position;
         let points = corners.map(|d| setup.rays.eye + d * cover.hit(d).at.t);

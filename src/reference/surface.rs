@@ -1,0 +1,205 @@
+//! Where a primary ray lands, and the surface there: what the triangle
+//! gives every point of it (material, colour, BRDF parameters, normals),
+//! worked out once in [`TriangleShading`], and what each point adds
+//! (position, direction to the eye, interpolated normal, uv, texture).
+
+use super::bvh::Hit;
+use super::grid::{Answer, Cell};
+use super::shading::Setup;
+use super::{ObjectInfo, Reference, TriangleInfo};
+use crate::physics::BrdfParams;
+use crate::physics::colour::tint;
+use crate::scene::Material;
+use glam::{DVec2, DVec3};
+
+/// Where a primary ray lands, and the surface there as the light sees it.
+pub(super) struct Surface {
+    /// Index into `Reference::triangles`.
+    pub(super) triangle: usize,
+    pub(super) distance_m: f64,
+    pub(super) p: DVec3,
+    /// The shading normal (towards the viewer on double-sided materials).
+    pub(super) n: DVec3,
+    /// The face's normal on the viewer's side.
+    pub(super) geometric_normal: DVec3,
+    /// Unit direction to the eye.
+    pub(super) o: DVec3,
+    pub(super) uv: DVec2,
+    pub(super) color: DVec3,
+    /// c · light colour: L = tint · LightEstimate::scaled_radiance.
+    pub tint: DVec3,
+    pub(super) brdf: BrdfParams<f64>,
+    /// p lifted off the surface for shadow rays.
+    pub(super) shadow_origin: DVec3,
+    /// Shadow rays are cast (shadows on and the object receives them).
+    pub(super) shadowed: bool,
+}
+
+impl Surface {
+    /// Where its shadow ray to a point light at `light` starts, None when
+    /// it casts none (nearly certainly: a light on its horizon may go either way).
+    pub(super) fn shadow_ray_origin(&self, light: DVec3) -> Option<DVec3> {
+        (self.shadowed && self.n.dot(light - self.p) > 0.0).then_some(self.shadow_origin)
+    }
+}
+
+/// What every point of one triangle shares, under one setup.
+pub(super) struct TriangleShading<'a> {
+    setup: &'a Setup,
+    triangle: usize,
+    tri: &'a TriangleInfo,
+    object: &'a ObjectInfo,
+    material: &'a Material,
+    /// The colour and tint where neither a texture nor vertex colours
+    /// vary them over the triangle.
+    plain: Option<(DVec3, DVec3)>,
+    brdf: BrdfParams<f64>,
+}
+
+impl<'a> TriangleShading<'a> {
+    pub(super) fn new(reference: &'a Reference, setup: &'a Setup, triangle: usize) -> Self {
+        let tri = &reference.triangles[triangle];
+        let object = &reference.objects[tri.object];
+        // An index out of range was mapped to the default material when the
+        // reference was built; the GPU's materials buffer does the same.
+        let material = &reference.materials[object.material];
+        let own = |value: Option<f32>, default: f64| match value {
+            Some(v) if setup.use_scene_materials => v as f64,
+            _ => default,
+        };
+        let varies = material.base_color_texture.is_some() || object.colours.is_some();
+        let mut shading = Self {
+            setup,
+            triangle,
+            tri,
+            object,
+            material,
+            plain: None,
+            brdf: BrdfParams {
+                k: own(material.k, setup.k),
+                m: own(material.m, setup.m),
+                norm: setup.norm,
+            },
+        };
+        shading.plain = (!varies).then(|| shading.colour_and_tint(DVec3::ONE));
+        shading
+    }
+
+    /// The colour c and the tint, under a modulation of the base colour
+    /// (texture × vertex colour) of `modulation`.
+    fn colour_and_tint(&self, modulation: DVec3) -> (DVec3, DVec3) {
+        let setup = self.setup;
+        let color = match setup.color_override {
+            Some(c) => c,
+            None => self.material.base_color.truncate().as_dvec3() * modulation,
+        };
+        let surface_tint = match &setup.spectral {
+            None => tint(color, setup.light_color),
+            // They modulate the spectral colour as they do the RGB one.
+            Some(light) if setup.color_override.is_none() => {
+                light.reflected_rgb(self.object.material) * modulation
+            }
+            Some(light) => light.reflected_rgb(self.object.material),
+        };
+        (color, surface_tint)
+    }
+
+    /// Whether its points cast shadow rays (shadows on and the object
+    /// receives them).
+    pub(super) fn shadowed(&self) -> bool {
+        self.setup.shadows && self.object.receives_shadows
+    }
+
+    /// The face's normal on the side of the eye, seen along `towards`: what
+    /// [`Self::surface`] takes for every ray whose side is sure.
+    pub(super) fn geometric_normal(&self, towards: DVec3) -> DVec3 {
+        let face = self.tri.face_normal;
+        if face.dot(-towards) < 0.0 { -face } else { face }
+    }
+
+    /// The surface where the primary ray along `towards` (not normalized)
+    /// meets the triangle at `hit` (barycentrics and distance).
+    #[inline(always)]
+    pub(super) fn surface(&self, reference: &Reference, towards: DVec3, hit: Hit) -> Surface {
+        let tri = self.tri;
+        let length = towards.length();
+        let [b0, b1, b2] = hit.at.barycentric;
+        let [a, b, c] = tri.corners.map(|p| p.as_dvec3());
+        let p = a * b0 + b * b1 + c * b2;
+        let o = -towards / length;
+        let face = tri.face_normal;
+        let geometric_normal = if face.dot(o) < 0.0 { -face } else { face };
+        // Missing vertex normals are zero: where the interpolated normal
+        // vanishes, the face's own (winding) normal is used, as on the GPU
+        // (shade.wgsl's surface_at); tests/wgsl_parity.rs holds both to it.
+        let mut n = tri.flat_normal.unwrap_or_else(|| {
+            let [n0, n1, n2] = tri.normals.map(|n| n.as_dvec3());
+            (n0 * b0 + n1 * b1 + n2 * b2).normalize_or(face)
+        });
+        if self.material.double_sided && n.dot(o) < 0.0 {
+            n = -n;
+        }
+        let [t0, t1, t2] = tri.uvs.map(|t| t.as_dvec2());
+        let uv = t0 * b0 + t1 * b1 + t2 * b2;
+        let (color, surface_tint) = self.plain.unwrap_or_else(|| {
+            let texture = self
+                .material
+                .base_color_texture
+                .and_then(|t| reference.textures.get(t)?.as_ref())
+                .map(|texture| texture.sample(uv));
+            // The texture and the vertex colours modulate the base colour.
+            let vertex_colour = self
+                .object
+                .corner_colours(tri.index)
+                .map_or(DVec3::ONE, |[c0, c1, c2]| {
+                    c0.as_dvec3() * b0 + c1.as_dvec3() * b1 + c2.as_dvec3() * b2
+                });
+            self.colour_and_tint(texture.unwrap_or(DVec3::ONE) * vertex_colour)
+        });
+        Surface {
+            triangle: self.triangle,
+            distance_m: hit.at.t * length,
+            p,
+            n,
+            geometric_normal,
+            o,
+            uv,
+            color,
+            tint: surface_tint,
+            brdf: self.brdf,
+            shadow_origin: p + geometric_normal * tri.shadow_offset_m,
+            shadowed: self.shadowed(),
+        }
+    }
+}
+
+impl Reference {
+    /// The surface seen through image point (x, y) (pixels, centres at
+    /// i + 0.5); None on background. `cell`: the eye grid's cell of the
+    /// point's pixel, when one holds it whole (see [`super::grid::DirectionGrid::pixel_cell`]).
+    #[inline(always)]
+    pub(super) fn surface(&self, setup: &Setup, x: f64, y: f64, cell: Option<Cell>) -> Option<Surface> {
+        // The ray is cast along a direction that is not normalized: the
+        // normalization (a square root and a division) then runs beside
+        // the intersection instead of before it, which is 18 % faster.
+        let towards = setup.rays.towards(x, y);
+        let answer = setup.eye_grid.as_ref().map(|g| match cell {
+            Some(cell) => g.closest_in(cell, towards),
+            None => g.closest_from_centre(towards),
+        });
+        let hit = match answer {
+            Some(Answer::Known(hit)) => hit?,
+            _ => self
+                .bvh
+                .closest_hit(setup.rays.eye, towards, 0.0, f64::INFINITY)?,
+        };
+        Some(self.surface_at(setup, towards, hit))
+    }
+
+    /// The surface where the primary ray along `towards` (not normalized)
+    /// lands, its closest hit being `hit`.
+    #[inline(always)]
+    pub(super) fn surface_at(&self, setup: &Setup, towards: DVec3, hit: Hit) -> Surface {
+        TriangleShading::new(self, setup, hit.triangle).surface(self, towards, hit)
+    }
+}
