@@ -36,11 +36,21 @@ impl Reference {
             return false;
         };
         let shading = TriangleShading::new(self, setup, cover.triangle());
-        buffers.samples.clear();
+        let PixelBuffers {
+            samples,
+            directions,
+            run_samples,
+            ..
+        } = buffers;
+        (directions.clear(), run_samples.clear());
         for (sx, sy, rng) in sample_points(setup, spp, i, j) {
-            let towards = setup.rays.towards(sx, sy);
+            directions.push(setup.rays.towards(sx, sy));
+            run_samples.push(rng);
+        }
+        samples.clear();
+        for (&towards, rng) in directions.iter().zip(run_samples.drain(..)) {
             let surface = shading.surface(self, towards, cover.hit(towards));
-            buffers.samples.push((Some(surface), rng));
+            samples.push((Some(surface), rng));
         }
         buffers.scratch.shadows_clear = self.shadows_clear(setup, &cover, &shading, &corners);
         true
