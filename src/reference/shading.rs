@@ -303,8 +303,9 @@ impl Reference {
     }
 
     /// The light's contribution at the surface: the point light's in
-    /// closed form, the sphere light's estimated with the light-sample
-    /// stream `rng`.
+    /// closed form (inlined in the callers' loops), the sphere light's
+    /// estimated with the light-sample stream `rng`.
+    #[inline(always)]
     pub(super) fn light(
         &self,
         setup: &Setup,
@@ -312,9 +313,16 @@ impl Reference {
         rng: &mut Rng,
         scratch: &mut Scratch,
     ) -> LightEstimate {
-        if !setup.is_sphere_light() {
-            return self.point_light(setup, s, scratch.shadows_clear, &mut scratch.light_packet);
+        if setup.is_sphere_light() {
+            self.sphere_light(setup, s, rng, scratch)
+        } else {
+            self.point_light(setup, s, scratch.shadows_clear, &mut scratch.light_packet)
         }
+    }
+
+    /// The sphere light's contribution at the surface, estimated with the
+    /// light-sample stream `rng` (see the module).
+    fn sphere_light(&self, setup: &Setup, s: &Surface, rng: &mut Rng, scratch: &mut Scratch) -> LightEstimate {
         let (q, radius) = (setup.light_position, setup.radius_m);
         // Every shadow ray of this point runs from its shadow origin to the
         // sphere: gather the occluders near that path once, then test each
