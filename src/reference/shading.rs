@@ -25,9 +25,9 @@
 use super::grid::{Answer, DirectionGrid};
 use super::image::luminance;
 use super::light_packet::LightPacket;
-use super::surface::Surface;
 use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
 use super::spectral::SpectralLight;
+use super::surface::Surface;
 use super::{Reference, ReferenceOptions};
 use crate::colour::ColourModel;
 use crate::colour::chart::illuminant_linear_srgb;
@@ -322,7 +322,13 @@ impl Reference {
 
     /// The sphere light's contribution at the surface, estimated with the
     /// light-sample stream `rng` (see the module).
-    fn sphere_light(&self, setup: &Setup, s: &Surface, rng: &mut Rng, scratch: &mut Scratch) -> LightEstimate {
+    fn sphere_light(
+        &self,
+        setup: &Setup,
+        s: &Surface,
+        rng: &mut Rng,
+        scratch: &mut Scratch,
+    ) -> LightEstimate {
         let (q, radius) = (setup.light_position, setup.radius_m);
         // Every shadow ray of this point runs from its shadow origin to the
         // sphere: gather the occluders near that path once, then test each

@@ -8,15 +8,19 @@
 //! barycentrics uᵢ / Σuᵢ. Each uᵢ is linear in d, so where all three keep
 //! that sign at the four corners, by a margin far above the rounding of
 //! either test ([`MARGIN`]), every ray of the pixel meets the triangle, as
-//! the watertight test in `intersect` decides it too. The triangle's depth
-//! along the face's axis is linear over the part of its plane the pixel
-//! sees, so its largest value is at a corner; a next listing whose depth
-//! bound lies beyond that cannot come first for any ray of the pixel.
+//! the watertight test in `intersect` decides it too; where one is surely
+//! positive and another surely negative, no ray of the pixel meets it. The
+//! triangle's depth along the face's axis is linear over the part of its
+//! plane the pixel sees, so its largest value is at a corner; a listing
+//! whose depth bound lies beyond that cannot come first for any ray of the
+//! pixel. The triangle tried is the one the pixel's middle ray meets first;
+//! every listing of the cells around the pixel not beyond it must be
+//! surely missed (its neighbours on a tessellated surface are).
 //!
 //! The hit of each sample is then worked out from the triple products: the
 //! same triangle, the same point to ~10⁻¹⁶ relative, not the same bits.
 
-use super::{Cell, DirectionGrid, Item, cell_index, face_coordinates, to_cell};
+use super::{Answer, Cell, DirectionGrid, Item, cell_index, face_coordinates, to_cell};
 use crate::reference::bvh::Hit;
 use crate::reference::intersect::TriangleHit;
 use glam::DVec3;
@@ -63,41 +67,93 @@ impl Cover {
     }
 }
 
+/// How the rays of a cone (its four corner directions) meet a triangle.
+enum Seen {
+    /// Every ray meets it, none deeper along its main axis than this.
+    Inside { deepest: f64 },
+    /// No ray does: one edge function is surely positive over the cone and
+    /// another surely negative.
+    Missed,
+    /// Not sure.
+    Unsure,
+}
+
+impl Seen {
+    /// The cone of `corners` against the triangle of corners A, B, C
+    /// (relative to the cone's apex), from the sign each triple product
+    /// surely keeps at all four corners (it is linear in the direction).
+    fn of(&[a, b, c]: &[DVec3; 3], corners: &[DVec3; 4]) -> Self {
+        let edges = [b.cross(c), c.cross(a), a.cross(b)];
+        let scales = [(b, c), (c, a), (a, b)].map(|(x, y)| x.abs().max_element() * y.abs().max_element());
+        let (mut positive, mut negative) = ([true; 3], [true; 3]);
+        for d in corners {
+            let margin = MARGIN * d.abs().max_element();
+            for i in 0..3 {
+                let u = d.dot(edges[i]);
+                positive[i] &= u > margin * scales[i];
+                negative[i] &= u < -margin * scales[i];
+            }
+        }
+        if positive.iter().any(|&p| p) && negative.iter().any(|&n| n) {
+            return Seen::Missed;
+        }
+        if !(positive.iter().all(|&p| p) || negative.iter().all(|&n| n)) {
+            return Seen::Unsure;
+        }
+        let volume = a.dot(edges[0]);
+        let mut deepest = 0.0_f64;
+        for d in corners {
+            let t = volume / edges.iter().map(|n| d.dot(*n)).sum::<f64>();
+            if !(t > 0.0 && t.is_finite()) {
+                return Seen::Unsure;
+            }
+            deepest = deepest.max(t * d.abs().max_element());
+        }
+        Seen::Inside { deepest }
+    }
+}
+
 impl DirectionGrid {
     /// The triangle that every ray from the centre within the cone of the
-    /// directions `corners` meets first, if the nearest listing of the
-    /// cells around them surely is one.
+    /// directions `corners` meets first, if one surely is: a listing of the
+    /// cells around them that holds the whole cone, and every other one
+    /// either surely missed by the whole cone or surely deeper.
     pub fn cover(&self, corners: &[DVec3; 4]) -> Option<Cover> {
         let (lists, count) = self.lists_around(corners)?;
         let lists = &lists[..count];
+        // The one to try: the listing the cone's middle ray meets first.
+        let middle: DVec3 = corners.iter().sum();
+        let hit = match self.closest_from_centre(middle) {
+            Answer::Known(hit) => hit?,
+            Answer::AskBvh => return None,
+        };
         let first = lists
             .iter()
-            .filter_map(|list| list.first())
-            .min_by(|x, y| x.depth.total_cmp(&y.depth))?;
-        let [a, b, c] = self.relative[first.member as usize];
-        let edges = [b.cross(c), c.cross(a), a.cross(b)];
-        let scales = [(b, c), (c, a), (a, b)].map(|(x, y)| x.abs().max_element() * y.abs().max_element());
-        let volume = a.dot(edges[0]);
-        let mut deepest = 0.0_f64;
-        for &d in corners {
-            let u = edges.map(|n| d.dot(n));
-            let sign = (u[0] + u[1] + u[2]).signum();
-            let reach = d.abs().max_element();
-            let inside = (0..3).all(|i| u[i] * sign > MARGIN * reach * scales[i]);
-            let t = volume / (u[0] + u[1] + u[2]);
-            if !(inside && t > 0.0 && t.is_finite()) {
-                return None;
-            }
-            deepest = deepest.max(t * reach);
-        }
-        let beyond = lists
-            .iter()
             .flat_map(|list| list.iter())
-            .all(|item| item.member == first.member || item.depth as f64 > deepest * (1.0 + DEPTH_SLACK));
-        beyond.then(|| Cover {
-            triangle: self.members[first.member as usize] as usize,
+            .find(|item| self.members[item.member as usize] as usize == hit.triangle)?
+            .member;
+        let Seen::Inside { deepest } = Seen::of(&self.relative[first as usize], corners) else {
+            return None;
+        };
+        // Each list is sorted by depth: past `deepest`, nothing can come first.
+        let reach = deepest * (1.0 + DEPTH_SLACK);
+        let alone = lists.iter().all(|list| {
+            list.iter()
+                .take_while(|item| item.depth as f64 <= reach)
+                .all(|item| {
+                    item.member == first
+                        || matches!(
+                            Seen::of(&self.relative[item.member as usize], corners),
+                            Seen::Missed
+                        )
+                })
+        });
+        let [a, b, c] = self.relative[first as usize];
+        let edges = [b.cross(c), c.cross(a), a.cross(b)];
+        alone.then(|| Cover {
+            triangle: hit.triangle,
             edges,
-            volume,
+            volume: a.dot(edges[0]),
         })
     }
 

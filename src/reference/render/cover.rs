@@ -63,7 +63,13 @@ impl Reference {
     /// triangle itself, which no ray of the pixel tests (the light lies well
     /// on its lifted side). Every sample is lifted alike: the cover's
     /// margin puts the eye surely on one side of the triangle's plane.
-    fn shadows_clear(&self, setup: &Setup, cover: &Cover, shading: &TriangleShading, corners: &[DVec3; 4]) -> bool {
+    fn shadows_clear(
+        &self,
+        setup: &Setup,
+        cover: &Cover,
+        shading: &TriangleShading,
+        corners: &[DVec3; 4],
+    ) -> bool {
         let Some(grid) = &setup.light_grid else {
             return false;
         };
