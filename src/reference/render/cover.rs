@@ -42,7 +42,8 @@ impl Reference {
             run_samples,
             ..
         } = buffers;
-        (directions.clear(), run_samples.clear());
+        directions.clear();
+        run_samples.clear();
         for (sx, sy, rng) in sample_points(setup, spp, i, j) {
             directions.push(setup.rays.towards(sx, sy));
             run_samples.push(rng);
