@@ -111,35 +111,43 @@ pub fn lobe<S: Real>(cos_theta: S, gap: S, m: S) -> S {
 }
 
 /// f_r / c for the unit normal `n`, unit light direction `l` and unit view
-/// direction `o` (all pointing away from the surface).
+/// direction `o` (all pointing away from the surface). The horizons and
+/// Lambert alone inline (the reference's samples call it in their loops),
+/// the lobe in [`specular`].
+#[inline(always)]
 pub fn blinn_phong<V: Vector3>(n: V, l: V, o: V, params: &BrdfParams<V::S>) -> BrdfTerms<V::S> {
     let zero = V::S::zero();
-    let one = V::S::one();
     if !(n.dot(l) > zero && n.dot(o) > zero) {
         return BrdfTerms::default();
     }
     let diffuse = params.k / V::S::PI();
-    if params.k >= one {
+    if params.k >= V::S::one() {
         // Lambert alone: (1 − k) = 0 times a finite lobe.
         return BrdfTerms {
             diffuse,
             specular: zero,
         };
     }
+    BrdfTerms {
+        diffuse,
+        specular: specular(n, l, o, params),
+    }
+}
+
+/// The specular term of [`blinn_phong`] above both horizons, k < 1.
+fn specular<V: Vector3>(n: V, l: V, o: V, params: &BrdfParams<V::S>) -> V::S {
+    let zero = V::S::zero();
+    let one = V::S::one();
     let sum = l + o;
     let len2 = sum.length_squared();
     if len2.is_nan() || len2 <= zero {
         // l + o = 0: no half vector, no specular term.
-        return BrdfTerms {
-            diffuse,
-            specular: zero,
-        };
+        return zero;
     }
     let h = sum * (one / len2.sqrt());
     let cos_h = n.dot(h);
     let gap = ((n - h).length_squared() * V::S::lit(0.5)).min(one);
-    let specular = (one - params.k) * params.norm.factor(params.m) * lobe(cos_h, gap, params.m);
-    BrdfTerms { diffuse, specular }
+    (one - params.k) * params.norm.factor(params.m) * lobe(cos_h, gap, params.m)
 }
 
 #[cfg(test)]

@@ -360,9 +360,10 @@ impl Reference {
                 sum[c] += l[c];
             }
             sample_luminance.push(luminance(l));
-            let tint_y = luminance(surface.tint.to_array());
             match light.std_error {
-                Some(se) => variance += (tint_y * se).powi(2),
+                // A point light's: nothing to add.
+                Some(se) if se == 0.0 => {}
+                Some(se) => variance += (luminance(surface.tint.to_array()) * se).powi(2),
                 None => noise_known &= n > 1,
             }
         }

@@ -82,9 +82,13 @@ impl Seen {
     /// The cone of `corners` against the triangle of corners A, B, C
     /// (relative to the cone's apex), from the sign each triple product
     /// surely keeps at all four corners (it is linear in the direction).
-    fn of(&[a, b, c]: &[DVec3; 3], corners: &[DVec3; 4]) -> Self {
+    /// `slack`: an allowance on the corners' coordinates for a test done in
+    /// coordinates relative to another point (its size), 0 for one done
+    /// relative to the apex itself.
+    fn of(&[a, b, c]: &[DVec3; 3], corners: &[DVec3; 4], slack: f64) -> Self {
         let edges = [b.cross(c), c.cross(a), a.cross(b)];
-        let scales = [(b, c), (c, a), (a, b)].map(|(x, y)| x.abs().max_element() * y.abs().max_element());
+        let size = |x: DVec3| x.abs().max_element() + slack;
+        let scales = [(b, c), (c, a), (a, b)].map(|(x, y)| size(x) * size(y));
         let (mut positive, mut negative) = ([true; 3], [true; 3]);
         for d in corners {
             let margin = MARGIN * d.abs().max_element();
@@ -132,7 +136,7 @@ impl DirectionGrid {
             .flat_map(|list| list.iter())
             .find(|item| self.members[item.member as usize] as usize == hit.triangle)?
             .member;
-        let Seen::Inside { deepest } = Seen::of(&self.relative[first as usize], corners) else {
+        let Seen::Inside { deepest } = Seen::of(&self.relative[first as usize], corners, 0.0) else {
             return None;
         };
         // Each list is sorted by depth: past `deepest`, nothing can come first.
@@ -143,7 +147,7 @@ impl DirectionGrid {
                 .all(|item| {
                     item.member == first
                         || matches!(
-                            Seen::of(&self.relative[item.member as usize], corners),
+                            Seen::of(&self.relative[item.member as usize], corners, 0.0),
                             Seen::Missed
                         )
                 })
@@ -196,7 +200,8 @@ impl DirectionGrid {
     /// Of the triangles the lists of the cells around them put nearer the
     /// centre than the farthest origin, every one but `own` must have the
     /// centre and all the origins strictly on one side of its plane, so
-    /// that no segment between them reaches it.
+    /// that no segment between them reaches it, or be surely missed by the
+    /// whole cone of those segments from the centre.
     pub fn clear_towards_centre(&self, origins: &[DVec3; 4], own: usize) -> bool {
         let w = origins.map(|o| o - self.centre);
         let Some((lists, count)) = self.lists_around(&w) else {
@@ -210,7 +215,16 @@ impl DirectionGrid {
                     .take_while(|item| (item.depth as f64) < reach * (1.0 + DEPTH_SLACK))
             })
             .filter(|item| self.members[item.member as usize] as usize != own)
-            .all(|item| self.beside(&self.relative[item.member as usize], &w, reach))
+            .all(|item| {
+                let corners = &self.relative[item.member as usize];
+                // Either no segment reaches its plane, or none meets it
+                // within (coordinates relative to the centre: the slack).
+                self.beside(corners, &w, reach)
+                    || matches!(
+                        Seen::of(corners, &w, self.centre.abs().max_element()),
+                        Seen::Missed
+                    )
+            })
     }
 
     /// Whether the centre and the points `w` (relative to it, none farther
