@@ -362,7 +362,7 @@ impl Reference {
             sample_luminance.push(luminance(l));
             match light.std_error {
                 // A point light's: nothing to add.
-                Some(se) if se == 0.0 => {}
+                Some(0.0) => {}
                 Some(se) => variance += (luminance(surface.tint.to_array()) * se).powi(2),
                 None => noise_known &= n > 1,
             }
