@@ -3,18 +3,20 @@
 
 use super::bvh::{Cone, PrimaryPacket};
 use super::grid::DirectionGrid;
-use super::image::{ReferenceImage, RenderStats, luminance};
-use super::sampling::{PixelStreams, Rng, Strata, collapsed_strata_variance};
+use super::image::{ReferenceImage, RenderStats};
+use super::sampling::{PixelStreams, Rng, Strata};
 use super::shading::{Scratch, Setup};
 use super::surface::Surface;
 use super::{Reference, ReferenceError, ReferenceOptions, RenderControl, pixel_index};
 use crate::settings::Settings;
 use glam::DVec3;
+use pixel::{Pixel, PixelSums, Tile};
 use rayon::prelude::*;
 use std::sync::atomic::Ordering;
 use std::time::Instant;
 
 mod cover;
+mod pixel;
 
 /// Edge length of the square tiles the image is split into for the threads.
 const TILE: u32 = 16;
@@ -172,12 +174,13 @@ impl Reference {
             for i in (x0..x1).step_by(cols as usize) {
                 let width = cols.min(x1 - i);
                 if width * band == 1 {
-                    let pixel_sees = self.trace_pixel_samples(setup, spp, (i, j), shortcuts, &mut buffers);
-                    tile.add(if pixel_sees {
-                        self.aim_light_packet(setup, &mut buffers);
-                        self.shade_pixel(setup, 0, n, &mut buffers)
-                    } else {
-                        Pixel::background(n)
+                    tile.add(match self.trace_pixel_samples(setup, spp, (i, j), shortcuts, &mut buffers) {
+                        Traced::Background => Pixel::background(n),
+                        Traced::Shaded(pixel) => pixel,
+                        Traced::Samples => {
+                            self.aim_light_packet(setup, &mut buffers);
+                            self.shade_pixel(setup, 0, n, &mut buffers)
+                        }
                     });
                     continue;
                 }
@@ -260,9 +263,9 @@ impl Reference {
     /// primary ray, then (in `shade_pixel`) the light at every surface. Two
     /// short loops of independent iterations let the CPU overlap the
     /// samples' long chains of divisions and square roots better than one
-    /// long loop does (8 %). False, and no samples, when the background
-    /// shortcut is taken and the pixel lies in an empty cell of the eye
-    /// grid: it sees only background.
+    /// long loop does (8 %). Background, and no samples, when the
+    /// background shortcut is taken and the pixel lies in an empty cell of
+    /// the eye grid; the pixel itself when a covered one is shaded at once.
     #[inline(always)]
     fn trace_pixel_samples(
         &self,
@@ -271,7 +274,7 @@ impl Reference {
         (i, j): (u32, u32),
         shortcuts: Shortcuts,
         buffers: &mut PixelBuffers,
-    ) -> bool {
+    ) -> Traced {
         buffers.scratch.shadows_clear = false;
         let n = spp.count();
         let (x, y) = (i as f64, j as f64);
@@ -285,14 +288,14 @@ impl Reference {
             && let (Some(grid), Some(cell)) = (&setup.eye_grid, cell)
             && grid.is_empty(cell)
         {
-            return false;
+            return Traced::Background;
         }
         if shortcuts.covers
             && n > 1
             && let Some(grid) = &setup.eye_grid
-            && self.trace_covered_samples(setup, spp, (i, j), grid, buffers)
+            && let Some(traced) = self.trace_covered_samples(setup, spp, (i, j), grid, buffers)
         {
-            return true;
+            return traced;
         }
         // Crowded cells (or none): the pixel's rays go through the BVH
         // together, as one packet in the cone of its corner rays.
@@ -310,7 +313,7 @@ impl Reference {
                 buffers.samples.push((self.surface(setup, sx, sy, cell), rng));
             }
         }
-        true
+        Traced::Samples
     }
 
     /// Aims the light packet at the shadow rays of every sample in
@@ -342,52 +345,28 @@ impl Reference {
             scratch,
             ..
         } = buffers;
-        let mut sum = [0.0; 3];
-        let (mut hits, mut visibility, mut variance) = (0u32, 0.0, 0.0);
-        let (mut shadow_rays, mut noise_known) = (0, true);
-        sample_luminance.clear();
+        let mut sums = PixelSums::new(sample_luminance);
         for (surface, rng) in &mut samples[first..first + n as usize] {
-            let Some(surface) = surface else {
-                sample_luminance.push(0.0);
-                continue;
-            };
-            let light = self.light(setup, surface, rng, scratch);
-            shadow_rays += light.shadow_rays as u64;
-            hits += 1;
-            visibility += light.visibility;
-            let l = (surface.tint * light.scaled_radiance).to_array();
-            for c in 0..3 {
-                sum[c] += l[c];
-            }
-            sample_luminance.push(luminance(l));
-            match light.std_error {
-                // A point light's: nothing to add.
-                Some(0.0) => {}
-                Some(se) => variance += (luminance(surface.tint.to_array()) * se).powi(2),
-                None => noise_known &= n > 1,
+            match surface {
+                Some(surface) => {
+                    let light = self.light(setup, surface, rng, scratch);
+                    sums.add(surface.tint, &light, n);
+                }
+                None => sums.add_background(),
             }
         }
-        // One sample: its own light-sampling error; more: the spread
-        // between the pixel's strata, which includes it.
-        let noise = if n == 1 {
-            variance.sqrt()
-        } else {
-            collapsed_strata_variance(sample_luminance).map_or(0.0, f64::sqrt)
-        };
-        Pixel {
-            radiance: sum.map(|c| c / n as f64),
-            visibility: if hits > 0 {
-                (visibility / hits as f64) as f32
-            } else {
-                0.0
-            },
-            coverage: hits as f32 / n as f32,
-            noise: noise as f32,
-            primary_rays: n as u64,
-            shadow_rays,
-            noise_known,
-        }
+        sums.pixel(n)
     }
+}
+
+/// What tracing a pixel's primary samples gave.
+enum Traced {
+    /// It sees only background.
+    Background,
+    /// Its samples, in `PixelBuffers::samples`, to be shaded.
+    Samples,
+    /// The pixel itself, shaded at once.
+    Shaded(Pixel),
 }
 
 /// Ways of sparing work that leave every pixel's coverage and visibility
@@ -450,53 +429,6 @@ fn sample_points(setup: &Setup, spp: Strata, i: u32, j: u32) -> impl Iterator<It
         };
         (x + dx, y + dy, rng)
     })
-}
-
-struct Pixel {
-    radiance: [f64; 3],
-    visibility: f32,
-    coverage: f32,
-    noise: f32,
-    primary_rays: u64,
-    shadow_rays: u64,
-    noise_known: bool,
-}
-
-impl Pixel {
-    /// A pixel whose `n` samples all see the background: what
-    /// `Reference::shade_pixel` makes of them.
-    fn background(n: u32) -> Self {
-        Self {
-            radiance: [0.0; 3],
-            visibility: 0.0,
-            coverage: 0.0,
-            noise: 0.0,
-            primary_rays: n as u64,
-            shadow_rays: 0,
-            noise_known: true,
-        }
-    }
-}
-
-struct Tile {
-    x0: u32,
-    y0: u32,
-    width: u32,
-    pixels: Vec<Pixel>,
-    primary_rays: u64,
-    shadow_rays: u64,
-    noise_known: bool,
-}
-
-impl Tile {
-    /// The next pixel, in row order, and its rays.
-    #[inline(always)]
-    fn add(&mut self, pixel: Pixel) {
-        self.primary_rays += pixel.primary_rays;
-        self.shadow_rays += pixel.shadow_rays;
-        self.noise_known &= pixel.noise_known;
-        self.pixels.push(pixel);
-    }
 }
 
 #[cfg(test)]

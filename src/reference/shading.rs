@@ -35,7 +35,7 @@ use crate::physics::brdf::blinn_phong;
 use crate::physics::radiometry::{
     MIN_LIGHT_DISTANCE_M, incidence, intensity, point_irradiance, sphere_irradiance, sphere_radiance,
 };
-use crate::physics::{BrdfTerms, Normalization};
+use crate::physics::{BrdfParams, BrdfTerms, Normalization};
 use crate::scene::Material;
 use crate::scene::camera::PixelRays;
 use crate::settings::Settings;
@@ -265,41 +265,13 @@ impl Reference {
             .occluded(surface.shadow_origin, d, 0.0, 1.0 - STOP_SHORT_REL)
     }
 
-    /// L / (c · colour) = (f_d + f_s)(l) · E · V, with V from one shadow ray
-    /// (known unblocked when `clear`); the BRDF is evaluated only where
-    /// light arrives.
+    /// [`point_light_at`] for the surface, its shadow ray known unblocked
+    /// when `clear`.
     #[inline(always)]
-    fn point_light(
-        &self,
-        setup: &Setup,
-        s: &Surface,
-        clear: bool,
-        packet: &mut LightPacket,
-    ) -> LightEstimate {
-        let q = setup.light_position;
-        let inc = incidence(s.p, s.n, q);
-        let (visibility, shadow_rays) = if !s.shadowed {
-            (1.0, 0)
-        } else if inc.cos_theta <= 0.0 {
-            // Attached shadow: the light is below the surface's horizon.
-            (0.0, 0)
-        } else if !clear && self.blocked_from_light(setup, s, packet) {
-            (0.0, 1)
-        } else {
-            (1.0, 1)
-        };
-        let scaled_radiance = if visibility > 0.0 && inc.cos_theta > 0.0 {
-            let e = point_irradiance(setup.intensity_w_sr, inc.cos_theta, inc.r);
-            blinn_phong(s.n, inc.l, s.o, &s.brdf).total() * e
-        } else {
-            0.0
-        };
-        LightEstimate {
-            scaled_radiance,
-            visibility,
-            std_error: Some(0.0),
-            shadow_rays,
-        }
+    fn point_light(&self, setup: &Setup, s: &Surface, clear: bool, packet: &mut LightPacket) -> LightEstimate {
+        point_light_at(setup, (s.p, s.n, s.o), &s.brdf, s.shadowed, || {
+            !clear && self.blocked_from_light(setup, s, packet)
+        })
     }
 
     /// The light's contribution at the surface: the point light's in
@@ -430,6 +402,43 @@ impl Reference {
             std_error: collapsed_strata_variance(y).map(f64::sqrt),
             shadow_rays,
         }
+    }
+}
+
+/// L / (c · colour) = (f_d + f_s)(l) · E · V at point p of shading normal n
+/// seen along o (unit, towards the eye), with V from one shadow ray where
+/// the point is `shadowed` and above the light's horizon (`blocked` casts
+/// it); the BRDF is evaluated only where light arrives.
+#[inline(always)]
+pub(super) fn point_light_at(
+    setup: &Setup,
+    (p, n, o): (DVec3, DVec3, DVec3),
+    brdf: &BrdfParams<f64>,
+    shadowed: bool,
+    blocked: impl FnOnce() -> bool,
+) -> LightEstimate {
+    let inc = incidence(p, n, setup.light_position);
+    let (visibility, shadow_rays) = if !shadowed {
+        (1.0, 0)
+    } else if inc.cos_theta <= 0.0 {
+        // Attached shadow: the light is below the surface's horizon.
+        (0.0, 0)
+    } else if blocked() {
+        (0.0, 1)
+    } else {
+        (1.0, 1)
+    };
+    let scaled_radiance = if visibility > 0.0 && inc.cos_theta > 0.0 {
+        let e = point_irradiance(setup.intensity_w_sr, inc.cos_theta, inc.r);
+        blinn_phong(n, inc.l, o, brdf).total() * e
+    } else {
+        0.0
+    };
+    LightEstimate {
+        scaled_radiance,
+        visibility,
+        std_error: Some(0.0),
+        shadow_rays,
     }
 }
 

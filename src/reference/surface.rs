@@ -104,6 +104,41 @@ impl<'a> TriangleShading<'a> {
         (color, surface_tint)
     }
 
+    /// The point where the primary ray along `towards` (not normalized)
+    /// meets the triangle at `hit`, its shading normal (towards the viewer
+    /// on double-sided materials), the unit direction to the eye and the
+    /// length of `towards`: what the light at a point needs of it.
+    #[inline(always)]
+    pub(super) fn point(&self, towards: DVec3, hit: Hit) -> (DVec3, DVec3, DVec3, f64) {
+        let tri = self.tri;
+        let length = towards.length();
+        let [b0, b1, b2] = hit.at.barycentric;
+        let [a, b, c] = tri.corners.map(|p| p.as_dvec3());
+        let p = a * b0 + b * b1 + c * b2;
+        let o = -towards / length;
+        // Missing vertex normals are zero: where the interpolated normal
+        // vanishes, the face's own (winding) normal is used, as on the GPU
+        // (shade.wgsl's surface_at); tests/wgsl_parity.rs holds both to it.
+        let mut n = tri.flat_normal.unwrap_or_else(|| {
+            let [n0, n1, n2] = tri.normals.map(|n| n.as_dvec3());
+            (n0 * b0 + n1 * b1 + n2 * b2).normalize_or(tri.face_normal)
+        });
+        if self.material.double_sided && n.dot(o) < 0.0 {
+            n = -n;
+        }
+        (p, n, o, length)
+    }
+
+    /// The tint of every point, where neither a texture nor vertex colours
+    /// vary it.
+    pub(super) fn plain_tint(&self) -> Option<DVec3> {
+        self.plain.map(|(_, tint)| tint)
+    }
+
+    pub(super) fn brdf(&self) -> &BrdfParams<f64> {
+        &self.brdf
+    }
+
     /// Whether its points cast shadow rays (shadows on and the object
     /// receives them).
     pub(super) fn shadowed(&self) -> bool {
@@ -122,23 +157,10 @@ impl<'a> TriangleShading<'a> {
     #[inline(always)]
     pub(super) fn surface(&self, reference: &Reference, towards: DVec3, hit: Hit) -> Surface {
         let tri = self.tri;
-        let length = towards.length();
-        let [b0, b1, b2] = hit.at.barycentric;
-        let [a, b, c] = tri.corners.map(|p| p.as_dvec3());
-        let p = a * b0 + b * b1 + c * b2;
-        let o = -towards / length;
+        let (p, n, o, length) = self.point(towards, hit);
         let face = tri.face_normal;
         let geometric_normal = if face.dot(o) < 0.0 { -face } else { face };
-        // Missing vertex normals are zero: where the interpolated normal
-        // vanishes, the face's own (winding) normal is used, as on the GPU
-        // (shade.wgsl's surface_at); tests/wgsl_parity.rs holds both to it.
-        let mut n = tri.flat_normal.unwrap_or_else(|| {
-            let [n0, n1, n2] = tri.normals.map(|n| n.as_dvec3());
-            (n0 * b0 + n1 * b1 + n2 * b2).normalize_or(face)
-        });
-        if self.material.double_sided && n.dot(o) < 0.0 {
-            n = -n;
-        }
+        let [b0, b1, b2] = hit.at.barycentric;
         let [t0, t1, t2] = tri.uvs.map(|t| t.as_dvec2());
         let uv = t0 * b0 + t1 * b1 + t2 * b2;
         let (color, surface_tint) = self.plain.unwrap_or_else(|| {

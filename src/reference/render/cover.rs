@@ -5,11 +5,11 @@
 //! The same triangle under every sample and the same visibility as the
 //! search ray by ray; the radiance to the rounding of the hit point.
 
-use super::{PixelBuffers, sample_points};
+use super::{PixelBuffers, PixelSums, Traced, sample_points};
 use crate::reference::Reference;
 use crate::reference::grid::{Cover, DirectionGrid};
 use crate::reference::sampling::Strata;
-use crate::reference::shading::Setup;
+use crate::reference::shading::{Setup, point_light_at};
 use crate::reference::surface::TriangleShading;
 use glam::DVec3;
 
@@ -18,9 +18,11 @@ use glam::DVec3;
 const OWN_SLACK: f64 = 2.0;
 
 impl Reference {
-    /// Pixel (i, j)'s samples into `buffers.samples` when one triangle
-    /// covers it in the eye grid (false, nothing done, when none surely
-    /// does), with `buffers.scratch.shadows_clear` set.
+    /// Pixel (i, j) when one triangle covers it in the eye grid (None,
+    /// nothing done, when none surely does): shaded at once where a point
+    /// light's shadow rays are all known unblocked and the triangle's tint
+    /// is the same everywhere, else its samples into `buffers.samples`
+    /// with `buffers.scratch.shadows_clear` set.
     pub(super) fn trace_covered_samples(
         &self,
         setup: &Setup,
@@ -28,14 +30,30 @@ impl Reference {
         (i, j): (u32, u32),
         grid: &DirectionGrid,
         buffers: &mut PixelBuffers,
-    ) -> bool {
+    ) -> Option<Traced> {
         let (x, y) = (i as f64, j as f64);
         let corners = [(x, y), (x + 1.0, y), (x, y + 1.0), (x + 1.0, y + 1.0)]
             .map(|(cx, cy)| setup.rays.towards(cx, cy));
-        let Some(cover) = grid.cover(&corners) else {
-            return false;
-        };
+        let cover = grid.cover(&corners)?;
         let shading = TriangleShading::new(self, setup, cover.triangle());
+        let clear = self.shadows_clear(setup, &cover, &shading, &corners);
+        let n = spp.count();
+        if let Some(tint) = shading.plain_tint()
+            && !setup.is_sphere_light()
+            && (clear || !shading.shadowed())
+        {
+            // What `shade_pixel` makes of these samples, without keeping them.
+            let PixelBuffers { directions, luminance, .. } = buffers;
+            directions.clear();
+            directions.extend(sample_points(setup, spp, i, j).map(|(sx, sy, _)| setup.rays.towards(sx, sy)));
+            let mut sums = PixelSums::new(luminance);
+            for &towards in directions.iter() {
+                let (p, normal, o, _) = shading.point(towards, cover.hit(towards));
+                let light = point_light_at(setup, (p, normal, o), shading.brdf(), shading.shadowed(), || false);
+                sums.add(tint, &light, n);
+            }
+            return Some(Traced::Shaded(sums.pixel(n)));
+        }
         let PixelBuffers {
             samples,
             directions,
@@ -53,8 +71,8 @@ impl Reference {
             let surface = shading.surface(self, towards, cover.hit(towards));
             samples.push((Some(surface), rng));
         }
-        buffers.scratch.shadows_clear = self.shadows_clear(setup, &cover, &shading, &corners);
-        true
+        buffers.scratch.shadows_clear = clear;
+        Some(Traced::Samples)
     }
 
     /// Whether no shadow ray of the covered pixel's samples can be blocked:
