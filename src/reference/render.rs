@@ -174,14 +174,16 @@ impl Reference {
             for i in (x0..x1).step_by(cols as usize) {
                 let width = cols.min(x1 - i);
                 if width * band == 1 {
-                    tile.add(match self.trace_pixel_samples(setup, spp, (i, j), shortcuts, &mut buffers) {
-                        Traced::Background => Pixel::background(n),
-                        Traced::Shaded(pixel) => pixel,
-                        Traced::Samples => {
-                            self.aim_light_packet(setup, &mut buffers);
-                            self.shade_pixel(setup, 0, n, &mut buffers)
-                        }
-                    });
+                    tile.add(
+                        match self.trace_pixel_samples(setup, spp, (i, j), shortcuts, &mut buffers) {
+                            Traced::Background => Pixel::background(n),
+                            Traced::Shaded(pixel) => pixel,
+                            Traced::Samples => {
+                                self.aim_light_packet(setup, &mut buffers);
+                                self.shade_pixel(setup, 0, n, &mut buffers)
+                            }
+                        },
+                    );
                     continue;
                 }
                 let block_sees = sees(i, j, width, band);
@@ -308,9 +310,16 @@ impl Reference {
             self.trace_run(setup, spp, (i, j), (1, 1), buffers);
             self.run_samples(setup, buffers);
         } else {
-            buffers.samples.clear();
-            for (sx, sy, rng) in sample_points(setup, spp, i, j) {
-                buffers.samples.push((self.surface(setup, sx, sy, cell), rng));
+            directions_first(setup, spp, (i, j), buffers);
+            let PixelBuffers {
+                samples,
+                directions,
+                run_samples,
+                ..
+            } = buffers;
+            samples.clear();
+            for (&towards, rng) in directions.iter().zip(run_samples.drain(..)) {
+                samples.push((self.surface(setup, towards, cell), rng));
             }
         }
         Traced::Samples
@@ -411,6 +420,18 @@ fn block_cone(setup: &Setup, (x, y): (u32, u32), (width, height): (u32, u32)) ->
     let (far_x, far_y) = (x + width as f64, y + height as f64);
     let corners = [(x, y), (far_x, y), (far_x, far_y), (x, far_y)];
     Cone::spanned(setup.rays.eye, corners.map(|(cx, cy)| setup.rays.towards(cx, cy)))
+}
+
+/// Pixel (i, j)'s primary rays' directions and random streams into
+/// `buffers.directions` and `buffers.run_samples`: computed in a loop of
+/// their own, before the rays' surfaces, they overlap better (~10 %).
+fn directions_first(setup: &Setup, spp: Strata, (i, j): (u32, u32), buffers: &mut PixelBuffers) {
+    buffers.directions.clear();
+    buffers.run_samples.clear();
+    for (sx, sy, rng) in sample_points(setup, spp, i, j) {
+        buffers.directions.push(setup.rays.towards(sx, sy));
+        buffers.run_samples.push(rng);
+    }
 }
 
 /// Pixel (i, j)'s primary sample points (image coordinates) and their

@@ -206,7 +206,7 @@ pub(super) struct LightEstimate {
 impl Reference {
     /// Everything about the primary sample through (x, y): the pixel probe.
     pub(super) fn probe(&self, setup: &Setup, x: f64, y: f64, rng: &mut Rng) -> Option<ShadingSample> {
-        let s = self.surface(setup, x, y, None)?;
+        let s = self.surface(setup, setup.rays.towards(x, y), None)?;
         let estimate = self.light(setup, &s, rng, &mut Scratch::default());
         let tri = &self.triangles[s.triangle];
         let inc = incidence(s.p, s.n, setup.light_position);
@@ -268,7 +268,13 @@ impl Reference {
     /// [`point_light_at`] for the surface, its shadow ray known unblocked
     /// when `clear`.
     #[inline(always)]
-    fn point_light(&self, setup: &Setup, s: &Surface, clear: bool, packet: &mut LightPacket) -> LightEstimate {
+    fn point_light(
+        &self,
+        setup: &Setup,
+        s: &Surface,
+        clear: bool,
+        packet: &mut LightPacket,
+    ) -> LightEstimate {
         point_light_at(setup, (s.p, s.n, s.o), &s.brdf, s.shadowed, || {
             !clear && self.blocked_from_light(setup, s, packet)
         })

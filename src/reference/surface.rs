@@ -196,15 +196,15 @@ impl<'a> TriangleShading<'a> {
 }
 
 impl Reference {
-    /// The surface seen through image point (x, y) (pixels, centres at
-    /// i + 0.5); None on background. `cell`: the eye grid's cell of the
-    /// point's pixel, when one holds it whole (see [`super::grid::DirectionGrid::pixel_cell`]).
+    /// The surface seen along `towards` from the eye (`PixelRays::towards`
+    /// of an image point); None on background. `cell`: the eye grid's cell
+    /// of the point's pixel, when one holds it whole (see
+    /// [`super::grid::DirectionGrid::pixel_cell`]).
     #[inline(always)]
-    pub(super) fn surface(&self, setup: &Setup, x: f64, y: f64, cell: Option<Cell>) -> Option<Surface> {
+    pub(super) fn surface(&self, setup: &Setup, towards: DVec3, cell: Option<Cell>) -> Option<Surface> {
         // The ray is cast along a direction that is not normalized: the
         // normalization (a square root and a division) then runs beside
         // the intersection instead of before it, which is 18 % faster.
-        let towards = setup.rays.towards(x, y);
         let answer = setup.eye_grid.as_ref().map(|g| match cell {
             Some(cell) => g.closest_in(cell, towards),
             None => g.closest_from_centre(towards),

@@ -5,7 +5,7 @@
 //! The same triangle under every sample and the same visibility as the
 //! search ray by ray; the radiance to the rounding of the hit point.
 
-use super::{PixelBuffers, PixelSums, Traced, sample_points};
+use super::{PixelBuffers, PixelSums, Traced, directions_first};
 use crate::reference::Reference;
 use crate::reference::grid::{Cover, DirectionGrid};
 use crate::reference::sampling::Strata;
@@ -43,29 +43,29 @@ impl Reference {
             && (clear || !shading.shadowed())
         {
             // What `shade_pixel` makes of these samples, without keeping them.
-            let PixelBuffers { directions, luminance, .. } = buffers;
-            directions.clear();
-            directions.extend(sample_points(setup, spp, i, j).map(|(sx, sy, _)| setup.rays.towards(sx, sy)));
+            directions_first(setup, spp, (i, j), buffers);
+            let PixelBuffers {
+                directions,
+                luminance,
+                ..
+            } = buffers;
             let mut sums = PixelSums::new(luminance);
             for &towards in directions.iter() {
                 let (p, normal, o, _) = shading.point(towards, cover.hit(towards));
-                let light = point_light_at(setup, (p, normal, o), shading.brdf(), shading.shadowed(), || false);
+                let light = point_light_at(setup, (p, normal, o), shading.brdf(), shading.shadowed(), || {
+                    false
+                });
                 sums.add(tint, &light, n);
             }
             return Some(Traced::Shaded(sums.pixel(n)));
         }
+        directions_first(setup, spp, (i, j), buffers);
         let PixelBuffers {
             samples,
             directions,
             run_samples,
             ..
         } = buffers;
-        directions.clear();
-        run_samples.clear();
-        for (sx, sy, rng) in sample_points(setup, spp, i, j) {
-            directions.push(setup.rays.towards(sx, sy));
-            run_samples.push(rng);
-        }
         samples.clear();
         for (&towards, rng) in directions.iter().zip(run_samples.drain(..)) {
             let surface = shading.surface(self, towards, cover.hit(towards));

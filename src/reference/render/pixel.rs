@@ -52,7 +52,6 @@ impl Tile {
     }
 }
 
-
 /// The running sums of a pixel's samples, in their order.
 pub(super) struct PixelSums<'a> {
     sum: [f64; 3],
@@ -92,8 +91,8 @@ impl<'a> PixelSums<'a> {
         self.hits += 1;
         self.visibility += light.visibility;
         let l = (tint * light.scaled_radiance).to_array();
-        for c in 0..3 {
-            self.sum[c] += l[c];
+        for (sum, l) in self.sum.iter_mut().zip(l) {
+            *sum += l;
         }
         self.luminance.push(luminance(l));
         match light.std_error {
