@@ -240,6 +240,18 @@ fn occluders_gathered_near_a_ball_block_exactly_what_brute_force_does() {
     );
 }
 
+/// The unit normal of the triangle on the light's side of point p, and
+/// the shadow offset of its shadow rays (as the reference lifts them).
+fn shadow_lift(tri: &BvhTriangle, p: DVec3, light: DVec3) -> (DVec3, f64) {
+    let [a, b, c] = tri.corners;
+    let face = (b - a).cross(c - a).normalize();
+    let normal = if face.dot(light - p) > 0.0 { face } else { -face };
+    let largest = [a, b, c]
+        .iter()
+        .fold(0.0_f64, |m, q| m.max(q.abs().max_element()));
+    (normal, SHADOW_OFFSET_REL * largest)
+}
+
 #[test]
 fn a_shadow_ray_lifted_off_its_triangle_towards_the_light_never_meets_it() {
     // What lets the light's grid skip a shading point's own triangle: lifted
@@ -255,13 +267,7 @@ fn a_shadow_ray_lifted_off_its_triangle_towards_the_light_never_meets_it() {
     for ray in 0..20_000 {
         let own = random_triangle(&triangles, &mut rng);
         let p = point_on_triangle(&triangles[own], &mut rng);
-        let [a, b, c] = triangles[own].corners;
-        let face = (b - a).cross(c - a).normalize();
-        let normal = if face.dot(light - p) > 0.0 { face } else { -face };
-        let largest = [a, b, c]
-            .iter()
-            .fold(0.0_f64, |m, q| m.max(q.abs().max_element()));
-        let offset = SHADOW_OFFSET_REL * largest;
+        let (normal, offset) = shadow_lift(&triangles[own], p, light);
         // The condition the shading checks before it skips the triangle.
         let to_light = light - p;
         if normal.dot(to_light) <= offset + 1e-12 * to_light.abs().element_sum() {
@@ -422,13 +428,9 @@ fn shadow_rays_from_a_clear_patch_are_blocked_by_nothing() {
     for patch in 0..20_000 {
         let own = random_triangle(&triangles, &mut rng);
         let p = point_on_triangle(&triangles[own], &mut rng);
+        let (normal, offset) = shadow_lift(&triangles[own], p, light);
+        let lift = normal * offset;
         let [a, b, c] = triangles[own].corners;
-        let face = (b - a).cross(c - a).normalize();
-        let normal = if face.dot(light - p) > 0.0 { face } else { -face };
-        let largest = [a, b, c]
-            .iter()
-            .fold(0.0_f64, |m, q| m.max(q.abs().max_element()));
-        let lift = normal * SHADOW_OFFSET_REL * largest;
         let size = 1e-3 * 20f64.powf(rng.next_f64());
         let (e1, e2) = ((b - a).normalize() * size, (c - a).normalize() * size);
         let origins = [p, p + e1, p + e2, p + e1 + e2].map(|q| q + lift);

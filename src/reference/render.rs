@@ -310,17 +310,9 @@ impl Reference {
             self.trace_run(setup, spp, (i, j), (1, 1), buffers);
             self.run_samples(setup, buffers);
         } else {
-            directions_first(setup, spp, (i, j), buffers);
-            let PixelBuffers {
-                samples,
-                directions,
-                run_samples,
-                ..
-            } = buffers;
-            samples.clear();
-            for (&towards, rng) in directions.iter().zip(run_samples.drain(..)) {
-                samples.push((self.surface(setup, towards, cell), rng));
-            }
+            trace_samples(setup, spp, (i, j), buffers, |towards| {
+                self.surface(setup, towards, cell)
+            });
         }
         Traced::Samples
     }
@@ -420,6 +412,28 @@ fn block_cone(setup: &Setup, (x, y): (u32, u32), (width, height): (u32, u32)) ->
     let (far_x, far_y) = (x + width as f64, y + height as f64);
     let corners = [(x, y), (far_x, y), (far_x, far_y), (x, far_y)];
     Cone::spanned(setup.rays.eye, corners.map(|(cx, cy)| setup.rays.towards(cx, cy)))
+}
+
+/// Pixel (i, j)'s samples into `buffers.samples`: its directions first
+/// ([`directions_first`]), then the surface `surface_of` finds along each.
+fn trace_samples(
+    setup: &Setup,
+    spp: Strata,
+    pixel: (u32, u32),
+    buffers: &mut PixelBuffers,
+    mut surface_of: impl FnMut(DVec3) -> Option<Surface>,
+) {
+    directions_first(setup, spp, pixel, buffers);
+    let PixelBuffers {
+        samples,
+        directions,
+        run_samples,
+        ..
+    } = buffers;
+    samples.clear();
+    for (&towards, rng) in directions.iter().zip(run_samples.drain(..)) {
+        samples.push((surface_of(towards), rng));
+    }
 }
 
 /// Pixel (i, j)'s primary rays' directions and random streams into

@@ -292,7 +292,7 @@ impl Reference {
         scratch: &mut Scratch,
     ) -> LightEstimate {
         if setup.is_sphere_light() {
-            self.sphere_light(setup, s, rng, scratch)
+            self.sphere(setup, s, rng, scratch)
         } else {
             self.point_light(setup, s, scratch.shadows_clear, &mut scratch.light_packet)
         }
@@ -300,13 +300,7 @@ impl Reference {
 
     /// The sphere light's contribution at the surface, estimated with the
     /// light-sample stream `rng` (see the module).
-    fn sphere_light(
-        &self,
-        setup: &Setup,
-        s: &Surface,
-        rng: &mut Rng,
-        scratch: &mut Scratch,
-    ) -> LightEstimate {
+    fn sphere(&self, setup: &Setup, s: &Surface, rng: &mut Rng, scratch: &mut Scratch) -> LightEstimate {
         let (q, radius) = (setup.light_position, setup.radius_m);
         // Every shadow ray of this point runs from its shadow origin to the
         // sphere: gather the occluders near that path once, then test each

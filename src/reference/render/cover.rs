@@ -5,7 +5,7 @@
 //! The same triangle under every sample and the same visibility as the
 //! search ray by ray; the radiance to the rounding of the hit point.
 
-use super::{PixelBuffers, PixelSums, Traced, directions_first};
+use super::{PixelBuffers, PixelSums, Traced, directions_first, trace_samples};
 use crate::reference::Reference;
 use crate::reference::grid::{Cover, DirectionGrid};
 use crate::reference::sampling::Strata;
@@ -59,18 +59,9 @@ impl Reference {
             }
             return Some(Traced::Shaded(sums.pixel(n)));
         }
-        directions_first(setup, spp, (i, j), buffers);
-        let PixelBuffers {
-            samples,
-            directions,
-            run_samples,
-            ..
-        } = buffers;
-        samples.clear();
-        for (&towards, rng) in directions.iter().zip(run_samples.drain(..)) {
-            let surface = shading.surface(self, towards, cover.hit(towards));
-            samples.push((Some(surface), rng));
-        }
+        trace_samples(setup, spp, (i, j), buffers, |towards| {
+            Some(shading.surface(self, towards, cover.hit(towards)))
+        });
         buffers.scratch.shadows_clear = clear;
         Some(Traced::Samples)
     }
