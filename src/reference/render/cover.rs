@@ -69,10 +69,11 @@ impl Reference {
     /// Whether no shadow ray of the covered pixel's samples can be blocked:
     /// they start on the lifted part of the triangle's plane that the pixel
     /// sees, whose corners are lifted from the corner rays' hits, and the
-    /// light's grid lists nothing that could block a ray from there but the
-    /// triangle itself, which no ray of the pixel tests (the light lies well
-    /// on its lifted side). Every sample is lifted alike: the cover's
-    /// margin puts the eye surely on one side of the triangle's plane.
+    /// light's grid lists nothing that could block a ray from there
+    /// ([`DirectionGrid::clear_towards_centre`]) but the triangle itself,
+    /// which no ray of the pixel tests where the light lies well on its
+    /// lifted side. Every sample is lifted alike: the cover's margin puts
+    /// the eye surely on one side of the triangle's plane.
     fn shadows_clear(
         &self,
         setup: &Setup,
