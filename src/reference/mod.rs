@@ -128,6 +128,16 @@ struct TriangleInfo {
     uvs: [Vec2; 3],
 }
 
+impl TriangleInfo {
+    /// How far the light must lie on the lifted side of this triangle's
+    /// plane (along its unit normal, `to_light` from a point of it) for a
+    /// shadow ray lifted off it never to reach that plane: the lift, and
+    /// the rounding of the dot product.
+    fn lift_clearance(&self, to_light: DVec3) -> f64 {
+        self.shadow_offset_m + 1e-12 * to_light.abs().element_sum()
+    }
+}
+
 #[derive(Clone, Debug)]
 struct ObjectInfo {
     /// Index into `Reference::materials` (always valid).

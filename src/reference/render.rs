@@ -178,16 +178,15 @@ impl Reference {
                         match self.trace_pixel_samples(setup, spp, (i, j), shortcuts, &mut buffers) {
                             Traced::Background => Pixel::background(n),
                             Traced::Shaded(pixel) => pixel,
-                            Traced::Samples => {
+                            Traced::Samples { shadows_clear } => {
                                 self.aim_light_packet(setup, &mut buffers);
-                                self.shade_pixel(setup, 0, n, &mut buffers)
+                                self.shade_pixel(setup, 0, n, shadows_clear, &mut buffers)
                             }
                         },
                     );
                     continue;
                 }
                 let block_sees = sees(i, j, width, band);
-                buffers.scratch.shadows_clear = false;
                 if block_sees {
                     self.trace_run(setup, spp, (i, j), (width, band), &mut buffers);
                     self.run_samples(setup, &mut buffers);
@@ -195,7 +194,7 @@ impl Reference {
                 }
                 for k in 0..(width * band) as usize {
                     let pixel = if block_sees {
-                        self.shade_pixel(setup, k * n as usize, n, &mut buffers)
+                        self.shade_pixel(setup, k * n as usize, n, false, &mut buffers)
                     } else {
                         Pixel::background(n)
                     };
@@ -277,7 +276,6 @@ impl Reference {
         shortcuts: Shortcuts,
         buffers: &mut PixelBuffers,
     ) -> Traced {
-        buffers.scratch.shadows_clear = false;
         let n = spp.count();
         let (x, y) = (i as f64, j as f64);
         // Several samples: find their cell once when it is the same for all.
@@ -314,7 +312,7 @@ impl Reference {
                 self.surface(setup, towards, cell)
             });
         }
-        Traced::Samples
+        Traced::Samples { shadows_clear: false }
     }
 
     /// Aims the light packet at the shadow rays of every sample in
@@ -337,15 +335,24 @@ impl Reference {
     }
 
     /// The pixel from its `n` samples from `first` in `buffers.samples`,
-    /// the light packet aimed at them.
+    /// the light packet aimed at them; `shadows_clear`: their shadow rays
+    /// towards a point light are known unblocked.
     #[inline(always)]
-    fn shade_pixel(&self, setup: &Setup, first: usize, n: u32, buffers: &mut PixelBuffers) -> Pixel {
+    fn shade_pixel(
+        &self,
+        setup: &Setup,
+        first: usize,
+        n: u32,
+        shadows_clear: bool,
+        buffers: &mut PixelBuffers,
+    ) -> Pixel {
         let PixelBuffers {
             samples,
             luminance: sample_luminance,
             scratch,
             ..
         } = buffers;
+        scratch.shadows_clear = shadows_clear;
         let mut sums = PixelSums::new(sample_luminance);
         for (surface, rng) in &mut samples[first..first + n as usize] {
             match surface {
@@ -364,8 +371,9 @@ impl Reference {
 enum Traced {
     /// It sees only background.
     Background,
-    /// Its samples, in `PixelBuffers::samples`, to be shaded.
-    Samples,
+    /// Its samples, in `PixelBuffers::samples`, to be shaded, and whether
+    /// their shadow rays towards a point light are known unblocked.
+    Samples { shadows_clear: bool },
     /// The pixel itself, shaded at once.
     Shaded(Pixel),
 }

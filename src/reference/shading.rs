@@ -185,8 +185,9 @@ pub(super) struct Scratch {
     candidates: Vec<u32>,
     /// A pixel's shadow rays towards a point light.
     pub light_packet: LightPacket,
-    /// Whether nothing can block the current pixel's shadow rays towards
-    /// the point light (known for the whole pixel, see `render::cover`).
+    /// Whether nothing can block the shadow rays towards the point light of
+    /// the pixel being shaded (known for the whole pixel, see
+    /// `render::cover`): `Reference::shade_pixel` sets it.
     pub shadows_clear: bool,
 }
 
@@ -243,7 +244,7 @@ impl Reference {
         // more than the offset and the rounding of the dot product, the
         // segment never reaches that plane: its own triangle need not be tested.
         let to_light = setup.light_position - s.p;
-        let clear = self.triangles[s.triangle].shadow_offset_m + 1e-12 * to_light.abs().element_sum();
+        let clear = self.triangles[s.triangle].lift_clearance(to_light);
         let own = (s.geometric_normal.dot(to_light) > clear).then_some(s.triangle);
         match setup
             .light_grid

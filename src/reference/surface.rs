@@ -145,11 +145,11 @@ impl<'a> TriangleShading<'a> {
         self.setup.shadows && self.object.receives_shadows
     }
 
-    /// The face's normal on the side of the eye, seen along `towards`: what
-    /// [`Self::surface`] takes for every ray whose side is sure.
-    pub(super) fn geometric_normal(&self, towards: DVec3) -> DVec3 {
+    /// The face's normal on the eye's side, `to_eye` pointing there (any
+    /// length).
+    pub(super) fn geometric_normal(&self, to_eye: DVec3) -> DVec3 {
         let face = self.tri.face_normal;
-        if face.dot(-towards) < 0.0 { -face } else { face }
+        if face.dot(to_eye) < 0.0 { -face } else { face }
     }
 
     /// The surface where the primary ray along `towards` (not normalized)
@@ -158,8 +158,7 @@ impl<'a> TriangleShading<'a> {
     pub(super) fn surface(&self, reference: &Reference, towards: DVec3, hit: Hit) -> Surface {
         let tri = self.tri;
         let (p, n, o, length) = self.point(towards, hit);
-        let face = tri.face_normal;
-        let geometric_normal = if face.dot(o) < 0.0 { -face } else { face };
+        let geometric_normal = self.geometric_normal(o);
         let [b0, b1, b2] = hit.at.barycentric;
         let [t0, t1, t2] = tri.uvs.map(|t| t.as_dvec2());
         let uv = t0 * b0 + t1 * b1 + t2 * b2;

@@ -36,14 +36,36 @@ const DEPTH_SLACK: f64 = 1e-9;
 /// trusted (rounding ~10⁻¹⁶; a shadow ray's origin is lifted 10⁻⁹).
 const SIDE_MARGIN: f64 = 1e-12;
 
+/// The triple products of a triangle with corners A, B, C (relative to
+/// the apex of the rays): u = d · (B × C), d · (C × A), d · (A × B) for a
+/// direction d, and A · (B × C).
+#[derive(Clone, Copy, Debug)]
+struct TripleProducts {
+    edges: [DVec3; 3],
+    volume: f64,
+}
+
+impl TripleProducts {
+    fn of(&[a, b, c]: &[DVec3; 3]) -> Self {
+        let edges = [b.cross(c), c.cross(a), a.cross(b)];
+        Self {
+            edges,
+            volume: a.dot(edges[0]),
+        }
+    }
+
+    /// The three products of direction `d`.
+    #[inline(always)]
+    fn at(&self, d: DVec3) -> [f64; 3] {
+        self.edges.map(|n| d.dot(n))
+    }
+}
+
 /// The triangle that every ray of a pixel meets first (see the module).
 #[derive(Clone, Copy, Debug)]
 pub struct Cover {
     triangle: usize,
-    /// B × C, C × A, A × B for corners relative to the eye.
-    edges: [DVec3; 3],
-    /// A · (B × C).
-    volume: f64,
+    products: TripleProducts,
 }
 
 impl Cover {
@@ -55,12 +77,12 @@ impl Cover {
     /// Where the ray from the eye along `d` (one of the pixel's) meets it.
     #[inline(always)]
     pub fn hit(&self, d: DVec3) -> Hit {
-        let u = self.edges.map(|n| d.dot(n));
+        let u = self.products.at(d);
         let inv = 1.0 / (u[0] + u[1] + u[2]);
         Hit {
             triangle: self.triangle,
             at: TriangleHit {
-                t: self.volume * inv,
+                t: self.products.volume * inv,
                 barycentric: u.map(|x| x * inv),
             },
         }
@@ -69,8 +91,8 @@ impl Cover {
 
 /// How the rays of a cone (its four corner directions) meet a triangle.
 enum Seen {
-    /// Every ray meets it, none deeper along its main axis than this.
-    Inside { deepest: f64 },
+    /// Every ray meets it, none deeper along its main axis than `deepest`.
+    Inside { deepest: f64, products: TripleProducts },
     /// No ray does: one edge function is surely positive over the cone and
     /// another surely negative.
     Missed,
@@ -85,18 +107,21 @@ impl Seen {
     /// `slack`: an allowance on the corners' coordinates for a test done in
     /// coordinates relative to another point (its size), 0 for one done
     /// relative to the apex itself.
-    fn of(&[a, b, c]: &[DVec3; 3], corners: &[DVec3; 4], slack: f64) -> Self {
-        let edges = [b.cross(c), c.cross(a), a.cross(b)];
+    fn of(triangle: &[DVec3; 3], corners: &[DVec3; 4], slack: f64) -> Self {
+        let [a, b, c] = *triangle;
+        let products = TripleProducts::of(triangle);
         let size = |x: DVec3| x.abs().max_element() + slack;
         let scales = [(b, c), (c, a), (a, b)].map(|(x, y)| size(x) * size(y));
         let (mut positive, mut negative) = ([true; 3], [true; 3]);
-        for d in corners {
+        let mut sums = [0.0; 4];
+        for (d, sum) in corners.iter().zip(&mut sums) {
             let margin = MARGIN * d.abs().max_element();
+            let u = products.at(*d);
             for i in 0..3 {
-                let u = d.dot(edges[i]);
-                positive[i] &= u > margin * scales[i];
-                negative[i] &= u < -margin * scales[i];
+                positive[i] &= u[i] > margin * scales[i];
+                negative[i] &= u[i] < -margin * scales[i];
             }
+            *sum = u[0] + u[1] + u[2];
         }
         if positive.iter().any(|&p| p) && negative.iter().any(|&n| n) {
             return Seen::Missed;
@@ -104,16 +129,15 @@ impl Seen {
         if !(positive.iter().all(|&p| p) || negative.iter().all(|&n| n)) {
             return Seen::Unsure;
         }
-        let volume = a.dot(edges[0]);
         let mut deepest = 0.0_f64;
-        for d in corners {
-            let t = volume / edges.iter().map(|n| d.dot(*n)).sum::<f64>();
+        for (d, sum) in corners.iter().zip(sums) {
+            let t = products.volume / sum;
             if !(t > 0.0 && t.is_finite()) {
                 return Seen::Unsure;
             }
             deepest = deepest.max(t * d.abs().max_element());
         }
-        Seen::Inside { deepest }
+        Seen::Inside { deepest, products }
     }
 }
 
@@ -136,7 +160,8 @@ impl DirectionGrid {
             .flat_map(|list| list.iter())
             .find(|item| self.members[item.member as usize] as usize == hit.triangle)?
             .member;
-        let Seen::Inside { deepest } = Seen::of(&self.relative[first as usize], corners, 0.0) else {
+        let Seen::Inside { deepest, products } = Seen::of(&self.relative[first as usize], corners, 0.0)
+        else {
             return None;
         };
         // Each list is sorted by depth: past `deepest`, nothing can come first.
@@ -152,12 +177,9 @@ impl DirectionGrid {
                         )
                 })
         });
-        let [a, b, c] = self.relative[first as usize];
-        let edges = [b.cross(c), c.cross(a), a.cross(b)];
-        alone.then(|| Cover {
+        alone.then_some(Cover {
             triangle: hit.triangle,
-            edges,
-            volume: a.dot(edges[0]),
+            products,
         })
     }
 

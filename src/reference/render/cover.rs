@@ -22,7 +22,7 @@ impl Reference {
     /// nothing done, when none surely does): shaded at once where a point
     /// light's shadow rays are all known unblocked and the triangle's tint
     /// is the same everywhere, else its samples into `buffers.samples`
-    /// with `buffers.scratch.shadows_clear` set.
+    /// and whether their shadow rays are known unblocked.
     pub(super) fn trace_covered_samples(
         &self,
         setup: &Setup,
@@ -62,8 +62,7 @@ impl Reference {
         trace_samples(setup, spp, (i, j), buffers, |towards| {
             Some(shading.surface(self, towards, cover.hit(towards)))
         });
-        buffers.scratch.shadows_clear = clear;
-        Some(Traced::Samples)
+        Some(Traced::Samples { shadows_clear: clear })
     }
 
     /// Whether no shadow ray of the covered pixel's samples can be blocked:
@@ -87,22 +86,22 @@ impl Reference {
         if !shading.shadowed() {
             return false;
         }
-        let g = shading.geometric_normal(corners[0]);
-        let offset = self.triangles[cover.triangle()].shadow_offset_m;
+        let g = shading.geometric_normal(-corners[0]);
+        let tri = &self.triangles[cover.triangle()];
         let q = setup.light_position;
         let points = corners.map(|d| setup.rays.eye + d * cover.hit(d).at.t);
         // g · (q − p) is linear over the pixel's part of the plane and the
-        // allowance `clear` convex: both bounded by their corner values.
+        // clearance convex: both bounded by their corner values.
         let least_lift = points.iter().fold(f64::INFINITY, |m, &p| m.min(g.dot(q - p)));
-        let most_clear = points.iter().fold(0.0_f64, |m, &p| {
-            m.max(offset + 1e-12 * (q - p).abs().element_sum())
-        });
+        let most_clear = points
+            .iter()
+            .fold(0.0_f64, |m, &p| m.max(tri.lift_clearance(q - p)));
         let own = if least_lift > OWN_SLACK * most_clear {
             cover.triangle()
         } else {
             usize::MAX
         };
-        grid.clear_towards_centre(&points.map(|p| p + g * offset), own)
+        grid.clear_towards_centre(&points.map(|p| p + g * tri.shadow_offset_m), own)
     }
 }
 
