@@ -16,6 +16,7 @@ use std::sync::atomic::Ordering;
 use std::time::Instant;
 
 mod cover;
+mod lanes;
 mod pixel;
 
 /// Edge length of the square tiles the image is split into for the threads.
@@ -411,6 +412,8 @@ struct PixelBuffers {
     packet: PrimaryPacket,
     /// A block of pixels' random streams, in the order of `directions`.
     run_samples: Vec<Rng>,
+    /// A covered pixel's samples, in lanes.
+    lanes: lanes::Lanes,
 }
 
 /// The cone from the eye of the block of width × height pixels from (x, y),

@@ -11,6 +11,7 @@ use crate::physics::BrdfParams;
 use crate::physics::colour::tint;
 use crate::scene::Material;
 use glam::{DVec2, DVec3};
+use std::f64::consts::PI;
 
 /// Where a primary ray lands, and the surface there as the light sees it.
 pub(super) struct Surface {
@@ -41,6 +42,17 @@ impl Surface {
     pub(super) fn shadow_ray_origin(&self, light: DVec3) -> Option<DVec3> {
         (self.shadowed && self.n.dot(light - self.p) > 0.0).then_some(self.shadow_origin)
     }
+}
+
+/// A flat triangle of a Lambertian material.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct FlatLambert {
+    pub(super) corners: [DVec3; 3],
+    /// The shading normal, before it turns towards the viewer.
+    pub(super) normal: DVec3,
+    pub(super) double_sided: bool,
+    /// k/π (1/sr).
+    pub(super) diffuse: f64,
 }
 
 /// What every point of one triangle shares, under one setup.
@@ -137,6 +149,19 @@ impl<'a> TriangleShading<'a> {
 
     pub(super) fn brdf(&self) -> &BrdfParams<f64> {
         &self.brdf
+    }
+
+    /// What the samples of a flat, Lambertian triangle need (None for
+    /// vertex normals or a specular lobe).
+    pub(super) fn flat_lambert(&self) -> Option<FlatLambert> {
+        let normal = self.tri.flat_normal?;
+        (self.brdf.k >= 1.0).then(|| FlatLambert {
+            corners: self.tri.corners.map(|p| p.as_dvec3()),
+            normal,
+            double_sided: self.material.double_sided,
+            // blinn_phong's diffuse term, its specular one zero.
+            diffuse: self.brdf.k / PI,
+        })
     }
 
     /// Whether its points cast shadow rays (shadows on and the object

@@ -5,7 +5,8 @@
 //! The same triangle under every sample and the same visibility as the
 //! search ray by ray; the radiance to the rounding of the hit point.
 
-use super::{PixelBuffers, PixelSums, Traced, directions_first, trace_samples};
+use super::lanes::CoveredPixel;
+use super::{Pixel, PixelBuffers, PixelSums, Traced, directions_first, trace_samples};
 use crate::reference::Reference;
 use crate::reference::grid::{Cover, DirectionGrid};
 use crate::reference::sampling::Strata;
@@ -37,27 +38,27 @@ impl Reference {
         let cover = grid.cover(&corners)?;
         let shading = TriangleShading::new(self, setup, cover.triangle());
         let clear = self.shadows_clear(setup, &cover, &shading, &corners);
-        let n = spp.count();
         if let Some(tint) = shading.plain_tint()
             && !setup.is_sphere_light()
             && (clear || !shading.shadowed())
         {
             // What `shade_pixel` makes of these samples, without keeping them.
-            directions_first(setup, spp, (i, j), buffers);
-            let PixelBuffers {
-                directions,
-                luminance,
-                ..
-            } = buffers;
-            let mut sums = PixelSums::new(luminance);
-            for &towards in directions.iter() {
-                let (p, normal, o, _) = shading.point(towards, cover.hit(towards));
-                let light = point_light_at(setup, (p, normal, o), shading.brdf(), shading.shadowed(), || {
-                    false
-                });
-                sums.add(tint, &light, n);
-            }
-            return Some(Traced::Shaded(sums.pixel(n)));
+            let pixel = match shading.flat_lambert() {
+                Some(surface) => {
+                    let pixel = CoveredPixel {
+                        setup,
+                        spp,
+                        pixel: (i, j),
+                        cover: &cover,
+                        surface,
+                        tint,
+                        shadowed: shading.shadowed(),
+                    };
+                    buffers.lanes.shade(&pixel, &mut buffers.luminance)
+                }
+                None => shade_one_by_one(setup, spp, (i, j), (&cover, &shading, tint), buffers),
+            };
+            return Some(Traced::Shaded(pixel));
         }
         trace_samples(setup, spp, (i, j), buffers, |towards| {
             Some(shading.surface(self, towards, cover.hit(towards)))
@@ -103,6 +104,34 @@ impl Reference {
         };
         grid.clear_towards_centre(&points.map(|p| p + g * tri.shadow_offset_m), own)
     }
+}
+
+/// A covered pixel of plain tint whose shadow rays towards a point light
+/// are known unblocked, its samples shaded one by one (what
+/// `Reference::shade_pixel` makes of them, without keeping them).
+pub(super) fn shade_one_by_one(
+    setup: &Setup,
+    spp: Strata,
+    pixel: (u32, u32),
+    (cover, shading, tint): (&Cover, &TriangleShading, DVec3),
+    buffers: &mut PixelBuffers,
+) -> Pixel {
+    directions_first(setup, spp, pixel, buffers);
+    let PixelBuffers {
+        directions,
+        luminance,
+        ..
+    } = buffers;
+    let n = spp.count();
+    let mut sums = PixelSums::new(luminance);
+    for &towards in directions.iter() {
+        let (p, normal, o, _) = shading.point(towards, cover.hit(towards));
+        let light = point_light_at(setup, (p, normal, o), shading.brdf(), shading.shadowed(), || {
+            false
+        });
+        sums.add(tint, &light, n);
+    }
+    sums.pixel(n)
 }
 
 #[cfg(test)]
