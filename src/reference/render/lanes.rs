@@ -1,8 +1,8 @@
 //! A covered pixel lit by a point light that no shadow ray can miss,
 //! Lambertian and flat, its samples computed lane by lane: each step a
 //! loop without branches over all of the pixel's samples, which the
-//! compiler turns into SIMD instructions (4 samples at once with AVX2,
-//! chosen at run time; 2 with the SSE2 every x86-64 has). Each lane does
+//! compiler turns into SIMD instructions: 8 samples at once with AVX-512,
+//! 4 with AVX2 (chosen at run time), 2 with the SSE2 every x86-64 has. Each lane does
 //! the very operations the sample-by-sample path does, in the same order:
 //! the same bits (`tests` holds them to it).
 
@@ -46,6 +46,11 @@ impl Lanes {
     /// The pixel: what `Reference::shade_pixel` makes of its samples.
     pub(super) fn shade(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>) -> Pixel {
         #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx512f") && std::arch::is_x86_feature_detected!("avx512dq") {
+            // SAFETY: the CPU has AVX-512 F and DQ.
+            return unsafe { self.shade_avx512(pixel, luminance) };
+        }
+        #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2.
             return unsafe { self.shade_avx2(pixel, luminance) };
@@ -56,6 +61,12 @@ impl Lanes {
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn shade_avx2(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>) -> Pixel {
+        self.shade_lanes(pixel, luminance)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx512dq")]
+    fn shade_avx512(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>) -> Pixel {
         self.shade_lanes(pixel, luminance)
     }
 
@@ -162,7 +173,7 @@ mod tests {
     /// Covered pixels in lanes give the bits their samples give one by one:
     /// one-sided and double-sided faces, seen from above and from below
     /// the light's horizon, with shadows and without, at 64, 32 and 9 samples
-    /// (lanes left over), through the dispatch and the SSE2 code alike.
+    /// (lanes left over), in every code this CPU runs (SSE2, AVX2, AVX-512).
     #[test]
     fn lanes_give_the_bits_of_samples_one_by_one() {
         let cube = Aabb {
@@ -235,10 +246,20 @@ mod tests {
                 // one-by-one path is asked as though none were.
                 let one = shade_one_by_one(&setup, spp, (i, j), (&cover, &shading, tint), &mut buffers);
                 let mut luminance = Vec::new();
-                for laned in [
-                    lanes.shade(&pixel, &mut luminance),
-                    lanes.shade_lanes(&pixel, &mut luminance),
-                ] {
+                let mut laned = vec![lanes.shade_lanes(&pixel, &mut luminance)];
+                #[cfg(target_arch = "x86_64")]
+                {
+                    use std::arch::is_x86_feature_detected as has;
+                    if has!("avx2") {
+                        // SAFETY: the CPU has AVX2.
+                        laned.push(unsafe { lanes.shade_avx2(&pixel, &mut luminance) });
+                    }
+                    if has!("avx512f") && has!("avx512dq") {
+                        // SAFETY: the CPU has AVX-512 F and DQ.
+                        laned.push(unsafe { lanes.shade_avx512(&pixel, &mut luminance) });
+                    }
+                }
+                for laned in laned {
                     let bits = |p: &Pixel| {
                         (
                             p.radiance.map(f64::to_bits),
