@@ -239,31 +239,48 @@ impl Reference {
     /// Whether the segment from the shadow origin to the point light is
     /// blocked, through the light's grid when there is one.
     fn blocked_from_light(&self, setup: &Setup, s: &Surface, packet: &mut LightPacket) -> bool {
+        self.blocked_from_point(
+            setup,
+            (s.triangle, s.p, s.geometric_normal),
+            s.shadow_origin,
+            packet,
+        )
+    }
+
+    /// Whether the segment from `origin` to the point light is blocked,
+    /// `origin` lifted off the point p of the triangle whose face normal
+    /// on the eye's side is g.
+    pub(super) fn blocked_from_point(
+        &self,
+        setup: &Setup,
+        (triangle, p, g): (usize, DVec3, DVec3),
+        origin: DVec3,
+        packet: &mut LightPacket,
+    ) -> bool {
         let t_max = 1.0 - STOP_SHORT_REL;
         // With the light on the lifted side of the hit triangle's plane, by
         // more than the offset and the rounding of the dot product, the
         // segment never reaches that plane: its own triangle need not be tested.
-        let to_light = setup.light_position - s.p;
-        let clear = self.triangles[s.triangle].lift_clearance(to_light);
-        let own = (s.geometric_normal.dot(to_light) > clear).then_some(s.triangle);
+        let to_light = setup.light_position - p;
+        let clear = self.triangles[triangle].lift_clearance(to_light);
+        let own = (g.dot(to_light) > clear).then_some(triangle);
         match setup
             .light_grid
             .as_ref()
-            .map(|g| g.blocked_towards_centre(&self.bvh_triangles, s.shadow_origin, t_max, own))
+            .map(|g| g.blocked_towards_centre(&self.bvh_triangles, origin, t_max, own))
         {
             Some(Answer::Known(blocked)) => blocked,
             _ => packet
-                .blocked(&self.bvh, setup.light_position, s.shadow_origin)
-                .unwrap_or_else(|| self.blocked(s, setup.light_position)),
+                .blocked(&self.bvh, setup.light_position, origin)
+                .unwrap_or_else(|| self.blocked(origin, setup.light_position)),
         }
     }
 
-    /// Whether the segment from the shadow origin to `target` is blocked,
+    /// Whether the segment from `origin` to `target` is blocked,
     /// stopping short of the target.
-    fn blocked(&self, surface: &Surface, target: DVec3) -> bool {
-        let d = target - surface.shadow_origin;
+    fn blocked(&self, origin: DVec3, target: DVec3) -> bool {
         self.bvh
-            .occluded(surface.shadow_origin, d, 0.0, 1.0 - STOP_SHORT_REL)
+            .occluded(origin, target - origin, 0.0, 1.0 - STOP_SHORT_REL)
     }
 
     /// [`point_light_at`] for the surface, its shadow ray known unblocked
@@ -371,7 +388,7 @@ impl Reference {
                     self.bvh
                         .blocked_by(candidates, s.shadow_origin, d, 1.0 - STOP_SHORT_REL)
                 } else {
-                    self.blocked(s, target)
+                    self.blocked(s.shadow_origin, target)
                 };
                 if blocked {
                     v = 0.0;

@@ -5,6 +5,7 @@
 
 use super::bvh::Hit;
 use super::grid::{Answer, Cell};
+use super::light_packet::LightPacket;
 use super::shading::Setup;
 use super::{ObjectInfo, Reference, TriangleInfo};
 use crate::physics::BrdfParams;
@@ -177,13 +178,34 @@ impl<'a> TriangleShading<'a> {
         if face.dot(to_eye) < 0.0 { -face } else { face }
     }
 
+    /// The face's normal on the eye's side at the point p seen along o
+    /// (unit, towards the eye), and p lifted along it for shadow rays.
+    #[inline(always)]
+    pub(super) fn lift(&self, p: DVec3, o: DVec3) -> (DVec3, DVec3) {
+        let g = self.geometric_normal(o);
+        (g, p + g * self.tri.shadow_offset_m)
+    }
+
+    /// Whether the shadow ray of the point p seen along o (unit, towards
+    /// the eye) to the point light is blocked: `Surface`'s, for points
+    /// that need no more of it.
+    pub(super) fn blocked_from_light(
+        &self,
+        reference: &Reference,
+        (p, o): (DVec3, DVec3),
+        packet: &mut LightPacket,
+    ) -> bool {
+        let (g, origin) = self.lift(p, o);
+        reference.blocked_from_point(self.setup, (self.triangle, p, g), origin, packet)
+    }
+
     /// The surface where the primary ray along `towards` (not normalized)
     /// meets the triangle at `hit` (barycentrics and distance).
     #[inline(always)]
     pub(super) fn surface(&self, reference: &Reference, towards: DVec3, hit: Hit) -> Surface {
         let tri = self.tri;
         let (p, n, o, length) = self.point(towards, hit);
-        let geometric_normal = self.geometric_normal(o);
+        let (geometric_normal, shadow_origin) = self.lift(p, o);
         let [b0, b1, b2] = hit.at.barycentric;
         let [t0, t1, t2] = tri.uvs.map(|t| t.as_dvec2());
         let uv = t0 * b0 + t1 * b1 + t2 * b2;
@@ -213,7 +235,7 @@ impl<'a> TriangleShading<'a> {
             color,
             tint: surface_tint,
             brdf: self.brdf,
-            shadow_origin: p + geometric_normal * tri.shadow_offset_m,
+            shadow_origin,
             shadowed: self.shadowed(),
         }
     }

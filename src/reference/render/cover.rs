@@ -38,32 +38,64 @@ impl Reference {
         let cover = grid.cover(&corners)?;
         let shading = TriangleShading::new(self, setup, cover.triangle());
         let clear = self.shadows_clear(setup, &cover, &shading, &corners);
-        if let Some(tint) = shading.plain_tint()
-            && !setup.is_sphere_light()
-            && (clear || !shading.shadowed())
-        {
-            // What `shade_pixel` makes of these samples, without keeping them.
-            let pixel = match shading.flat_lambert() {
-                Some(surface) => {
-                    let pixel = CoveredPixel {
-                        setup,
-                        spp,
-                        pixel: (i, j),
-                        cover: &cover,
-                        surface,
-                        tint,
-                        shadowed: shading.shadowed(),
-                    };
-                    buffers.lanes.shade(&pixel, &mut buffers.luminance)
-                }
-                None => shade_one_by_one(setup, spp, (i, j), (&cover, &shading, tint), buffers),
-            };
-            return Some(Traced::Shaded(pixel));
-        }
-        trace_samples(setup, spp, (i, j), buffers, |towards| {
+        let Some(tint) = shading.plain_tint().filter(|_| !setup.is_sphere_light()) else {
+            return Some(self.covered_samples(setup, spp, (i, j), (&cover, &shading), clear, buffers));
+        };
+        // What `shade_pixel` makes of these samples, without keeping them.
+        // Shadow rays that the light's grid may not answer go through
+        // the BVH as the pixel's packet, in `covered_samples`.
+        let lanes = clear
+            || !shading.shadowed()
+            || setup
+                .light_grid
+                .as_ref()
+                .is_some_and(|g| !g.is_crowded_anywhere());
+        let pixel = match shading.flat_lambert().filter(|_| lanes) {
+            Some(surface) => {
+                let pixel = CoveredPixel {
+                    setup,
+                    spp,
+                    pixel: (i, j),
+                    cover: &cover,
+                    surface,
+                    tint,
+                    shadowed: shading.shadowed(),
+                    shadows_clear: clear,
+                };
+                let PixelBuffers {
+                    lanes,
+                    luminance,
+                    scratch,
+                    ..
+                } = buffers;
+                lanes.shade(&pixel, luminance, &mut |p, o| {
+                    shading.blocked_from_light(self, (p, o), &mut scratch.light_packet)
+                })
+            }
+            None if clear || !shading.shadowed() => {
+                shade_one_by_one(setup, spp, (i, j), (&cover, &shading, tint), buffers)
+            }
+            None => {
+                return Some(self.covered_samples(setup, spp, (i, j), (&cover, &shading), clear, buffers));
+            }
+        };
+        Some(Traced::Shaded(pixel))
+    }
+
+    /// A covered pixel's samples into `buffers.samples`, hit by hit.
+    fn covered_samples(
+        &self,
+        setup: &Setup,
+        spp: Strata,
+        pixel: (u32, u32),
+        (cover, shading): (&Cover, &TriangleShading),
+        shadows_clear: bool,
+        buffers: &mut PixelBuffers,
+    ) -> Traced {
+        trace_samples(setup, spp, pixel, buffers, |towards| {
             Some(shading.surface(self, towards, cover.hit(towards)))
         });
-        Some(Traced::Samples { shadows_clear: clear })
+        Traced::Samples { shadows_clear }
     }
 
     /// Whether no shadow ray of the covered pixel's samples can be blocked:
@@ -185,12 +217,16 @@ mod tests {
             .count();
         assert!(covered > 160 * 120 / 2, "{covered} pixels covered");
         let control = RenderControl::default();
-        for light in [
-            Vec3::new(-1.0, 3.0, 1.0),
-            Vec3::new(2.5, 0.05, -1.0),
-            Vec3::new(0.35, 0.3, 0.2),
+        // Blinn-Phong (samples one by one) and Lambert (in lanes).
+        for (light, k) in [
+            (Vec3::new(-1.0, 3.0, 1.0), 0.5),
+            (Vec3::new(2.5, 0.05, -1.0), 0.5),
+            (Vec3::new(0.35, 0.3, 0.2), 0.5),
+            (Vec3::new(-1.0, 3.0, 1.0), 1.0),
+            (Vec3::new(0.35, 0.3, 0.2), 1.0),
         ] {
             settings.light.position = light;
+            settings.material.k = k;
             let render = |covers| {
                 let shortcuts = Shortcuts {
                     covers,

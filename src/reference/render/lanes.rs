@@ -24,7 +24,12 @@ pub(super) struct Lanes {
     x: Vec<f64>,
     y: Vec<f64>,
     z: Vec<f64>,
-    /// Each sample's light: L / (c · colour), V and its shadow rays.
+    /// Each sample's point on the triangle, by coordinate.
+    px: Vec<f64>,
+    py: Vec<f64>,
+    pz: Vec<f64>,
+    /// Each sample's light where visible: L / (c · colour), its V and
+    /// its shadow rays.
     scaled: Vec<f64>,
     visibility: Vec<f64>,
     shadow_rays: Vec<u32>,
@@ -38,47 +43,63 @@ pub(super) struct CoveredPixel<'a> {
     pub(super) cover: &'a Cover,
     pub(super) surface: FlatLambert,
     pub(super) tint: DVec3,
-    /// Whether its points cast shadow rays (none of them blocked).
+    /// Whether its points cast shadow rays.
     pub(super) shadowed: bool,
+    /// Whether none of them can be blocked.
+    pub(super) shadows_clear: bool,
 }
 
 impl Lanes {
     /// The pixel: what `Reference::shade_pixel` makes of its samples.
-    pub(super) fn shade(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>) -> Pixel {
+    /// `blocked(p, o)`: whether the shadow ray of the sample at p, seen
+    /// along o (unit, towards the eye), is blocked.
+    pub(super) fn shade(
+        &mut self,
+        pixel: &CoveredPixel,
+        luminance: &mut Vec<f64>,
+        blocked: Blocked,
+    ) -> Pixel {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx512f") && std::arch::is_x86_feature_detected!("avx512dq") {
             // SAFETY: the CPU has AVX-512 F and DQ.
-            return unsafe { self.shade_avx512(pixel, luminance) };
+            return unsafe { self.shade_avx512(pixel, luminance, blocked) };
         }
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2.
-            return unsafe { self.shade_avx2(pixel, luminance) };
+            return unsafe { self.shade_avx2(pixel, luminance, blocked) };
         }
-        self.shade_lanes(pixel, luminance)
+        self.shade_lanes(pixel, luminance, blocked)
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    fn shade_avx2(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>) -> Pixel {
-        self.shade_lanes(pixel, luminance)
+    fn shade_avx2(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>, blocked: Blocked) -> Pixel {
+        self.shade_lanes(pixel, luminance, blocked)
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx512f,avx512dq")]
-    fn shade_avx512(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>) -> Pixel {
-        self.shade_lanes(pixel, luminance)
+    fn shade_avx512(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>, blocked: Blocked) -> Pixel {
+        self.shade_lanes(pixel, luminance, blocked)
     }
 
     #[inline(always)]
-    fn shade_lanes(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>) -> Pixel {
+    fn shade_lanes(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>, blocked: Blocked) -> Pixel {
         let n = pixel.spp.count();
         self.directions(pixel);
         self.lights(pixel);
+        if pixel.shadowed && !pixel.shadows_clear {
+            self.shadows(blocked);
+        }
         let mut sums = PixelSums::new(luminance);
         for s in 0..n as usize {
             let light = LightEstimate {
-                scaled_radiance: self.scaled[s],
+                scaled_radiance: if self.visibility[s] > 0.0 {
+                    self.scaled[s]
+                } else {
+                    0.0
+                },
                 visibility: self.visibility[s],
                 std_error: Some(0.0),
                 shadow_rays: self.shadow_rays[s],
@@ -113,13 +134,20 @@ impl Lanes {
         }
     }
 
-    /// Each sample's light: `TriangleShading::point` and
-    /// `shading::point_light_at`, whose branches become selects.
+    /// Each sample's light where it is visible: `TriangleShading::point`
+    /// and `shading::point_light_at`, whose branches become selects.
     #[inline(always)]
     fn lights(&mut self, pixel: &CoveredPixel) {
         let n = pixel.spp.count() as usize;
-        self.scaled.resize(n, 0.0);
-        self.visibility.resize(n, 0.0);
+        for v in [
+            &mut self.px,
+            &mut self.py,
+            &mut self.pz,
+            &mut self.scaled,
+            &mut self.visibility,
+        ] {
+            v.resize(n, 0.0);
+        }
         self.shadow_rays.resize(n, 0);
         let setup = pixel.setup;
         let FlatLambert {
@@ -130,6 +158,7 @@ impl Lanes {
         } = pixel.surface;
         let (q, intensity, shadowed) = (setup.light_position, setup.intensity_w_sr, pixel.shadowed);
         let (xs, ys, zs) = (&self.x[..n], &self.y[..n], &self.z[..n]);
+        let (px, py, pz) = (&mut self.px[..n], &mut self.py[..n], &mut self.pz[..n]);
         let (scaled, visibility, rays) = (
             &mut self.scaled[..n],
             &mut self.visibility[..n],
@@ -140,23 +169,43 @@ impl Lanes {
             let [b0, b1, b2] = pixel.cover.hit(d).at.barycentric;
             let length = d.length();
             let p = a * b0 + b * b1 + c * b2;
+            (px[s], py[s], pz[s]) = (p.x, p.y, p.z);
             let o = -d / length;
             let flip = double_sided & (normal.dot(o) < 0.0);
             let n = if flip { -normal } else { normal };
             let inc = incidence(p, n, q);
             let cos = inc.cos_theta;
             // point_light_at: a shadowed point casts its one shadow ray
-            // unless the light is below its horizon (none is blocked).
+            // unless the light is below its horizon (`shadows` tells
+            // whether it is blocked).
             let below = cos <= 0.0;
-            let v = if shadowed & below { 0.0 } else { 1.0 };
-            let lit = (v > 0.0) & (cos > 0.0) & (n.dot(o) > 0.0);
+            let lit = (cos > 0.0) & (n.dot(o) > 0.0);
             let e = point_irradiance(intensity, cos, inc.r);
             scaled[s] = if lit { diffuse * e } else { 0.0 };
-            visibility[s] = v;
+            visibility[s] = if shadowed & below { 0.0 } else { 1.0 };
             rays[s] = (shadowed & !below) as u32;
         }
     }
+
+    /// Each shadow ray's answer, one by one: V = 0 where blocked.
+    fn shadows(&mut self, blocked: Blocked) {
+        for s in 0..self.visibility.len() {
+            if self.shadow_rays[s] == 0 {
+                continue;
+            }
+            let d = DVec3::new(self.x[s], self.y[s], self.z[s]);
+            // As `TriangleShading::point` has it.
+            let o = -d / d.length();
+            if blocked(DVec3::new(self.px[s], self.py[s], self.pz[s]), o) {
+                self.visibility[s] = 0.0;
+            }
+        }
+    }
 }
+
+/// Whether the shadow ray of the point p seen along o (unit, towards the
+/// eye) is blocked.
+pub(super) type Blocked<'a> = &'a mut dyn FnMut(DVec3, DVec3) -> bool;
 
 #[cfg(test)]
 mod tests {
@@ -241,22 +290,23 @@ mod tests {
                     surface,
                     tint,
                     shadowed: shading.shadowed(),
+                    // As the one-by-one path is asked: `render::cover`'s
+                    // tests compare the shadows.
+                    shadows_clear: true,
                 };
-                // Whether they are blocked is not the lanes' business: the
-                // one-by-one path is asked as though none were.
                 let one = shade_one_by_one(&setup, spp, (i, j), (&cover, &shading, tint), &mut buffers);
                 let mut luminance = Vec::new();
-                let mut laned = vec![lanes.shade_lanes(&pixel, &mut luminance)];
+                let mut laned = vec![lanes.shade_lanes(&pixel, &mut luminance, &mut |_, _| true)];
                 #[cfg(target_arch = "x86_64")]
                 {
                     use std::arch::is_x86_feature_detected as has;
                     if has!("avx2") {
                         // SAFETY: the CPU has AVX2.
-                        laned.push(unsafe { lanes.shade_avx2(&pixel, &mut luminance) });
+                        laned.push(unsafe { lanes.shade_avx2(&pixel, &mut luminance, &mut |_, _| true) });
                     }
                     if has!("avx512f") && has!("avx512dq") {
                         // SAFETY: the CPU has AVX-512 F and DQ.
-                        laned.push(unsafe { lanes.shade_avx512(&pixel, &mut luminance) });
+                        laned.push(unsafe { lanes.shade_avx512(&pixel, &mut luminance, &mut |_, _| true) });
                     }
                 }
                 for laned in laned {
