@@ -33,7 +33,13 @@ pub(super) struct Lanes {
     scaled: Vec<f64>,
     visibility: Vec<f64>,
     shadow_rays: Vec<u32>,
+    /// Whether the sign of a sample's normal · o needs o itself.
+    unsure: Vec<bool>,
 }
+
+/// |normal · d| below this fraction of Σ |normalᵢ dᵢ| is not trusted to
+/// have the sign of normal · (d / |d|) computed (both round by ~4·10⁻¹⁶ of it).
+const SIDE_MARGIN: f64 = 1e-14;
 
 /// What a covered, flat, Lambertian pixel's samples share.
 pub(super) struct CoveredPixel<'a> {
@@ -134,8 +140,7 @@ impl Lanes {
         }
     }
 
-    /// Each sample's light where it is visible: `TriangleShading::point`
-    /// and `shading::point_light_at`, whose branches become selects.
+    /// Each sample's point and light ([`sample_light`]).
     #[inline(always)]
     fn lights(&mut self, pixel: &CoveredPixel) {
         let n = pixel.spp.count() as usize;
@@ -149,14 +154,8 @@ impl Lanes {
             v.resize(n, 0.0);
         }
         self.shadow_rays.resize(n, 0);
-        let setup = pixel.setup;
-        let FlatLambert {
-            corners: [a, b, c],
-            normal,
-            double_sided,
-            diffuse,
-        } = pixel.surface;
-        let (q, intensity, shadowed) = (setup.light_position, setup.intensity_w_sr, pixel.shadowed);
+        self.unsure.resize(n, false);
+        let normal = pixel.surface.normal;
         let (xs, ys, zs) = (&self.x[..n], &self.y[..n], &self.z[..n]);
         let (px, py, pz) = (&mut self.px[..n], &mut self.py[..n], &mut self.pz[..n]);
         let (scaled, visibility, rays) = (
@@ -164,26 +163,27 @@ impl Lanes {
             &mut self.visibility[..n],
             &mut self.shadow_rays[..n],
         );
+        let unsure = &mut self.unsure[..n];
+        let mut any_unsure = false;
         for s in 0..n {
             let d = DVec3::new(xs[s], ys[s], zs[s]);
-            let [b0, b1, b2] = pixel.cover.hit(d).at.barycentric;
-            let length = d.length();
-            let p = a * b0 + b * b1 + c * b2;
+            // The side the eye is on, without normalizing d (a square
+            // root and three divisions): normal · (−d) has the sign of
+            // normal · o where it is far from its rounding.
+            let side = normal.dot(-d);
+            unsure[s] = !(side.abs() > SIDE_MARGIN * normal.abs().dot(d.abs()));
+            any_unsure |= unsure[s];
+            let (p, light) = sample_light(pixel, d, side);
             (px[s], py[s], pz[s]) = (p.x, p.y, p.z);
-            let o = -d / length;
-            let flip = double_sided & (normal.dot(o) < 0.0);
-            let n = if flip { -normal } else { normal };
-            let inc = incidence(p, n, q);
-            let cos = inc.cos_theta;
-            // point_light_at: a shadowed point casts its one shadow ray
-            // unless the light is below its horizon (`shadows` tells
-            // whether it is blocked).
-            let below = cos <= 0.0;
-            let lit = (cos > 0.0) & (n.dot(o) > 0.0);
-            let e = point_irradiance(intensity, cos, inc.r);
-            scaled[s] = if lit { diffuse * e } else { 0.0 };
-            visibility[s] = if shadowed & below { 0.0 } else { 1.0 };
-            rays[s] = (shadowed & !below) as u32;
+            (scaled[s], visibility[s], rays[s]) = light;
+        }
+        if any_unsure {
+            for s in (0..n).filter(|&s| unsure[s]) {
+                let d = DVec3::new(xs[s], ys[s], zs[s]);
+                // As `TriangleShading::point` has it.
+                let side = normal.dot(-d / d.length());
+                (_, (scaled[s], visibility[s], rays[s])) = sample_light(pixel, d, side);
+            }
         }
     }
 
@@ -201,6 +201,42 @@ impl Lanes {
             }
         }
     }
+}
+
+/// A sample's point and light, along d from the eye (not normalized):
+/// `TriangleShading::point` and `shading::point_light_at`, whose branches
+/// become selects. `side` has the sign of normal · o (o the unit direction
+/// to the eye), which is all the point's normal and BRDF need of o. The
+/// light: L / (c · colour) where the point is visible, V and the shadow
+/// rays (`Lanes::shadows` tells whether they are blocked).
+#[inline(always)]
+fn sample_light(pixel: &CoveredPixel, d: DVec3, side: f64) -> (DVec3, (f64, f64, u32)) {
+    let FlatLambert {
+        corners: [a, b, c],
+        normal,
+        double_sided,
+        diffuse,
+    } = pixel.surface;
+    let setup = pixel.setup;
+    let [b0, b1, b2] = pixel.cover.hit(d).at.barycentric;
+    let p = a * b0 + b * b1 + c * b2;
+    // −normal · o is −(normal · o) exactly.
+    let flip = double_sided & (side < 0.0);
+    let (n, facing) = if flip {
+        (-normal, -side > 0.0)
+    } else {
+        (normal, side > 0.0)
+    };
+    let inc = incidence(p, n, setup.light_position);
+    let cos = inc.cos_theta;
+    // A shadowed point casts its one shadow ray unless the light is below
+    // its horizon.
+    let below = cos <= 0.0;
+    let e = point_irradiance(setup.intensity_w_sr, cos, inc.r);
+    let scaled = if (cos > 0.0) & facing { diffuse * e } else { 0.0 };
+    let shadowed = pixel.shadowed;
+    let visibility = if shadowed & below { 0.0 } else { 1.0 };
+    (p, (scaled, visibility, (shadowed & !below) as u32))
 }
 
 /// Whether the shadow ray of the point p seen along o (unit, towards the
