@@ -171,7 +171,8 @@ impl Lanes {
             // root and three divisions): normal · (−d) has the sign of
             // normal · o where it is far from its rounding.
             let side = normal.dot(-d);
-            unsure[s] = !(side.abs() > SIDE_MARGIN * normal.abs().dot(d.abs()));
+            let sure = side.abs() > SIDE_MARGIN * normal.abs().dot(d.abs());
+            unsure[s] = !sure;
             any_unsure |= unsure[s];
             let (p, light) = sample_light(pixel, d, side);
             (px[s], py[s], pz[s]) = (p.x, p.y, p.z);
