@@ -9,6 +9,7 @@ use super::shading::{Scratch, Setup};
 use super::surface::Surface;
 use super::{Reference, ReferenceError, ReferenceOptions, RenderControl, pixel_index};
 use crate::settings::Settings;
+use cover::{BlockCovers, Covered};
 use glam::DVec3;
 use pixel::{Pixel, PixelSums, Tile};
 use rayon::prelude::*;
@@ -164,6 +165,7 @@ impl Reference {
             return Some(tile);
         }
         let mut buffers = PixelBuffers::default();
+        let mut blocks = (shortcuts.covers && n > 1).then(|| BlockCovers::new([x0, y0, x1, y1]));
         // Blocks of `run` pixels, two rows by run / 2 columns (or one row).
         let (cols, rows) = if run > 1 { (run / 2, 2) } else { (1, 1) };
         let mut below = Vec::new();
@@ -175,8 +177,12 @@ impl Reference {
             for i in (x0..x1).step_by(cols as usize) {
                 let width = cols.min(x1 - i);
                 if width * band == 1 {
+                    let block = match (&setup.eye_grid, &mut blocks) {
+                        (Some(grid), Some(blocks)) => blocks.of(self, setup, grid, (i, j)),
+                        _ => None,
+                    };
                     tile.add(
-                        match self.trace_pixel_samples(setup, spp, (i, j), shortcuts, &mut buffers) {
+                        match self.trace_pixel_samples(setup, spp, (i, j), (shortcuts, block), &mut buffers) {
                             Traced::Background => Pixel::background(n),
                             Traced::Shaded(pixel) => pixel,
                             Traced::Samples { shadows_clear } => {
@@ -274,10 +280,15 @@ impl Reference {
         setup: &Setup,
         spp: Strata,
         (i, j): (u32, u32),
-        shortcuts: Shortcuts,
+        (shortcuts, block): (Shortcuts, Option<&Covered>),
         buffers: &mut PixelBuffers,
     ) -> Traced {
         let n = spp.count();
+        if let (Some(grid), Some(block)) = (&setup.eye_grid, block)
+            && let Some(traced) = self.trace_covered_samples(setup, spp, (i, j), (grid, Some(block)), buffers)
+        {
+            return traced;
+        }
         let (x, y) = (i as f64, j as f64);
         // Several samples: find their cell once when it is the same for all.
         let cell = setup
@@ -294,7 +305,7 @@ impl Reference {
         if shortcuts.covers
             && n > 1
             && let Some(grid) = &setup.eye_grid
-            && let Some(traced) = self.trace_covered_samples(setup, spp, (i, j), grid, buffers)
+            && let Some(traced) = self.trace_covered_samples(setup, spp, (i, j), (grid, None), buffers)
         {
             return traced;
         }

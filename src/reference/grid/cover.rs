@@ -29,7 +29,7 @@ use glam::DVec3;
 /// corners X, Y) are not trusted: both tests round them by ~10⁻¹⁴ of it.
 const MARGIN: f64 = 1e-10;
 /// Cells at most around a pixel's rays.
-const LISTS: usize = 4;
+const LISTS: usize = 16;
 /// Relative allowance on depths compared across the two tests' rounding.
 const DEPTH_SLACK: f64 = 1e-9;
 /// Distances from a plane below this fraction of the coordinates are not

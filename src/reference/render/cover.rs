@@ -18,28 +18,124 @@ use glam::DVec3;
 /// is trusted over the pixel when it passes at the corners by this factor.
 const OWN_SLACK: f64 = 2.0;
 
+/// Edge length (pixels) of the blocks tried for a cover first: a triangle
+/// that covers a block covers each of its pixels (their cones lie in the
+/// block's), which then need no test of their own.
+const BLOCK: u32 = 4;
+
+/// The triangle that covers a pixel or a block of pixels, what its points
+/// share, and whether their shadow rays towards a point light are known
+/// unblocked.
+pub(super) struct Covered<'a> {
+    cover: Cover,
+    shading: TriangleShading<'a>,
+    clear: bool,
+}
+
+/// The covers of the blocks of one band of BLOCK rows of a tile, each
+/// found when a pixel first asks for it.
+pub(super) struct BlockCovers<'a> {
+    /// The tile: (x0, y0) to (x1, y1), excluded.
+    tile: [u32; 4],
+    /// The top row of the band.
+    band: u32,
+    covers: Vec<Option<Option<Covered<'a>>>>,
+}
+
+impl<'a> BlockCovers<'a> {
+    pub(super) fn new(tile: [u32; 4]) -> Self {
+        Self {
+            tile,
+            band: u32::MAX,
+            covers: Vec::new(),
+        }
+    }
+
+    /// The cover of the block that holds pixel (i, j), if it has one.
+    pub(super) fn of(
+        &mut self,
+        reference: &'a Reference,
+        setup: &'a Setup,
+        grid: &DirectionGrid,
+        (i, j): (u32, u32),
+    ) -> Option<&Covered<'a>> {
+        let [x0, y0, x1, y1] = self.tile;
+        let band = y0 + (j - y0) / BLOCK * BLOCK;
+        if band != self.band {
+            self.band = band;
+            self.covers.clear();
+            self.covers
+                .resize_with((x1 - x0).div_ceil(BLOCK) as usize, || None);
+        }
+        let k = ((i - x0) / BLOCK) as usize;
+        self.covers[k]
+            .get_or_insert_with(|| {
+                let (bx, by) = (x0 + k as u32 * BLOCK, band);
+                let (far_x, far_y) = ((bx + BLOCK).min(x1) as f64, (by + BLOCK).min(y1) as f64);
+                let (bx, by) = (bx as f64, by as f64);
+                let corners = [(bx, by), (far_x, by), (bx, far_y), (far_x, far_y)];
+                reference.covered(setup, grid, &corners.map(|(x, y)| setup.rays.towards(x, y)))
+            })
+            .as_ref()
+    }
+}
+
 impl Reference {
+    /// The triangle that covers the cone of the corner rays `corners` in
+    /// the eye grid, if one surely does.
+    fn covered<'a>(
+        &'a self,
+        setup: &'a Setup,
+        grid: &DirectionGrid,
+        corners: &[DVec3; 4],
+    ) -> Option<Covered<'a>> {
+        let cover = grid.cover(corners)?;
+        let shading = TriangleShading::new(self, setup, cover.triangle());
+        let clear = self.shadows_clear(setup, &cover, &shading, corners);
+        Some(Covered {
+            cover,
+            shading,
+            clear,
+        })
+    }
+
     /// Pixel (i, j) when one triangle covers it in the eye grid (None,
-    /// nothing done, when none surely does): shaded at once where a point
-    /// light's shadow rays are all known unblocked and the triangle's tint
-    /// is the same everywhere, else its samples into `buffers.samples`
-    /// and whether their shadow rays are known unblocked.
+    /// nothing done, when none surely does), `block` the cover of its
+    /// block if it has one: shaded at once where a point light's shadow
+    /// rays are all known unblocked, or may be asked of the light's grid
+    /// one by one, and the triangle's tint is the same everywhere; else
+    /// its samples into `buffers.samples` and whether their shadow rays
+    /// are known unblocked.
     pub(super) fn trace_covered_samples(
         &self,
         setup: &Setup,
         spp: Strata,
         (i, j): (u32, u32),
-        grid: &DirectionGrid,
+        (grid, block): (&DirectionGrid, Option<&Covered>),
         buffers: &mut PixelBuffers,
     ) -> Option<Traced> {
         let (x, y) = (i as f64, j as f64);
         let corners = [(x, y), (x + 1.0, y), (x, y + 1.0), (x + 1.0, y + 1.0)]
             .map(|(cx, cy)| setup.rays.towards(cx, cy));
-        let cover = grid.cover(&corners)?;
-        let shading = TriangleShading::new(self, setup, cover.triangle());
-        let clear = self.shadows_clear(setup, &cover, &shading, &corners);
+        let own;
+        let (cover, shading, clear) = match block {
+            // The pixel's own patch may be clear where its block's is not.
+            Some(Covered {
+                cover,
+                shading,
+                clear,
+            }) => (
+                cover,
+                shading,
+                *clear || self.shadows_clear(setup, cover, shading, &corners),
+            ),
+            None => {
+                own = self.covered(setup, grid, &corners)?;
+                (&own.cover, &own.shading, own.clear)
+            }
+        };
         let Some(tint) = shading.plain_tint().filter(|_| !setup.is_sphere_light()) else {
-            return Some(self.covered_samples(setup, spp, (i, j), (&cover, &shading), clear, buffers));
+            return Some(self.covered_samples(setup, spp, (i, j), (cover, shading), clear, buffers));
         };
         // What `shade_pixel` makes of these samples, without keeping them.
         // Shadow rays that the light's grid may not answer go through
@@ -56,7 +152,7 @@ impl Reference {
                     setup,
                     spp,
                     pixel: (i, j),
-                    cover: &cover,
+                    cover,
                     surface,
                     tint,
                     shadowed: shading.shadowed(),
@@ -73,10 +169,10 @@ impl Reference {
                 })
             }
             None if clear || !shading.shadowed() => {
-                shade_one_by_one(setup, spp, (i, j), (&cover, &shading, tint), buffers)
+                shade_one_by_one(setup, spp, (i, j), (cover, shading, tint), buffers)
             }
             None => {
-                return Some(self.covered_samples(setup, spp, (i, j), (&cover, &shading), clear, buffers));
+                return Some(self.covered_samples(setup, spp, (i, j), (cover, shading), clear, buffers));
             }
         };
         Some(Traced::Shaded(pixel))
