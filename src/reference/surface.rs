@@ -12,7 +12,6 @@ use crate::physics::BrdfParams;
 use crate::physics::colour::tint;
 use crate::scene::Material;
 use glam::{DVec2, DVec3};
-use std::f64::consts::PI;
 
 /// Where a primary ray lands, and the surface there as the light sees it.
 pub(super) struct Surface {
@@ -45,15 +44,17 @@ impl Surface {
     }
 }
 
-/// A flat triangle of a Lambertian material.
+/// What the lanes need of a triangle (`render::lanes`).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct FlatLambert {
+pub(super) struct LaneSurface {
     pub(super) corners: [DVec3; 3],
-    /// The shading normal, before it turns towards the viewer.
+    /// The vertex normals, None on a flat facet.
+    pub(super) normals: Option<[DVec3; 3]>,
+    /// The flat facet's normal, or the face's where the interpolated one
+    /// vanishes.
     pub(super) normal: DVec3,
     pub(super) double_sided: bool,
-    /// k/π (1/sr).
-    pub(super) diffuse: f64,
+    pub(super) brdf: BrdfParams<f64>,
 }
 
 /// What every point of one triangle shares, under one setup.
@@ -148,21 +149,19 @@ impl<'a> TriangleShading<'a> {
         self.plain.map(|(_, tint)| tint)
     }
 
-    pub(super) fn brdf(&self) -> &BrdfParams<f64> {
-        &self.brdf
-    }
-
-    /// What the samples of a flat, Lambertian triangle need (None for
-    /// vertex normals or a specular lobe).
-    pub(super) fn flat_lambert(&self) -> Option<FlatLambert> {
-        let normal = self.tri.flat_normal?;
-        (self.brdf.k >= 1.0).then(|| FlatLambert {
-            corners: self.tri.corners.map(|p| p.as_dvec3()),
-            normal,
+    /// What the lanes need of it: `point` and `brdf` spelled out.
+    pub(super) fn lane_surface(&self) -> LaneSurface {
+        let tri = self.tri;
+        LaneSurface {
+            corners: tri.corners.map(|p| p.as_dvec3()),
+            normals: tri
+                .flat_normal
+                .is_none()
+                .then(|| tri.normals.map(|n| n.as_dvec3())),
+            normal: tri.flat_normal.unwrap_or(tri.face_normal),
             double_sided: self.material.double_sided,
-            // blinn_phong's diffuse term, its specular one zero.
-            diffuse: self.brdf.k / PI,
-        })
+            brdf: self.brdf,
+        }
     }
 
     /// Whether its points cast shadow rays (shadows on and the object

@@ -6,11 +6,11 @@
 //! search ray by ray; the radiance to the rounding of the hit point.
 
 use super::lanes::CoveredPixel;
-use super::{Pixel, PixelBuffers, PixelSums, Traced, directions_first, trace_samples};
+use super::{PixelBuffers, Traced, trace_samples};
 use crate::reference::Reference;
 use crate::reference::grid::{Cover, DirectionGrid};
 use crate::reference::sampling::Strata;
-use crate::reference::shading::{Setup, point_light_at};
+use crate::reference::shading::Setup;
 use crate::reference::surface::TriangleShading;
 use glam::DVec3;
 
@@ -134,48 +134,37 @@ impl Reference {
                 (&own.cover, &own.shading, own.clear)
             }
         };
-        let Some(tint) = shading.plain_tint().filter(|_| !setup.is_sphere_light()) else {
-            return Some(self.covered_samples(setup, spp, (i, j), (cover, shading), clear, buffers));
-        };
-        // What `shade_pixel` makes of these samples, without keeping them.
-        // Shadow rays that the light's grid may not answer go through
-        // the BVH as the pixel's packet, in `covered_samples`.
-        let lanes = clear
+        // Shadow rays that the light's grid may not answer go through the
+        // BVH as the pixel's packet, in `covered_samples`.
+        let asked = clear
             || !shading.shadowed()
             || setup
                 .light_grid
                 .as_ref()
                 .is_some_and(|g| !g.is_crowded_anywhere());
-        let pixel = match shading.flat_lambert().filter(|_| lanes) {
-            Some(surface) => {
-                let pixel = CoveredPixel {
-                    setup,
-                    spp,
-                    pixel: (i, j),
-                    cover,
-                    surface,
-                    tint,
-                    shadowed: shading.shadowed(),
-                    shadows_clear: clear,
-                };
-                let PixelBuffers {
-                    lanes,
-                    luminance,
-                    scratch,
-                    ..
-                } = buffers;
-                lanes.shade(&pixel, luminance, &mut |p, o| {
-                    shading.blocked_from_light(self, (p, o), &mut scratch.light_packet)
-                })
-            }
-            None if clear || !shading.shadowed() => {
-                shade_one_by_one(setup, spp, (i, j), (cover, shading, tint), buffers)
-            }
-            None => {
-                return Some(self.covered_samples(setup, spp, (i, j), (cover, shading), clear, buffers));
-            }
+        let Some(tint) = shading.plain_tint().filter(|_| !setup.is_sphere_light() && asked) else {
+            return Some(self.covered_samples(setup, spp, (i, j), (cover, shading), clear, buffers));
         };
-        Some(Traced::Shaded(pixel))
+        // What `shade_pixel` makes of these samples, without keeping them.
+        let pixel = CoveredPixel {
+            setup,
+            spp,
+            pixel: (i, j),
+            cover,
+            surface: shading.lane_surface(),
+            tint,
+            shadowed: shading.shadowed(),
+            shadows_clear: clear,
+        };
+        let PixelBuffers {
+            lanes,
+            luminance,
+            scratch,
+            ..
+        } = buffers;
+        Some(Traced::Shaded(lanes.shade(&pixel, luminance, &mut |p, o| {
+            shading.blocked_from_light(self, (p, o), &mut scratch.light_packet)
+        })))
     }
 
     /// A covered pixel's samples into `buffers.samples`, hit by hit.
@@ -234,34 +223,6 @@ impl Reference {
     }
 }
 
-/// A covered pixel of plain tint whose shadow rays towards a point light
-/// are known unblocked, its samples shaded one by one (what
-/// `Reference::shade_pixel` makes of them, without keeping them).
-pub(super) fn shade_one_by_one(
-    setup: &Setup,
-    spp: Strata,
-    pixel: (u32, u32),
-    (cover, shading, tint): (&Cover, &TriangleShading, DVec3),
-    buffers: &mut PixelBuffers,
-) -> Pixel {
-    directions_first(setup, spp, pixel, buffers);
-    let PixelBuffers {
-        directions,
-        luminance,
-        ..
-    } = buffers;
-    let n = spp.count();
-    let mut sums = PixelSums::new(luminance);
-    for &towards in directions.iter() {
-        let (p, normal, o, _) = shading.point(towards, cover.hit(towards));
-        let light = point_light_at(setup, (p, normal, o), shading.brdf(), shading.shadowed(), || {
-            false
-        });
-        sums.add(tint, &light, n);
-    }
-    sums.pixel(n)
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::{RUN, Shortcuts};
@@ -313,7 +274,7 @@ mod tests {
             .count();
         assert!(covered > 160 * 120 / 2, "{covered} pixels covered");
         let control = RenderControl::default();
-        // Blinn-Phong (samples one by one) and Lambert (in lanes).
+        // Blinn-Phong and Lambert, both in lanes.
         for (light, k) in [
             (Vec3::new(-1.0, 3.0, 1.0), 0.5),
             (Vec3::new(2.5, 0.05, -1.0), 0.5),

@@ -1,19 +1,22 @@
-//! A covered pixel lit by a point light that no shadow ray can miss,
-//! Lambertian and flat, its samples computed lane by lane: each step a
-//! loop without branches over all of the pixel's samples, which the
-//! compiler turns into SIMD instructions: 8 samples at once with AVX-512,
-//! 4 with AVX2 (chosen at run time), 2 with the SSE2 every x86-64 has. Each lane does
-//! the very operations the sample-by-sample path does, in the same order:
-//! the same bits (`tests` holds them to it).
+//! A covered pixel of one tint lit by a point light, its samples computed
+//! lane by lane: each step a loop without branches over all of the
+//! pixel's samples, which the compiler turns into SIMD instructions: 8
+//! samples at once with AVX-512, 4 with AVX2 (chosen at run time), 2 with
+//! the SSE2 every x86-64 has. A specular lobe (a power) and the shadow rays
+//! that the pixel's test did not clear are then taken sample by sample.
+//! Each lane does the very operations the sample-by-sample path does, in
+//! the same order: the same bits (`tests` holds them to it).
 
 use super::PixelSums;
 use super::pixel::Pixel;
+use crate::physics::brdf::blinn_phong;
 use crate::physics::radiometry::{incidence, point_irradiance};
 use crate::reference::grid::Cover;
 use crate::reference::sampling::{PixelStreams, Strata};
 use crate::reference::shading::{LightEstimate, Setup};
-use crate::reference::surface::FlatLambert;
+use crate::reference::surface::LaneSurface;
 use glam::DVec3;
+use std::f64::consts::PI;
 
 /// The per-sample values of one pixel, in lanes.
 #[derive(Default)]
@@ -35,19 +38,24 @@ pub(super) struct Lanes {
     shadow_rays: Vec<u32>,
     /// Whether the sign of a sample's normal · o needs o itself.
     unsure: Vec<bool>,
+    /// What a specular lobe needs of each sample: its irradiance E, cos θ,
+    /// and its normal, direction to the light and to the eye by coordinate.
+    e: Vec<f64>,
+    cos: Vec<f64>,
+    vectors: [Vec<f64>; 9],
 }
 
 /// |normal · d| below this fraction of Σ |normalᵢ dᵢ| is not trusted to
 /// have the sign of normal · (d / |d|) computed (both round by ~4·10⁻¹⁶ of it).
 const SIDE_MARGIN: f64 = 1e-14;
 
-/// What a covered, flat, Lambertian pixel's samples share.
+/// What a covered pixel's samples share.
 pub(super) struct CoveredPixel<'a> {
     pub(super) setup: &'a Setup,
     pub(super) spp: Strata,
     pub(super) pixel: (u32, u32),
     pub(super) cover: &'a Cover,
-    pub(super) surface: FlatLambert,
+    pub(super) surface: LaneSurface,
     pub(super) tint: DVec3,
     /// Whether its points cast shadow rays.
     pub(super) shadowed: bool,
@@ -140,7 +148,9 @@ impl Lanes {
         }
     }
 
-    /// Each sample's point and light ([`sample_light`]).
+    /// Each sample's point and light ([`sample_light`]): on a flat,
+    /// Lambertian facet, the side the eye is on without normalizing the
+    /// direction; elsewhere with it, and the specular lobe sample by sample.
     #[inline(always)]
     fn lights(&mut self, pixel: &CoveredPixel) {
         let n = pixel.spp.count() as usize;
@@ -150,12 +160,39 @@ impl Lanes {
             &mut self.pz,
             &mut self.scaled,
             &mut self.visibility,
-        ] {
+            &mut self.e,
+            &mut self.cos,
+        ]
+        .into_iter()
+        .chain(&mut self.vectors)
+        {
             v.resize(n, 0.0);
         }
         self.shadow_rays.resize(n, 0);
         self.unsure.resize(n, false);
-        let normal = pixel.surface.normal;
+        let surface = &pixel.surface;
+        let specular = surface.brdf.k < 1.0;
+        match (surface.normals.is_some(), specular) {
+            (false, false) => self.light_loop::<false, false, false>(pixel),
+            (false, true) => self.light_loop::<true, false, true>(pixel),
+            (true, false) => self.light_loop::<true, true, false>(pixel),
+            (true, true) => self.light_loop::<true, true, true>(pixel),
+        }
+        if specular {
+            self.specular(surface);
+        }
+    }
+
+    /// [`sample_light`] for every sample, o found from the normalized
+    /// direction (`EXACT`) or, where its sign is sure, from normal · (−d);
+    /// the normal interpolated (`SMOOTH`) or the facet's; what the lobe
+    /// needs kept (`SPECULAR`: so many arrays that the loop stays scalar).
+    #[inline(always)]
+    fn light_loop<const EXACT: bool, const SMOOTH: bool, const SPECULAR: bool>(
+        &mut self,
+        pixel: &CoveredPixel,
+    ) {
+        let n = pixel.spp.count() as usize;
         let (xs, ys, zs) = (&self.x[..n], &self.y[..n], &self.z[..n]);
         let (px, py, pz) = (&mut self.px[..n], &mut self.py[..n], &mut self.pz[..n]);
         let (scaled, visibility, rays) = (
@@ -163,27 +200,57 @@ impl Lanes {
             &mut self.visibility[..n],
             &mut self.shadow_rays[..n],
         );
+        let (e, cos) = (&mut self.e[..n], &mut self.cos[..n]);
+        let [nx, ny, nz, lx, ly, lz, ox, oy, oz] = self.vectors.each_mut().map(|v| &mut v[..n]);
         let unsure = &mut self.unsure[..n];
         let mut any_unsure = false;
         for s in 0..n {
             let d = DVec3::new(xs[s], ys[s], zs[s]);
-            // The side the eye is on, without normalizing d (a square
-            // root and three divisions): normal · (−d) has the sign of
-            // normal · o where it is far from its rounding.
-            let side = normal.dot(-d);
-            let sure = side.abs() > SIDE_MARGIN * normal.abs().dot(d.abs());
-            unsure[s] = !sure;
-            any_unsure |= unsure[s];
-            let (p, light) = sample_light(pixel, d, side);
-            (px[s], py[s], pz[s]) = (p.x, p.y, p.z);
-            (scaled[s], visibility[s], rays[s]) = light;
+            let [b0, b1, b2] = pixel.cover.hit(d).at.barycentric;
+            let normal = shading_normal::<SMOOTH>(&pixel.surface, [b0, b1, b2]);
+            let o = if EXACT {
+                // As `TriangleShading::point` has it.
+                -d / d.length()
+            } else {
+                // The side the eye is on, without normalizing d (a square
+                // root and three divisions): normal · (−d) has the sign of
+                // normal · o where it is far from its rounding.
+                let sure = normal.dot(-d).abs() > SIDE_MARGIN * normal.abs().dot(d.abs());
+                unsure[s] = !sure;
+                any_unsure |= unsure[s];
+                -d
+            };
+            let light = sample_light(pixel, [b0, b1, b2], (normal, o));
+            (px[s], py[s], pz[s]) = light.p.into();
+            (scaled[s], visibility[s], rays[s]) = (light.scaled, light.visibility, light.shadow_rays);
+            if SPECULAR {
+                (e[s], cos[s]) = (light.e, light.cos);
+                (nx[s], ny[s], nz[s]) = light.n.into();
+                (lx[s], ly[s], lz[s]) = light.l.into();
+                (ox[s], oy[s], oz[s]) = o.into();
+            }
         }
-        if any_unsure {
+        if !EXACT && any_unsure {
             for s in (0..n).filter(|&s| unsure[s]) {
                 let d = DVec3::new(xs[s], ys[s], zs[s]);
-                // As `TriangleShading::point` has it.
-                let side = normal.dot(-d / d.length());
-                (_, (scaled[s], visibility[s], rays[s])) = sample_light(pixel, d, side);
+                let barycentric = pixel.cover.hit(d).at.barycentric;
+                let normal = shading_normal::<SMOOTH>(&pixel.surface, barycentric);
+                let light = sample_light(pixel, barycentric, (normal, -d / d.length()));
+                (scaled[s], visibility[s], rays[s]) = (light.scaled, light.visibility, light.shadow_rays);
+            }
+        }
+    }
+
+    /// The specular lobe's samples, one by one where the light is above the
+    /// horizon: `point_light_at`'s (f_d + f_s) · E.
+    fn specular(&mut self, surface: &LaneSurface) {
+        let [nx, ny, nz, lx, ly, lz, ox, oy, oz] = &self.vectors;
+        for s in 0..self.scaled.len() {
+            if self.cos[s] > 0.0 {
+                let n = DVec3::new(nx[s], ny[s], nz[s]);
+                let l = DVec3::new(lx[s], ly[s], lz[s]);
+                let o = DVec3::new(ox[s], oy[s], oz[s]);
+                self.scaled[s] = blinn_phong(n, l, o, &surface.brdf).total() * self.e[s];
             }
         }
     }
@@ -204,23 +271,48 @@ impl Lanes {
     }
 }
 
-/// A sample's point and light, along d from the eye (not normalized):
-/// `TriangleShading::point` and `shading::point_light_at`, whose branches
-/// become selects. `side` has the sign of normal · o (o the unit direction
-/// to the eye), which is all the point's normal and BRDF need of o. The
-/// light: L / (c · colour) where the point is visible, V and the shadow
-/// rays (`Lanes::shadows` tells whether they are blocked).
+/// The shading normal at the barycentrics b, before it turns towards the
+/// viewer: `TriangleShading::point`'s, interpolated (`SMOOTH`) or the
+/// facet's.
 #[inline(always)]
-fn sample_light(pixel: &CoveredPixel, d: DVec3, side: f64) -> (DVec3, (f64, f64, u32)) {
-    let FlatLambert {
+fn shading_normal<const SMOOTH: bool>(surface: &LaneSurface, [b0, b1, b2]: [f64; 3]) -> DVec3 {
+    match surface.normals {
+        Some([n0, n1, n2]) if SMOOTH => (n0 * b0 + n1 * b1 + n2 * b2).normalize_or(surface.normal),
+        _ => surface.normal,
+    }
+}
+
+/// One sample's point and light.
+struct SampleLight {
+    p: DVec3,
+    /// The shading normal, towards the viewer on double-sided materials.
+    n: DVec3,
+    l: DVec3,
+    cos: f64,
+    e: f64,
+    /// L / (c · colour) where the point is visible, Lambertian.
+    scaled: f64,
+    visibility: f64,
+    shadow_rays: u32,
+}
+
+/// A sample's point and light at barycentrics b: `TriangleShading::point` and `shading::point_light_at`,
+/// whose branches become selects. `normal` is the shading normal before it
+/// turns towards the viewer, `o` the unit direction to the eye or any
+/// vector on its side of `normal`'s plane (all that the normal and Lambert
+/// need of it). `Lanes::shadows` tells whether the shadow rays are blocked,
+/// `Lanes::specular` adds a specular lobe.
+#[inline(always)]
+fn sample_light(pixel: &CoveredPixel, [b0, b1, b2]: [f64; 3], (normal, o): (DVec3, DVec3)) -> SampleLight {
+    let LaneSurface {
         corners: [a, b, c],
-        normal,
         double_sided,
-        diffuse,
+        brdf,
+        ..
     } = pixel.surface;
     let setup = pixel.setup;
-    let [b0, b1, b2] = pixel.cover.hit(d).at.barycentric;
     let p = a * b0 + b * b1 + c * b2;
+    let side = normal.dot(o);
     // −normal · o is −(normal · o) exactly.
     let flip = double_sided & (side < 0.0);
     let (n, facing) = if flip {
@@ -234,10 +326,23 @@ fn sample_light(pixel: &CoveredPixel, d: DVec3, side: f64) -> (DVec3, (f64, f64,
     // its horizon.
     let below = cos <= 0.0;
     let e = point_irradiance(setup.intensity_w_sr, cos, inc.r);
-    let scaled = if (cos > 0.0) & facing { diffuse * e } else { 0.0 };
+    // blinn_phong's diffuse term.
+    let scaled = if (cos > 0.0) & facing {
+        brdf.k / PI * e
+    } else {
+        0.0
+    };
     let shadowed = pixel.shadowed;
-    let visibility = if shadowed & below { 0.0 } else { 1.0 };
-    (p, (scaled, visibility, (shadowed & !below) as u32))
+    SampleLight {
+        p,
+        n,
+        l: inc.l,
+        cos,
+        e,
+        scaled,
+        visibility: if shadowed & below { 0.0 } else { 1.0 },
+        shadow_rays: (shadowed & !below) as u32,
+    }
 }
 
 /// Whether the shadow ray of the point p seen along o (unit, towards the
@@ -246,20 +351,53 @@ pub(super) type Blocked<'a> = &'a mut dyn FnMut(DVec3, DVec3) -> bool;
 
 #[cfg(test)]
 mod tests {
-    use super::super::PixelBuffers;
-    use super::super::cover::shade_one_by_one;
+    use super::super::{PixelBuffers, directions_first};
     use super::*;
     use crate::reference::grid::DirectionGrid;
+    use crate::reference::shading::point_light_at;
     use crate::reference::surface::TriangleShading;
     use crate::reference::{Reference, ReferenceOptions};
     use crate::scene::{Aabb, Material, Object, Scene, shapes};
     use crate::settings::Settings;
     use glam::Vec3;
 
+    /// A covered pixel of plain tint whose shadow rays towards a point light
+    /// are known unblocked, its samples shaded one by one (what
+    /// `Reference::shade_pixel` makes of them, without keeping them).
+    fn shade_one_by_one(
+        setup: &Setup,
+        spp: Strata,
+        pixel: (u32, u32),
+        (cover, shading, tint): (&Cover, &TriangleShading, DVec3),
+        buffers: &mut PixelBuffers,
+    ) -> Pixel {
+        directions_first(setup, spp, pixel, buffers);
+        let PixelBuffers {
+            directions,
+            luminance,
+            ..
+        } = buffers;
+        let n = spp.count();
+        let mut sums = PixelSums::new(luminance);
+        for &towards in directions.iter() {
+            let (p, normal, o, _) = shading.point(towards, cover.hit(towards));
+            let light = point_light_at(
+                setup,
+                (p, normal, o),
+                &shading.lane_surface().brdf,
+                shading.shadowed(),
+                || false,
+            );
+            sums.add(tint, &light, n);
+        }
+        sums.pixel(n)
+    }
+
     /// Covered pixels in lanes give the bits their samples give one by one:
-    /// one-sided and double-sided faces, seen from above and from below
-    /// the light's horizon, with shadows and without, at 64, 32 and 9 samples
-    /// (lanes left over), in every code this CPU runs (SSE2, AVX2, AVX-512).
+    /// one-sided and double-sided faces, flat and smooth, Lambertian and
+    /// Blinn-Phong, seen from above and from below the light's horizon,
+    /// with shadows and without, at 64, 32, 16 and 9 samples (lanes left
+    /// over), in every code this CPU runs (SSE2, AVX2, AVX-512).
     #[test]
     fn lanes_give_the_bits_of_samples_one_by_one() {
         let cube = Aabb {
@@ -270,6 +408,7 @@ mod tests {
             objects: vec![
                 Object::new("ground", shapes::ground(Vec3::ZERO, 6.0), 1),
                 Object::new("box", shapes::cuboid(cube), 0),
+                Object::new("ball", shapes::sphere(Vec3::new(1.0, 0.5, 0.8), 0.5, 24, 12), 0),
             ],
             materials: vec![
                 Material::default(),
@@ -282,21 +421,22 @@ mod tests {
         };
         let reference = Reference::new(&scene);
         let mut settings = Settings::default();
-        settings.material.k = 1.0;
         settings.camera.target = Vec3::new(0.0, 0.2, 0.0);
         (settings.image.width, settings.image.height) = (128, 96);
-        let mut compared = [0; 2];
+        // Pixels compared in the dark and in the light, smooth and specular.
+        let mut compared = [0; 4];
         // The light above everything, then level with the box's top (with
         // shadows and without: V = 1 on the far faces); then
         // the eye and the light below the double-sided ground, which turns
         // its normal towards them.
         let (above, below) = (Vec3::new(1.8, 1.4, 2.6), Vec3::new(1.8, -1.2, 2.6));
-        for (eye, light, shadows, spp) in [
-            (above, Vec3::new(-1.0, 3.0, 1.0), true, 64),
-            (above, Vec3::new(2.0, 0.8, -1.5), true, 32),
-            (above, Vec3::new(2.0, 0.8, -1.5), false, 16),
-            (below, Vec3::new(1.0, -0.5, 0.5), false, 9),
+        for (eye, light, shadows, spp, k) in [
+            (above, Vec3::new(-1.0, 3.0, 1.0), true, 64, 1.0),
+            (above, Vec3::new(2.0, 0.8, -1.5), true, 32, 0.5),
+            (above, Vec3::new(2.0, 0.8, -1.5), false, 16, 1.0),
+            (below, Vec3::new(1.0, -0.5, 0.5), false, 9, 0.3),
         ] {
+            settings.material.k = k;
             settings.camera.eye = eye;
             settings.light.position = light;
             settings.shadow.enabled = shadows;
@@ -316,9 +456,10 @@ mod tests {
                     continue;
                 };
                 let shading = TriangleShading::new(&reference, &setup, cover.triangle());
-                let (Some(surface), Some(tint)) = (shading.flat_lambert(), shading.plain_tint()) else {
-                    panic!("every face is flat and plain");
+                let Some(tint) = shading.plain_tint() else {
+                    panic!("every face is plain");
                 };
+                let surface = shading.lane_surface();
                 let pixel = CoveredPixel {
                     setup: &setup,
                     spp,
@@ -360,9 +501,13 @@ mod tests {
                     assert_eq!(bits(&laned), bits(&one), "pixel ({i}, {j}), light at {light}");
                 }
                 compared[(one.visibility > 0.0) as usize] += 1;
+                compared[2] += surface.normals.is_some() as usize;
+                compared[3] += (k < 1.0) as usize;
             }
         }
-        // Pixels in the dark and in the light, the most of the image.
-        assert!(compared[0] > 500 && compared[1] > 10_000, "{compared:?}");
+        assert!(
+            compared[0] > 500 && compared[1] > 10_000 && compared[2] > 200 && compared[3] > 5_000,
+            "{compared:?}"
+        );
     }
 }
