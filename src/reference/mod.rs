@@ -30,6 +30,7 @@ mod light_packet;
 mod render;
 pub mod sampling;
 mod shading;
+mod simd;
 mod spectral;
 mod surface;
 mod texture;

@@ -326,23 +326,6 @@ fn kept_by_lane(b: &Block, planes: &EdgePlanes, nearest: f32) -> u32 {
     bits
 }
 
-/// Runs `f` compiled with AVX2 enabled when the CPU has it (inlined code
-/// then uses 256-bit registers and three-operand instructions), as it is
-/// otherwise. Fused multiply-add stays off: every result keeps its bits.
-#[inline(always)]
-pub fn with_avx2<R>(f: impl FnOnce() -> R) -> R {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        #[target_feature(enable = "avx2")]
-        fn avx2<R>(f: impl FnOnce() -> R) -> R {
-            f()
-        }
-        // SAFETY: the CPU has AVX2.
-        return unsafe { avx2(f) };
-    }
-    f()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

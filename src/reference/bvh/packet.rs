@@ -23,9 +23,10 @@
 //!   through the apex in f32 (`bvh/lanes.rs`), with a margin that makes a
 //!   ray it rules out a miss of the scalar test.
 
-use super::lanes::{GROUP, LANES, Lines, with_avx2};
+use super::lanes::{GROUP, LANES, Lines};
 use super::{Hit, TRAVERSAL, TriangleBvh, closer};
 use crate::reference::intersect::{ShearedRay, with_axes};
+use crate::reference::simd::{self, Isa};
 // `UVec2` is named inside obvhs's `traverse!` macro.
 use glam::{DVec3, UVec2};
 use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
@@ -158,7 +159,8 @@ impl TriangleBvh {
     /// Walks the BVH with a packet of rays inside `cone`, compiled for
     /// AVX2 where the CPU has it (same IEEE operations, wider registers).
     pub fn walk_cone(&self, cone: &Cone, rays: &mut impl Rays) {
-        with_avx2(
+        simd::with(
+            Isa::Avx2,
             #[inline(always)]
             || self.walk_cone_here(cone, rays),
         );

@@ -4,6 +4,8 @@
 //! pixel where the light's grid shows that nothing can block any of them.
 //! The same triangle under every sample and the same visibility as the
 //! search ray by ray; the radiance to the rounding of the hit point.
+//! Covers are tried for blocks of pixels first ([`BlockCovers`]); a covered
+//! pixel of one tint under a point light is shaded in lanes (`lanes`).
 
 use super::lanes::CoveredPixel;
 use super::{PixelBuffers, Traced, trace_samples};

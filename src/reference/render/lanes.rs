@@ -14,6 +14,7 @@ use crate::physics::radiometry::{incidence, point_irradiance};
 use crate::reference::grid::Cover;
 use crate::reference::sampling::{PixelStreams, Strata};
 use crate::reference::shading::{LightEstimate, Setup};
+use crate::reference::simd::{self, Isa};
 use crate::reference::surface::LaneSurface;
 use glam::DVec3;
 use std::f64::consts::PI;
@@ -73,29 +74,11 @@ impl Lanes {
         luminance: &mut Vec<f64>,
         blocked: Blocked,
     ) -> Pixel {
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx512f") && std::arch::is_x86_feature_detected!("avx512dq") {
-            // SAFETY: the CPU has AVX-512 F and DQ.
-            return unsafe { self.shade_avx512(pixel, luminance, blocked) };
-        }
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2.
-            return unsafe { self.shade_avx2(pixel, luminance, blocked) };
-        }
-        self.shade_lanes(pixel, luminance, blocked)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    fn shade_avx2(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>, blocked: Blocked) -> Pixel {
-        self.shade_lanes(pixel, luminance, blocked)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f,avx512dq")]
-    fn shade_avx512(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>, blocked: Blocked) -> Pixel {
-        self.shade_lanes(pixel, luminance, blocked)
+        simd::with(
+            Isa::widest(),
+            #[inline(always)]
+            || self.shade_lanes(pixel, luminance, blocked),
+        )
     }
 
     #[inline(always)]
@@ -474,19 +457,16 @@ mod tests {
                 };
                 let one = shade_one_by_one(&setup, spp, (i, j), (&cover, &shading, tint), &mut buffers);
                 let mut luminance = Vec::new();
-                let mut laned = vec![lanes.shade_lanes(&pixel, &mut luminance, &mut |_, _| true)];
-                #[cfg(target_arch = "x86_64")]
-                {
-                    use std::arch::is_x86_feature_detected as has;
-                    if has!("avx2") {
-                        // SAFETY: the CPU has AVX2.
-                        laned.push(unsafe { lanes.shade_avx2(&pixel, &mut luminance, &mut |_, _| true) });
-                    }
-                    if has!("avx512f") && has!("avx512dq") {
-                        // SAFETY: the CPU has AVX-512 F and DQ.
-                        laned.push(unsafe { lanes.shade_avx512(&pixel, &mut luminance, &mut |_, _| true) });
-                    }
-                }
+                let laned: Vec<Pixel> = Isa::available()
+                    .into_iter()
+                    .map(|isa| {
+                        simd::with(
+                            isa,
+                            #[inline(always)]
+                            || lanes.shade_lanes(&pixel, &mut luminance, &mut |_, _| true),
+                        )
+                    })
+                    .collect();
                 for laned in laned {
                     let bits = |p: &Pixel| {
                         (

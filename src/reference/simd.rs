@@ -1,0 +1,81 @@
+//! Lane code compiled for the widest SIMD instruction set the CPU has,
+//! chosen at run time: the loops inlined into [`with`] use its registers
+//! (AVX-512: 8 f64 lanes, AVX2: 4, the SSE2 every x86-64 has: 2). Fused
+//! multiply-add stays off: every result keeps its bits whatever the set.
+
+/// An instruction set the reference's lane code is compiled for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Isa {
+    /// What the target has without run-time detection (SSE2 on x86-64).
+    Baseline,
+    Avx2,
+    /// AVX-512 F and DQ.
+    Avx512,
+}
+
+impl Isa {
+    /// Those this CPU runs, narrowest first (the tests run each).
+    #[cfg(test)]
+    pub fn available() -> Vec<Isa> {
+        [Isa::Baseline, Isa::Avx2, Isa::Avx512]
+            .into_iter()
+            .filter(|isa| isa.runs())
+            .collect()
+    }
+
+    /// The widest this CPU runs.
+    #[inline]
+    pub fn widest() -> Isa {
+        if Isa::Avx512.runs() {
+            Isa::Avx512
+        } else if Isa::Avx2.runs() {
+            Isa::Avx2
+        } else {
+            Isa::Baseline
+        }
+    }
+
+    /// Whether this CPU runs it.
+    #[inline]
+    fn runs(self) -> bool {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::is_x86_feature_detected as has;
+            match self {
+                Isa::Baseline => true,
+                Isa::Avx2 => has!("avx2"),
+                Isa::Avx512 => has!("avx512f") && has!("avx512dq"),
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            self == Isa::Baseline
+        }
+    }
+}
+
+/// Runs `f` compiled for `isa` where the CPU has it (the code inlined in
+/// `f` then uses its registers), as it is otherwise.
+#[inline(always)]
+pub fn with<R>(isa: Isa, f: impl FnOnce() -> R) -> R {
+    #[cfg(target_arch = "x86_64")]
+    {
+        #[target_feature(enable = "avx512f,avx512dq")]
+        fn avx512<R>(f: impl FnOnce() -> R) -> R {
+            f()
+        }
+        #[target_feature(enable = "avx2")]
+        fn avx2<R>(f: impl FnOnce() -> R) -> R {
+            f()
+        }
+        if isa == Isa::Avx512 && isa.runs() {
+            // SAFETY: the CPU has AVX-512 F and DQ.
+            return unsafe { avx512(f) };
+        }
+        if isa == Isa::Avx2 && isa.runs() {
+            // SAFETY: the CPU has AVX2.
+            return unsafe { avx2(f) };
+        }
+    }
+    f()
+}
