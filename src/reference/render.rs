@@ -260,9 +260,10 @@ impl Reference {
     #[inline(always)]
     fn run_samples(&self, setup: &Setup, buffers: &mut PixelBuffers) {
         buffers.samples.clear();
+        let mut shading = None;
         for s in 0..buffers.directions.len() {
-            let surface =
-                buffers.packet.hits[s].map(|hit| self.surface_at(setup, buffers.directions[s], hit));
+            let surface = buffers.packet.hits[s]
+                .map(|hit| self.surface_at(setup, buffers.directions[s], hit, &mut shading));
             buffers.samples.push((surface, buffers.run_samples[s].clone()));
         }
     }
@@ -320,8 +321,10 @@ impl Reference {
             self.trace_run(setup, spp, (i, j), (1, 1), buffers);
             self.run_samples(setup, buffers);
         } else {
+            let mut shading = None;
             trace_samples(setup, spp, (i, j), buffers, |towards| {
-                self.surface(setup, towards, cell)
+                let hit = self.primary_hit(setup, towards, cell)?;
+                Some(self.surface_at(setup, towards, hit, &mut shading))
             });
         }
         Traced::Samples { shadows_clear: false }

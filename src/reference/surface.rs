@@ -247,6 +247,14 @@ impl Reference {
     /// [`super::grid::DirectionGrid::pixel_cell`]).
     #[inline(always)]
     pub(super) fn surface(&self, setup: &Setup, towards: DVec3, cell: Option<Cell>) -> Option<Surface> {
+        let hit = self.primary_hit(setup, towards, cell)?;
+        Some(TriangleShading::new(self, setup, hit.triangle).surface(self, towards, hit))
+    }
+
+    /// The closest hit along `towards` from the eye, as [`Self::surface`]
+    /// finds it.
+    #[inline(always)]
+    pub(super) fn primary_hit(&self, setup: &Setup, towards: DVec3, cell: Option<Cell>) -> Option<Hit> {
         // The ray is cast along a direction that is not normalized: the
         // normalization (a square root and a division) then runs beside
         // the intersection instead of before it, which is 18 % faster.
@@ -254,19 +262,28 @@ impl Reference {
             Some(cell) => g.closest_in(cell, towards),
             None => g.closest_from_centre(towards),
         });
-        let hit = match answer {
-            Some(Answer::Known(hit)) => hit?,
-            _ => self
-                .bvh
-                .closest_hit(setup.rays.eye, towards, 0.0, f64::INFINITY)?,
-        };
-        Some(self.surface_at(setup, towards, hit))
+        match answer {
+            Some(Answer::Known(hit)) => hit,
+            _ => self.bvh.closest_hit(setup.rays.eye, towards, 0.0, f64::INFINITY),
+        }
     }
 
     /// The surface where the primary ray along `towards` (not normalized)
-    /// lands, its closest hit being `hit`.
+    /// lands, its closest hit being `hit`, `shading` that of the triangle
+    /// last met (kept, or made anew for another): neighbouring samples
+    /// mostly meet the same triangle.
     #[inline(always)]
-    pub(super) fn surface_at(&self, setup: &Setup, towards: DVec3, hit: Hit) -> Surface {
-        TriangleShading::new(self, setup, hit.triangle).surface(self, towards, hit)
+    pub(super) fn surface_at<'a>(
+        &'a self,
+        setup: &'a Setup,
+        towards: DVec3,
+        hit: Hit,
+        shading: &mut Option<TriangleShading<'a>>,
+    ) -> Surface {
+        let shading = match shading.take() {
+            Some(same) if same.triangle == hit.triangle => shading.insert(same),
+            _ => shading.insert(TriangleShading::new(self, setup, hit.triangle)),
+        };
+        shading.surface(self, towards, hit)
     }
 }

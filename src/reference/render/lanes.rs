@@ -107,11 +107,12 @@ impl Lanes {
     }
 
     /// Each sample's direction: `render::sample_points` and
-    /// `PixelRays::towards`.
+    /// `PixelRays::towards`, for several samples (covers take no other).
     #[inline(always)]
     fn directions(&mut self, pixel: &CoveredPixel) {
         let spp = pixel.spp;
         let n = spp.count() as usize;
+        debug_assert!(n > 1, "one sample a pixel is its centre, not jittered");
         if self.cells.len() != n {
             self.cells = spp.cells().collect();
         }
