@@ -367,12 +367,11 @@ impl Reference {
             scratch,
             ..
         } = buffers;
-        scratch.shadows_clear = shadows_clear;
         let mut sums = PixelSums::new(sample_luminance);
         for (surface, rng) in &mut samples[first..first + n as usize] {
             match surface {
                 Some(surface) => {
-                    let light = self.light(setup, surface, rng, scratch);
+                    let light = self.light(setup, surface, rng, shadows_clear, scratch);
                     sums.add(surface.tint, &light, n);
                 }
                 None => sums.add_background(),

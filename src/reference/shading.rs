@@ -185,10 +185,6 @@ pub(super) struct Scratch {
     candidates: Vec<u32>,
     /// A pixel's shadow rays towards a point light.
     pub light_packet: LightPacket,
-    /// Whether nothing can block the shadow rays towards the point light of
-    /// the pixel being shaded (known for the whole pixel, see
-    /// `render::cover`): `Reference::shade_pixel` sets it.
-    pub shadows_clear: bool,
 }
 
 /// Gathered occluders beyond this many: each shadow ray goes through the BVH.
@@ -208,7 +204,7 @@ impl Reference {
     /// Everything about the primary sample through (x, y): the pixel probe.
     pub(super) fn probe(&self, setup: &Setup, x: f64, y: f64, rng: &mut Rng) -> Option<ShadingSample> {
         let s = self.surface(setup, setup.rays.towards(x, y), None)?;
-        let estimate = self.light(setup, &s, rng, &mut Scratch::default());
+        let estimate = self.light(setup, &s, rng, false, &mut Scratch::default());
         let tri = &self.triangles[s.triangle];
         let inc = incidence(s.p, s.n, setup.light_position);
         Some(ShadingSample {
@@ -299,20 +295,22 @@ impl Reference {
     }
 
     /// The light's contribution at the surface: the point light's in
-    /// closed form (inlined in the callers' loops), the sphere light's
-    /// estimated with the light-sample stream `rng`.
+    /// closed form (inlined in the callers' loops), its shadow ray known
+    /// unblocked when `shadows_clear` (see `render::cover`); the sphere
+    /// light's estimated with the light-sample stream `rng`.
     #[inline(always)]
     pub(super) fn light(
         &self,
         setup: &Setup,
         s: &Surface,
         rng: &mut Rng,
+        shadows_clear: bool,
         scratch: &mut Scratch,
     ) -> LightEstimate {
         if setup.is_sphere_light() {
             self.sphere(setup, s, rng, scratch)
         } else {
-            self.point_light(setup, s, scratch.shadows_clear, &mut scratch.light_packet)
+            self.point_light(setup, s, shadows_clear, &mut scratch.light_packet)
         }
     }
 

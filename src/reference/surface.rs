@@ -44,9 +44,11 @@ impl Surface {
     }
 }
 
-/// What the lanes need of a triangle (`render::lanes`).
+/// A triangle's corners, normals and BRDF in f64: what a point of it needs
+/// for its position, its normal and its light (`TriangleShading::point`,
+/// and `render::lanes` for many points at once).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct LaneSurface {
+pub(super) struct Facet {
     pub(super) corners: [DVec3; 3],
     /// The vertex normals, None on a flat facet.
     pub(super) normals: Option<[DVec3; 3]>,
@@ -55,6 +57,27 @@ pub(super) struct LaneSurface {
     pub(super) normal: DVec3,
     pub(super) double_sided: bool,
     pub(super) brdf: BrdfParams<f64>,
+}
+
+impl Facet {
+    /// The point at barycentrics b.
+    #[inline(always)]
+    pub(super) fn point_at(&self, [b0, b1, b2]: [f64; 3]) -> DVec3 {
+        let [a, b, c] = self.corners;
+        a * b0 + b * b1 + c * b2
+    }
+
+    /// The shading normal at barycentrics b, before it turns towards the
+    /// viewer. Missing vertex normals are zero: where the interpolated
+    /// normal vanishes, the face's own (winding) normal is used, as on the
+    /// GPU (shade.wgsl's surface_at); tests/wgsl_parity.rs holds both to it.
+    #[inline(always)]
+    pub(super) fn normal_at(&self, [b0, b1, b2]: [f64; 3]) -> DVec3 {
+        match self.normals {
+            Some([n0, n1, n2]) => (n0 * b0 + n1 * b1 + n2 * b2).normalize_or(self.normal),
+            None => self.normal,
+        }
+    }
 }
 
 /// What every point of one triangle shares, under one setup.
@@ -67,7 +90,7 @@ pub(super) struct TriangleShading<'a> {
     /// The colour and tint where neither a texture nor vertex colours
     /// vary them over the triangle.
     plain: Option<(DVec3, DVec3)>,
-    brdf: BrdfParams<f64>,
+    facet: Facet,
 }
 
 impl<'a> TriangleShading<'a> {
@@ -89,10 +112,19 @@ impl<'a> TriangleShading<'a> {
             object,
             material,
             plain: None,
-            brdf: BrdfParams {
-                k: own(material.k, setup.k),
-                m: own(material.m, setup.m),
-                norm: setup.norm,
+            facet: Facet {
+                corners: tri.corners.map(|p| p.as_dvec3()),
+                normals: tri
+                    .flat_normal
+                    .is_none()
+                    .then(|| tri.normals.map(|n| n.as_dvec3())),
+                normal: tri.flat_normal.unwrap_or(tri.face_normal),
+                double_sided: material.double_sided,
+                brdf: BrdfParams {
+                    k: own(material.k, setup.k),
+                    m: own(material.m, setup.m),
+                    norm: setup.norm,
+                },
             },
         };
         shading.plain = (!varies).then(|| shading.colour_and_tint(DVec3::ONE));
@@ -124,20 +156,12 @@ impl<'a> TriangleShading<'a> {
     /// length of `towards`: what the light at a point needs of it.
     #[inline(always)]
     pub(super) fn point(&self, towards: DVec3, hit: Hit) -> (DVec3, DVec3, DVec3, f64) {
-        let tri = self.tri;
         let length = towards.length();
-        let [b0, b1, b2] = hit.at.barycentric;
-        let [a, b, c] = tri.corners.map(|p| p.as_dvec3());
-        let p = a * b0 + b * b1 + c * b2;
+        let b = hit.at.barycentric;
+        let p = self.facet.point_at(b);
         let o = -towards / length;
-        // Missing vertex normals are zero: where the interpolated normal
-        // vanishes, the face's own (winding) normal is used, as on the GPU
-        // (shade.wgsl's surface_at); tests/wgsl_parity.rs holds both to it.
-        let mut n = tri.flat_normal.unwrap_or_else(|| {
-            let [n0, n1, n2] = tri.normals.map(|n| n.as_dvec3());
-            (n0 * b0 + n1 * b1 + n2 * b2).normalize_or(tri.face_normal)
-        });
-        if self.material.double_sided && n.dot(o) < 0.0 {
+        let mut n = self.facet.normal_at(b);
+        if self.facet.double_sided && n.dot(o) < 0.0 {
             n = -n;
         }
         (p, n, o, length)
@@ -149,19 +173,9 @@ impl<'a> TriangleShading<'a> {
         self.plain.map(|(_, tint)| tint)
     }
 
-    /// What the lanes need of it: `point` and `brdf` spelled out.
-    pub(super) fn lane_surface(&self) -> LaneSurface {
-        let tri = self.tri;
-        LaneSurface {
-            corners: tri.corners.map(|p| p.as_dvec3()),
-            normals: tri
-                .flat_normal
-                .is_none()
-                .then(|| tri.normals.map(|n| n.as_dvec3())),
-            normal: tri.flat_normal.unwrap_or(tri.face_normal),
-            double_sided: self.material.double_sided,
-            brdf: self.brdf,
-        }
+    /// Its corners, normals and BRDF in f64.
+    pub(super) fn facet(&self) -> &Facet {
+        &self.facet
     }
 
     /// Whether its points cast shadow rays (shadows on and the object
@@ -178,7 +192,7 @@ impl<'a> TriangleShading<'a> {
     }
 
     /// The face's normal on the eye's side at the point p seen along o
-    /// (unit, towards the eye), and p lifted along it for shadow rays.
+    /// (towards the eye, any length), and p lifted along it for shadow rays.
     #[inline(always)]
     pub(super) fn lift(&self, p: DVec3, o: DVec3) -> (DVec3, DVec3) {
         let g = self.geometric_normal(o);
@@ -233,7 +247,7 @@ impl<'a> TriangleShading<'a> {
             uv,
             color,
             tint: surface_tint,
-            brdf: self.brdf,
+            brdf: self.facet.brdf,
             shadow_origin,
             shadowed: self.shadowed(),
         }

@@ -117,8 +117,10 @@ impl Reference {
         buffers: &mut PixelBuffers,
     ) -> Option<Traced> {
         let (x, y) = (i as f64, j as f64);
-        let corners = [(x, y), (x + 1.0, y), (x, y + 1.0), (x + 1.0, y + 1.0)]
-            .map(|(cx, cy)| setup.rays.towards(cx, cy));
+        let corners = || {
+            [(x, y), (x + 1.0, y), (x, y + 1.0), (x + 1.0, y + 1.0)]
+                .map(|(cx, cy)| setup.rays.towards(cx, cy))
+        };
         let own;
         let (cover, shading, clear) = match block {
             // The pixel's own patch may be clear where its block's is not.
@@ -129,10 +131,10 @@ impl Reference {
             }) => (
                 cover,
                 shading,
-                *clear || self.shadows_clear(setup, cover, shading, &corners),
+                *clear || self.shadows_clear(setup, cover, shading, &corners()),
             ),
             None => {
-                own = self.covered(setup, grid, &corners)?;
+                own = self.covered(setup, grid, &corners())?;
                 (&own.cover, &own.shading, own.clear)
             }
         };
@@ -153,7 +155,7 @@ impl Reference {
             spp,
             pixel: (i, j),
             cover,
-            surface: shading.lane_surface(),
+            surface: shading.facet(),
             tint,
             shadowed: shading.shadowed(),
             shadows_clear: clear,
@@ -206,10 +208,12 @@ impl Reference {
         if !shading.shadowed() {
             return false;
         }
-        let g = shading.geometric_normal(-corners[0]);
         let tri = &self.triangles[cover.triangle()];
         let q = setup.light_position;
         let points = corners.map(|d| setup.rays.eye + d * cover.hit(d).at.t);
+        // Every corner is seen from one side (the cover's margin): the
+        // first's face normal is all of theirs, and so is their lift.
+        let g = shading.geometric_normal(-corners[0]);
         // g · (q − p) is linear over the pixel's part of the plane and the
         // clearance convex: both bounded by their corner values.
         let least_lift = points.iter().fold(f64::INFINITY, |m, &p| m.min(g.dot(q - p)));
@@ -221,7 +225,7 @@ impl Reference {
         } else {
             usize::MAX
         };
-        grid.clear_towards_centre(&points.map(|p| p + g * tri.shadow_offset_m), own)
+        grid.clear_towards_centre(&points.map(|p| shading.lift(p, -corners[0]).1), own)
     }
 }
 

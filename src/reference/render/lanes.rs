@@ -15,7 +15,7 @@ use crate::reference::grid::Cover;
 use crate::reference::sampling::{PixelStreams, Strata};
 use crate::reference::shading::{LightEstimate, Setup};
 use crate::reference::simd::{self, Isa};
-use crate::reference::surface::LaneSurface;
+use crate::reference::surface::Facet;
 use glam::DVec3;
 use std::f64::consts::PI;
 
@@ -56,7 +56,7 @@ pub(super) struct CoveredPixel<'a> {
     pub(super) spp: Strata,
     pub(super) pixel: (u32, u32),
     pub(super) cover: &'a Cover,
-    pub(super) surface: LaneSurface,
+    pub(super) surface: &'a Facet,
     pub(super) tint: DVec3,
     /// Whether its points cast shadow rays.
     pub(super) shadowed: bool,
@@ -154,7 +154,7 @@ impl Lanes {
         }
         self.shadow_rays.resize(n, 0);
         self.unsure.resize(n, false);
-        let surface = &pixel.surface;
+        let surface = pixel.surface;
         let specular = surface.brdf.k < 1.0;
         match (surface.normals.is_some(), specular) {
             (false, false) => self.light_loop::<false, false, false>(pixel),
@@ -190,8 +190,8 @@ impl Lanes {
         let mut any_unsure = false;
         for s in 0..n {
             let d = DVec3::new(xs[s], ys[s], zs[s]);
-            let [b0, b1, b2] = pixel.cover.hit(d).at.barycentric;
-            let normal = shading_normal::<SMOOTH>(&pixel.surface, [b0, b1, b2]);
+            let b = pixel.cover.hit(d).at.barycentric;
+            let normal = shading_normal::<SMOOTH>(pixel.surface, b);
             let o = if EXACT {
                 // As `TriangleShading::point` has it.
                 -d / d.length()
@@ -204,7 +204,7 @@ impl Lanes {
                 any_unsure |= unsure[s];
                 -d
             };
-            let light = sample_light(pixel, [b0, b1, b2], (normal, o));
+            let light = sample_light(pixel, b, (normal, o));
             (px[s], py[s], pz[s]) = light.p.into();
             (scaled[s], visibility[s], rays[s]) = (light.scaled, light.visibility, light.shadow_rays);
             if SPECULAR {
@@ -217,9 +217,9 @@ impl Lanes {
         if !EXACT && any_unsure {
             for s in (0..n).filter(|&s| unsure[s]) {
                 let d = DVec3::new(xs[s], ys[s], zs[s]);
-                let barycentric = pixel.cover.hit(d).at.barycentric;
-                let normal = shading_normal::<SMOOTH>(&pixel.surface, barycentric);
-                let light = sample_light(pixel, barycentric, (normal, -d / d.length()));
+                let b = pixel.cover.hit(d).at.barycentric;
+                let normal = shading_normal::<SMOOTH>(pixel.surface, b);
+                let light = sample_light(pixel, b, (normal, -d / d.length()));
                 (scaled[s], visibility[s], rays[s]) = (light.scaled, light.visibility, light.shadow_rays);
             }
         }
@@ -227,7 +227,7 @@ impl Lanes {
 
     /// The specular lobe's samples, one by one where the light is above the
     /// horizon: `point_light_at`'s (f_d + f_s) · E.
-    fn specular(&mut self, surface: &LaneSurface) {
+    fn specular(&mut self, surface: &Facet) {
         let [nx, ny, nz, lx, ly, lz, ox, oy, oz] = &self.vectors;
         for s in 0..self.scaled.len() {
             if self.cos[s] > 0.0 {
@@ -255,14 +255,15 @@ impl Lanes {
     }
 }
 
-/// The shading normal at the barycentrics b, before it turns towards the
-/// viewer: `TriangleShading::point`'s, interpolated (`SMOOTH`) or the
-/// facet's.
+/// The shading normal at barycentrics b, before it turns towards the
+/// viewer: [`Facet::normal_at`], or the flat facet's without a look at its
+/// vertex normals (`SMOOTH` false).
 #[inline(always)]
-fn shading_normal<const SMOOTH: bool>(surface: &LaneSurface, [b0, b1, b2]: [f64; 3]) -> DVec3 {
-    match surface.normals {
-        Some([n0, n1, n2]) if SMOOTH => (n0 * b0 + n1 * b1 + n2 * b2).normalize_or(surface.normal),
-        _ => surface.normal,
+fn shading_normal<const SMOOTH: bool>(surface: &Facet, b: [f64; 3]) -> DVec3 {
+    if SMOOTH {
+        surface.normal_at(b)
+    } else {
+        surface.normal
     }
 }
 
@@ -280,22 +281,19 @@ struct SampleLight {
     shadow_rays: u32,
 }
 
-/// A sample's point and light at barycentrics b: `TriangleShading::point` and `shading::point_light_at`,
-/// whose branches become selects. `normal` is the shading normal before it
+/// A sample's point and light at barycentrics b: `TriangleShading::point`
+/// and `shading::point_light_at`, whose branches become selects. `normal` is the shading normal before it
 /// turns towards the viewer, `o` the unit direction to the eye or any
 /// vector on its side of `normal`'s plane (all that the normal and Lambert
 /// need of it). `Lanes::shadows` tells whether the shadow rays are blocked,
 /// `Lanes::specular` adds a specular lobe.
 #[inline(always)]
-fn sample_light(pixel: &CoveredPixel, [b0, b1, b2]: [f64; 3], (normal, o): (DVec3, DVec3)) -> SampleLight {
-    let LaneSurface {
-        corners: [a, b, c],
-        double_sided,
-        brdf,
-        ..
-    } = pixel.surface;
+fn sample_light(pixel: &CoveredPixel, b: [f64; 3], (normal, o): (DVec3, DVec3)) -> SampleLight {
+    let Facet {
+        double_sided, brdf, ..
+    } = *pixel.surface;
     let setup = pixel.setup;
-    let p = a * b0 + b * b1 + c * b2;
+    let p = pixel.surface.point_at(b);
     let side = normal.dot(o);
     // −normal · o is −(normal · o) exactly.
     let flip = double_sided & (side < 0.0);
@@ -368,7 +366,7 @@ mod tests {
             let light = point_light_at(
                 setup,
                 (p, normal, o),
-                &shading.lane_surface().brdf,
+                &shading.facet().brdf,
                 shading.shadowed(),
                 || false,
             );
@@ -443,7 +441,7 @@ mod tests {
                 let Some(tint) = shading.plain_tint() else {
                     panic!("every face is plain");
                 };
-                let surface = shading.lane_surface();
+                let surface = shading.facet();
                 let pixel = CoveredPixel {
                     setup: &setup,
                     spp,
