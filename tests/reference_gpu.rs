@@ -74,7 +74,7 @@ fn compare_on(scene: &Scene, settings: &Settings) -> (usize, f64) {
             }
             let relative = (q[c] as f64 / l_ref[c] - 1.0).abs();
             worst = worst.max(relative);
-            let slack = subpixel_slack(&reference.radiance, settings.image.width, idx, c);
+            let slack = subpixel_slack(&reference.radiance, width, idx, c);
             let gpu = q[c] as f64;
             if (gpu - l_ref[c]).abs() >= 1e-3 * l_ref[c] + slack {
                 // The estimate undercounts where L bends (a terminator):
