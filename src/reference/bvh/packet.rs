@@ -7,6 +7,11 @@
 //! the same watertight test, by every ray of the packet that can still
 //! reach it.
 //!
+//! Primary packets visit a node's children nearest first along the axis
+//! (the first hits found are then more often the closest, and cut what lies
+//! behind them); shadow packets, for which any hit will do, keep obvhs's
+//! order by the axis's octant.
+//!
 //! Every filter is conservative, so each ray gets exactly what it gets on
 //! its own ([`TriangleBvh::closest_hit`], [`TriangleBvh::occluded`]) and
 //! what testing every triangle gives it:
@@ -29,10 +34,31 @@ use crate::reference::intersect::{ShearedRay, with_axes};
 use crate::reference::simd::{self, Isa};
 // `UVec2` is named inside obvhs's `traverse!` macro.
 use glam::{DVec3, UVec2};
+use obvhs::cwbvh::CwBvh;
 use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
 
 /// Relative allowance for the rounding of depths and plane distances.
 pub(super) const ROUNDING: f64 = 1e-12;
+
+/// The deepest of the rays' limits.
+#[inline(always)]
+fn deepest(limits: &[f64]) -> f64 {
+    limits.iter().fold(f64::NEG_INFINITY, |m, &l| m.max(l))
+}
+
+/// What the walk visits next: a node (its index) or a leaf's triangles
+/// (first slot, count).
+#[derive(Clone, Copy, Debug)]
+enum Visit {
+    Node(u32),
+    Leaf(u32, u32),
+}
+
+thread_local! {
+    /// Each thread's stack of visits, with their least depths, reused from
+    /// packet to packet.
+    static WALK: std::cell::Cell<Vec<(f64, Visit)>> = const { std::cell::Cell::new(Vec::new()) };
+}
 
 /// A cone of directions from its apex: what every ray of a packet lies in.
 #[derive(Clone, Copy, Debug)]
@@ -115,6 +141,10 @@ impl Cone {
 
 /// The rays of a packet: what each can still reach, and how to test it.
 pub trait Rays {
+    /// Whether the walk visits a node's children nearest first (closest
+    /// hits: the first found is more often the closest, and cuts the rest).
+    const NEAREST_FIRST: bool = false;
+
     /// Each ray's deepest depth that still matters (negative: done).
     fn limits(&self) -> &[f64];
     /// The rays as lines through the apex, for the eight-lane filter.
@@ -167,7 +197,7 @@ impl TriangleBvh {
     }
 
     #[inline(always)]
-    fn walk_cone_here(&self, cone: &Cone, rays: &mut impl Rays) {
+    fn walk_cone_here<R: Rays>(&self, cone: &Cone, rays: &mut R) {
         let Some(bvh) = self.bvh.as_ref() else {
             return;
         };
@@ -175,8 +205,11 @@ impl TriangleBvh {
             cone: *cone,
             apex_size: (cone.apex - self.centre).abs().max_element(),
         };
-        let deepest = |limits: &[f64]| limits.iter().fold(f64::NEG_INFINITY, |m, &l| m.max(l));
         let mut farthest = deepest(rays.limits());
+        if R::NEAREST_FIRST {
+            self.walk_nearest_first(bvh, &frame, rays, &mut farthest);
+            return;
+        }
         // Taken out of its cell, so that the walk is compiled into the caller.
         let mut owned = TRAVERSAL.take();
         let state = &mut owned;
@@ -189,26 +222,77 @@ impl TriangleBvh {
                 state,
                 frame.child_mask(self, node, farthest, state.oct_inv4),
                 {
-                    let slot = state.primitive_id as usize;
-                    let relative = self.corners[slot].map(|p| p - cone.apex);
-                    let slack = ROUNDING * relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
-                    if !cone.misses(&relative, slack) {
-                        let nearest = relative
-                            .iter()
-                            .fold(f64::INFINITY, |m, p| m.min(p.dot(cone.axis)))
-                            - slack;
-                        // The deepest limit is found again only when one fell.
-                        if nearest <= farthest && rays.test(self, slot, &relative, nearest) {
-                            farthest = deepest(rays.limits());
-                            if farthest < 0.0 {
-                                break;
-                            }
-                        }
+                    if self.test_triangle(cone, rays, state.primitive_id as usize, &mut farthest) {
+                        break;
                     }
                 }
             );
         }
         TRAVERSAL.set(owned);
+    }
+
+    /// The walk with each node's children visited nearest first along the
+    /// cone's axis (obvhs's walk orders them by the octant of the axis
+    /// alone): a packet's first hits are then more often its closest, and
+    /// cut more of what lies behind them.
+    #[inline(always)]
+    fn walk_nearest_first(&self, bvh: &CwBvh, frame: &FrameCone, rays: &mut impl Rays, farthest: &mut f64) {
+        let mut stack = WALK.take();
+        stack.clear();
+        stack.push((f64::NEG_INFINITY, Visit::Node(0)));
+        'walk: while let Some((least, visit)) = stack.pop() {
+            // Limits fall as hits are found: a child pushed before may now
+            // lie beyond them all.
+            if least > *farthest {
+                continue;
+            }
+            match visit {
+                Visit::Node(index) => {
+                    let node = &bvh.nodes[index as usize];
+                    let first = stack.len();
+                    frame.children(self, node, *farthest, |depth, child| {
+                        let visit = if node.is_leaf(child) {
+                            let (start, count) = node.child_primitives(child);
+                            Visit::Leaf(start, count)
+                        } else {
+                            Visit::Node(node.child_node_index(child))
+                        };
+                        stack.push((depth, visit));
+                    });
+                    // Nearest last, so that it is popped first.
+                    stack[first..].sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
+                }
+                Visit::Leaf(start, count) => {
+                    for slot in start..start + count {
+                        if self.test_triangle(&frame.cone, rays, slot as usize, farthest) {
+                            break 'walk;
+                        }
+                    }
+                }
+            }
+        }
+        WALK.set(stack);
+    }
+
+    /// The triangle in leaf slot `slot` against the rays, unless it lies
+    /// outside the cone or beyond `farthest`, which follows their deepest
+    /// limit; true when every ray is done.
+    #[inline(always)]
+    fn test_triangle(&self, cone: &Cone, rays: &mut impl Rays, slot: usize, farthest: &mut f64) -> bool {
+        let relative = self.corners[slot].map(|p| p - cone.apex);
+        let slack = ROUNDING * relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+        if cone.misses(&relative, slack) {
+            return false;
+        }
+        let nearest = relative
+            .iter()
+            .fold(f64::INFINITY, |m, p| m.min(p.dot(cone.axis)))
+            - slack;
+        // The deepest limit is found again only when one fell.
+        if nearest <= *farthest && rays.test(self, slot, &relative, nearest) {
+            *farthest = deepest(rays.limits());
+        }
+        *farthest < 0.0
     }
 
     /// Whether a triangle may meet `cone`: false only when none does, so
@@ -357,6 +441,8 @@ impl PrimaryPacket {
 }
 
 impl Rays for PrimaryPacket {
+    const NEAREST_FIRST: bool = true;
+
     fn limits(&self) -> &[f64] {
         &self.limits
     }
@@ -424,8 +510,19 @@ struct FrameCone {
 }
 
 impl FrameCone {
-    /// obvhs's hit mask of the children of `node` whose boxes meet the cone
-    /// with a least depth no deeper than `farthest`.
+    /// obvhs's hit mask of the children of `node` that [`Self::children`] keeps.
+    #[inline(always)]
+    fn child_mask(&self, bvh: &TriangleBvh, node: &CwBvhNode, farthest: f64, oct_inv4: u32) -> u32 {
+        let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
+        let mut hit_mask = 0;
+        self.children(bvh, node, farthest, |_, child| {
+            hit_mask |= extract_byte64(child_bits8, child) << extract_byte64(bit_index8, child);
+        });
+        hit_mask
+    }
+
+    /// Calls `keep(least depth, child)` for each child of `node` whose box
+    /// meets the cone with a least depth no deeper than `farthest`.
     ///
     /// A child's box is p + e·q (q its quantized corners, 0 to 255), so a
     /// plane's value at the box's farthest corner along n is
@@ -434,8 +531,7 @@ impl FrameCone {
     /// whose size sets one rounding allowance for all of them (no smaller
     /// than each box's own; the rearranged sums round by some 10⁻¹⁵ of it).
     #[inline(always)]
-    fn child_mask(&self, bvh: &TriangleBvh, node: &CwBvhNode, farthest: f64, oct_inv4: u32) -> u32 {
-        let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
+    fn children(&self, bvh: &TriangleBvh, node: &CwBvhNode, farthest: f64, mut keep: impl FnMut(f64, usize)) {
         let scale = 1.0 / bvh.per_scale;
         // In f64, relative to the apex, in world units.
         let e = node.compute_extent().as_dvec3() * scale;
@@ -452,13 +548,12 @@ impl FrameCone {
             }
         }
         let depth = corner_values(node, self.cone.axis, p, e, false);
-        let mut hit_mask = 0;
         for child in 0..8 {
-            if inside[child] && !node.is_child_empty(child) && depth[child] - slack <= farthest {
-                hit_mask |= extract_byte64(child_bits8, child) << extract_byte64(bit_index8, child);
+            let least = depth[child] - slack;
+            if inside[child] && !node.is_child_empty(child) && least <= farthest {
+                keep(least, child);
             }
         }
-        hit_mask
     }
 }
 
