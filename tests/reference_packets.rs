@@ -301,3 +301,60 @@ fn packets_of_every_size_and_mixed_axes_agree_with_each_ray_and_brute_force() {
         "too few to tell: {hits} hits, {blocked} blocked"
     );
 }
+
+/// A small surface a fraction of a millimetre in front of a large one tilted towards
+/// the eye, whose box therefore comes nearer along the cone's axis: the
+/// walk finds the large one first and must still reach the small one, its
+/// depth filters allowing for rounding only, not for millimetres.
+#[test]
+fn a_surface_a_hair_in_front_of_a_hit_is_still_found() {
+    let mut rng = Rng::new(24, 0, 0);
+    let eye = DVec3::new(0.0, 0.0, 5.0);
+    // The large one: z = 0.2 y, 20 m across, 3 m from the eye at its nearest.
+    let far = |x: f64, y: f64| DVec3::new(x, y, 0.2 * y);
+    let mut corners = vec![
+        [far(-10.0, -10.0), far(10.0, -10.0), far(10.0, 10.0)],
+        [far(-10.0, -10.0), far(10.0, 10.0), far(-10.0, 10.0)],
+    ];
+    // The small one, flat at z = 5e-4 m around the axis, 0.3 to 0.7 mm in
+    // front of the large one where the rays meet it.
+    let near = |x: f64, y: f64| DVec3::new(x, y, 5e-4);
+    corners.push([near(-0.001, -0.001), near(0.001, -0.001), near(0.0, 0.001)]);
+    // Tiny triangles around it in its plane, off the rays, so that it
+    // shares its leaves and nodes with them, not with the large one, and
+    // their boxes come no nearer than it.
+    for k in 0..64 {
+        let angle = k as f64 * std::f64::consts::TAU / 64.0;
+        let radius = 0.05 + 0.2 * rng.next_f64();
+        let a = near(radius * angle.cos(), radius * angle.sin());
+        corners.push([a, a + DVec3::X * 0.01, a + DVec3::Y * 0.01]);
+    }
+    let triangles: Vec<BvhTriangle> = corners
+        .into_iter()
+        .map(|corners| BvhTriangle {
+            corners,
+            occludes: true,
+        })
+        .collect();
+    let bvh = TriangleBvh::new(&triangles);
+    // Rays at points of the small one (barycentric mixes inside it).
+    let directions: Vec<DVec3> = (0..16)
+        .map(|_| {
+            let (u, v) = (0.1 + 0.4 * rng.next_f64(), 0.1 + 0.4 * rng.next_f64());
+            let [a, b, c] = triangles[2].corners;
+            a + (b - a) * u + (c - a) * v - eye
+        })
+        .collect();
+    let cone = Cone::around(eye, directions.iter().map(|&d| eye + d)).expect("all in front");
+    let mut packet = PrimaryPacket::default();
+    bvh.closest_hits_in_cone(&cone, &directions, &mut packet);
+    for (d, found) in directions.iter().zip(&packet.hits) {
+        let brute = closest_hit_brute_force(&triangles, eye, *d, 0.0, f64::INFINITY);
+        assert_eq!(
+            brute.map(|h| h.triangle),
+            Some(2),
+            "the small one is in front along {d}"
+        );
+        assert_eq!(*found, brute, "packet against brute force along {d}");
+    }
+}
