@@ -302,10 +302,11 @@ fn packets_of_every_size_and_mixed_axes_agree_with_each_ray_and_brute_force() {
     );
 }
 
-/// A small surface a fraction of a millimetre in front of a large one tilted towards
-/// the eye, whose box therefore comes nearer along the cone's axis: the
-/// walk finds the large one first and must still reach the small one, its
-/// depth filters allowing for rounding only, not for millimetres.
+/// A small surface a fraction of a millimetre in front of a large one
+/// tilted towards the eye, whose box therefore comes nearer along the
+/// cone's axis: the walk finds the large one first and must still reach the
+/// small one, its depth filters allowing for rounding only, not for
+/// millimetres.
 #[test]
 fn a_surface_a_hair_in_front_of_a_hit_is_still_found() {
     let mut rng = Rng::new(24, 0, 0);
