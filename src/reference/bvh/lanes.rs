@@ -194,24 +194,14 @@ impl Lines {
     pub fn group_may_hit(&self, group: usize, planes: &EdgePlanes, nearest: f64) -> u32 {
         let nearest = down(nearest).max(f32::MIN);
         let b = &self.bounds[group];
-        let floor = FLOOR * (1.0 + BOUND_ROUNDING as f32);
-        let (mut positive, mut negative) = ([false; GROUP], [false; GROUP]);
-        for e in 0..3 {
-            let [nx, ny, nz] = planes.n[e];
-            for i in 0..GROUP {
-                let centre = (b.c[0][i] * nx + b.c[1][i] * ny) + b.c[2][i] * nz;
-                let spread = b.spread[i] * planes.l1[e];
-                let margin = b.reach[i] * planes.tau[e] + floor;
-                positive[i] |= centre - spread > margin;
-                negative[i] |= centre + spread < -margin;
-            }
+        #[cfg(target_arch = "x86_64")]
+        if self.avx {
+            // Only the halves that hold blocks (unused ones keep nothing).
+            let halves = (self.blocks.len() - group * GROUP).min(GROUP).div_ceil(LANES);
+            // SAFETY: the CPU has AVX.
+            return unsafe { group_kept_avx(b, planes, nearest, halves) };
         }
-        let mut bits = 0;
-        for i in 0..GROUP {
-            let misses = positive[i] && negative[i];
-            bits |= u32::from(!misses && nearest <= b.limit[i]) << i;
-        }
-        bits
+        group_kept_by_block(b, planes, nearest)
     }
 
     /// The edge planes of the triangle with corners `relative` to the apex.
@@ -322,6 +312,77 @@ fn kept_by_lane(b: &Block, planes: &EdgePlanes, nearest: f32) -> u32 {
             negative |= value < -margin;
         }
         bits |= u32::from(!(positive && negative) && nearest <= b.limit[l]) << l;
+    }
+    bits
+}
+
+/// The margin's floor in the first pass, with its allowance.
+const BOUND_FLOOR: f32 = FLOOR * (1.0 + BOUND_ROUNDING as f32);
+
+/// Bit i: block i of the group may keep a lane (see
+/// [`Lines::group_may_hit`]): its limit reaches `nearest` and its bounded
+/// edge values do not take both signs beyond their margins. AVX: eight
+/// blocks in one register, for the first `halves` of its eight-block halves.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+fn group_kept_avx(b: &Bounds, planes: &EdgePlanes, nearest: f32, halves: usize) -> u32 {
+    use std::arch::x86_64::*;
+    let mut bits = 0;
+    for half in 0..halves {
+        let at = half * LANES;
+        // SAFETY: each load reads eight in-bounds f32.
+        let load = |a: &[f32; GROUP]| unsafe { _mm256_loadu_ps(a[at..at + LANES].as_ptr()) };
+        let (cx, cy, cz) = (load(&b.c[0]), load(&b.c[1]), load(&b.c[2]));
+        let (spread, reach) = (load(&b.spread), load(&b.reach));
+        let (mut positive, mut negative) = (_mm256_setzero_ps(), _mm256_setzero_ps());
+        for e in 0..3 {
+            let [nx, ny, nz] = planes.n[e].map(|x| _mm256_set1_ps(x));
+            let centre = _mm256_add_ps(
+                _mm256_add_ps(_mm256_mul_ps(cx, nx), _mm256_mul_ps(cy, ny)),
+                _mm256_mul_ps(cz, nz),
+            );
+            let spread = _mm256_mul_ps(spread, _mm256_set1_ps(planes.l1[e]));
+            let margin = _mm256_add_ps(
+                _mm256_mul_ps(reach, _mm256_set1_ps(planes.tau[e])),
+                _mm256_set1_ps(BOUND_FLOOR),
+            );
+            let below = _mm256_sub_ps(_mm256_setzero_ps(), margin);
+            positive = _mm256_or_ps(
+                positive,
+                _mm256_cmp_ps::<_CMP_GT_OQ>(_mm256_sub_ps(centre, spread), margin),
+            );
+            negative = _mm256_or_ps(
+                negative,
+                _mm256_cmp_ps::<_CMP_LT_OQ>(_mm256_add_ps(centre, spread), below),
+            );
+        }
+        let reaches = _mm256_cmp_ps::<_CMP_LE_OQ>(_mm256_set1_ps(nearest), load(&b.limit));
+        let misses = _mm256_and_ps(positive, negative);
+        bits |= (_mm256_movemask_ps(_mm256_andnot_ps(misses, reaches)) as u32) << at;
+    }
+    bits
+}
+
+/// [`group_kept_avx`] block by block, where there is no AVX (and in the
+/// tests, against it).
+#[inline(always)]
+fn group_kept_by_block(b: &Bounds, planes: &EdgePlanes, nearest: f32) -> u32 {
+    let (mut positive, mut negative) = ([false; GROUP], [false; GROUP]);
+    for e in 0..3 {
+        let [nx, ny, nz] = planes.n[e];
+        for i in 0..GROUP {
+            let centre = (b.c[0][i] * nx + b.c[1][i] * ny) + b.c[2][i] * nz;
+            let spread = b.spread[i] * planes.l1[e];
+            let margin = b.reach[i] * planes.tau[e] + BOUND_FLOOR;
+            positive[i] |= centre - spread > margin;
+            negative[i] |= centre + spread < -margin;
+        }
+    }
+    let mut bits = 0;
+    for i in 0..GROUP {
+        let misses = positive[i] && negative[i];
+        bits |= u32::from(!misses && nearest <= b.limit[i]) << i;
     }
     bits
 }
@@ -459,6 +520,13 @@ mod tests {
                 .collect();
             lines.fill(rays.iter().map(|r| r.direction), &limits, spread);
             let planes = lines.planes(&tri.map(|p| p - apex));
+            #[cfg(target_arch = "x86_64")]
+            for bounds in lines.bounds.iter().filter(|_| lines.avx) {
+                let at = down(nearest).max(f32::MIN);
+                // SAFETY: the CPU has AVX.
+                let avx = unsafe { group_kept_avx(bounds, &planes, at, GROUP / LANES) };
+                assert_eq!(avx, group_kept_by_block(bounds, &planes, at), "case {case}: AVX");
+            }
             for b in 0..lines.blocks.len() {
                 let first = lines.group_may_hit(b / GROUP, &planes, nearest) & (1 << (b % GROUP)) != 0;
                 let lanes = lines.may_hit(b, &planes, nearest);
