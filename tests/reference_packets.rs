@@ -205,8 +205,14 @@ fn shadow_packets_block_what_each_ray_and_brute_force_block() {
         let Some(cone) = Cone::around(light, origins.iter().copied()) else {
             continue;
         };
+        // The floor's normal changes no answer: none, a random one, the
+        // light's direction from the origins (a floor just below the lowest
+        // of them) and its opposite.
+        let towards = (light - origins.iter().sum::<DVec3>() / origins.len() as f64).normalize();
+        let random = DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) - 0.5;
+        let up = [DVec3::ZERO, random.normalize(), towards, -towards][case / 4 % 4];
         for t_max in [1.0, 1.0 - 1e-9] {
-            bvh.occluded_in_cone(&cone, &origins, t_max, &mut packet);
+            bvh.occluded_in_cone(&cone, (&origins, up), t_max, &mut packet);
             for (i, &o) in origins.iter().enumerate() {
                 let alone = bvh.occluded(o, light - o, 0.0, t_max);
                 let brute = occluded_brute_force(&triangles, o, light - o, 0.0, t_max);
@@ -289,7 +295,8 @@ fn packets_of_every_size_and_mixed_axes_agree_with_each_ray_and_brute_force() {
         }
         // The same points as shadow-ray origins towards a light at the apex.
         let origins: Vec<DVec3> = directions.iter().map(|&d| apex + d).collect();
-        bvh.occluded_in_cone(&cone, &origins, 1.0, &mut shadow);
+        let up = DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) - 0.5;
+        bvh.occluded_in_cone(&cone, (&origins, up.normalize()), 1.0, &mut shadow);
         for (i, &o) in origins.iter().enumerate() {
             let brute = occluded_brute_force(&triangles, o, apex - o, 0.0, 1.0);
             assert_eq!(shadow.blocked(i), brute, "case {case}: from {o} to {apex}");
@@ -358,4 +365,56 @@ fn a_surface_a_hair_in_front_of_a_hit_is_still_found() {
         );
         assert_eq!(*found, brute, "packet against brute force along {d}");
     }
+}
+
+#[test]
+fn a_blocker_a_hair_above_the_floor_still_blocks() {
+    // Shadow origins on flat ground (y = 0) under a light 4 m up, the floor
+    // across +y just below them; a small triangle 0.5 mm above the ground
+    // over some origins, among tiny ones beside it (so that it shares its
+    // leaves and nodes with them), blocks the rays through it. A floor
+    // raised by 1 mm would pass over it.
+    let mut rng = Rng::new(26, 0, 0);
+    let light = DVec3::new(0.3, 4.0, -0.2);
+    let flat = |x: f64, z: f64, y: f64| DVec3::new(x, y, z);
+    let mut corners = vec![
+        [flat(-5.0, -5.0, 0.0), flat(-5.0, 5.0, 0.0), flat(5.0, 5.0, 0.0)],
+        [flat(-5.0, -5.0, 0.0), flat(5.0, 5.0, 0.0), flat(5.0, -5.0, 0.0)],
+        [
+            flat(-0.01, -0.01, 5e-4),
+            flat(-0.01, 0.01, 5e-4),
+            flat(0.01, 0.0, 5e-4),
+        ],
+    ];
+    for k in 0..64 {
+        let angle = k as f64 * std::f64::consts::TAU / 64.0;
+        let radius = 0.05 + 0.2 * rng.next_f64();
+        let a = flat(radius * angle.cos(), radius * angle.sin(), 5e-4);
+        corners.push([a, a + DVec3::X * 0.01, a + DVec3::Z * 0.01]);
+    }
+    let triangles: Vec<BvhTriangle> = corners
+        .into_iter()
+        .map(|corners| BvhTriangle {
+            corners,
+            occludes: true,
+        })
+        .collect();
+    let bvh = TriangleBvh::new(&triangles);
+    let origins: Vec<DVec3> = (0..24)
+        .map(|_| flat(0.03 * (rng.next_f64() - 0.5), 0.03 * (rng.next_f64() - 0.5), 0.0))
+        .collect();
+    let cone = Cone::around(light, origins.iter().copied()).expect("all below the light");
+    let mut packet = ShadowPacket::default();
+    bvh.occluded_in_cone(&cone, (&origins, DVec3::Y), 1.0 - 1e-9, &mut packet);
+    let mut blocked = 0;
+    for (i, &o) in origins.iter().enumerate() {
+        let brute = occluded_brute_force(&triangles, o, light - o, 0.0, 1.0 - 1e-9);
+        assert_eq!(packet.blocked(i), brute, "from {o}");
+        blocked += usize::from(brute);
+    }
+    assert!(
+        blocked > 2 && blocked < origins.len(),
+        "{blocked} of {} blocked",
+        origins.len()
+    );
 }

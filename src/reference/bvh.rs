@@ -18,11 +18,13 @@
 
 mod ball;
 mod build;
+mod cone;
 mod lanes;
 mod packet;
 
 use super::intersect::{ShearedRay, TriangleHit};
-pub use packet::{Cone, PrimaryPacket, ShadowPacket};
+pub use cone::Cone;
+pub use packet::{PrimaryPacket, ShadowPacket};
 // `UVec2` is named inside obvhs's `traverse!` macro.
 use glam::{DVec3, UVec2, Vec3A};
 use obvhs::cwbvh::Traversal;

@@ -16,6 +16,9 @@ const MIN_RAYS: usize = 4;
 #[derive(Debug, Default)]
 pub(super) struct LightPacket {
     origins: Vec<DVec3>,
+    /// The sum of the unit normals, towards the light, of the surfaces the
+    /// origins lie on: the packet's floor lies across it.
+    normals: DVec3,
     /// Whether the packet was cast (None: not yet) and could be.
     cast: Option<bool>,
     /// Where the last origin asked about was found: the samples ask in
@@ -26,10 +29,16 @@ pub(super) struct LightPacket {
 }
 
 impl LightPacket {
-    /// A new packet for the shadow rays from these origins.
-    pub fn reset(&mut self, origins: impl Iterator<Item = DVec3>) {
+    /// A new packet for the shadow rays from these origins, each with the
+    /// unit normal of its surface towards the light (any direction is
+    /// exact; the surfaces' own cut the most).
+    pub fn reset(&mut self, origins: impl Iterator<Item = (DVec3, DVec3)>) {
         self.origins.clear();
-        self.origins.extend(origins);
+        self.normals = DVec3::ZERO;
+        for (origin, normal) in origins {
+            self.origins.push(origin);
+            self.normals += normal;
+        }
         self.cast = None;
         self.cursor = 0;
     }
@@ -43,7 +52,13 @@ impl LightPacket {
         let cast = *self.cast.get_or_insert_with(|| {
             let cone = Cone::around(light, self.origins.iter().copied());
             if let Some(cone) = &cone {
-                bvh.occluded_in_cone(cone, &self.origins, 1.0 - STOP_SHORT_REL, &mut self.packet);
+                let floor = self.normals.normalize_or_zero();
+                bvh.occluded_in_cone(
+                    cone,
+                    (&self.origins, floor),
+                    1.0 - STOP_SHORT_REL,
+                    &mut self.packet,
+                );
             }
             cone.is_some()
         });

@@ -5,7 +5,8 @@
 //! ray needs a test.
 
 use super::TriangleBvh;
-use super::packet::{Cone, ROUNDING, Visitor};
+use super::cone::{Cone, ROUNDING};
+use super::packet::Visitor;
 use crate::reference::intersect::ShearedRay;
 use glam::DVec3;
 

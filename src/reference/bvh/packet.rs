@@ -24,10 +24,14 @@
 //!   lie between the light (depth 0) and its origin; a box or triangle whose
 //!   least depth is beyond what a ray can reach holds nothing for it, and
 //!   ties are still tested, so the lowest index wins among equal distances;
+//! - a shadow packet's segments all lie above a floor across the normal of
+//!   the surfaces they leave, below their origins and the light (see
+//!   [`floor_below`]): a box or triangle wholly below it blocks none;
 //! - rays are tested eight at a time against the triangle's edge planes
 //!   through the apex in f32 (`bvh/lanes.rs`), with a margin that makes a
 //!   ray it rules out a miss of the scalar test.
 
+use super::cone::{Cone, FrameCone, ROUNDING};
 use super::lanes::{GROUP, LANES, Lines};
 use super::{Hit, TRAVERSAL, TriangleBvh, closer};
 use crate::reference::intersect::{ShearedRay, with_axes};
@@ -35,10 +39,6 @@ use crate::reference::simd::{self, Isa};
 // `UVec2` is named inside obvhs's `traverse!` macro.
 use glam::{DVec3, UVec2};
 use obvhs::cwbvh::CwBvh;
-use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
-
-/// Relative allowance for the rounding of depths and plane distances.
-pub(super) const ROUNDING: f64 = 1e-12;
 
 /// The deepest of the rays' limits.
 #[inline(always)]
@@ -60,85 +60,6 @@ thread_local! {
     static WALK: std::cell::Cell<Vec<(f64, Visit)>> = const { std::cell::Cell::new(Vec::new()) };
 }
 
-/// A cone of directions from its apex: what every ray of a packet lies in.
-#[derive(Clone, Copy, Debug)]
-pub struct Cone {
-    apex: DVec3,
-    /// The inward normals of its four side planes through the apex.
-    planes: [DVec3; 4],
-    /// The axis depths are measured along (unit).
-    axis: DVec3,
-}
-
-impl Cone {
-    /// The cone spanned by four directions in order around it (the corner
-    /// rays of a pixel): every convex combination of them lies inside.
-    pub fn spanned(apex: DVec3, corners: [DVec3; 4]) -> Self {
-        let axis = (corners[0] + corners[1] + corners[2] + corners[3]).normalize();
-        let planes = std::array::from_fn(|k| {
-            let n = corners[k].cross(corners[(k + 1) % 4]);
-            if n.dot(axis) < 0.0 { -n } else { n }
-        });
-        Self { apex, planes, axis }
-    }
-
-    /// A cone from `apex` holding every point of `points` (at least one),
-    /// None when they do not all lie on one side of a plane through it.
-    pub fn around(apex: DVec3, points: impl Iterator<Item = DVec3> + Clone) -> Option<Self> {
-        let axis = points
-            .clone()
-            .fold(DVec3::ZERO, |s, p| s + (p - apex).normalize_or_zero())
-            .try_normalize()?;
-        let (u, v) = axis.any_orthonormal_pair();
-        let (mut s0, mut s1, mut r0, mut r1) =
-            (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-        for p in points {
-            let w = p - apex;
-            let along = w.dot(axis);
-            if along <= 0.0 || !along.is_finite() {
-                return None;
-            }
-            let (s, r) = (w.dot(u) / along, w.dot(v) / along);
-            (s0, s1, r0, r1) = (s0.min(s), s1.max(s), r0.min(r), r1.max(r));
-        }
-        // Widened by the rounding of the slopes.
-        let widen = |x: f64| ROUNDING * (1.0 + x.abs());
-        let (s0, s1, r0, r1) = (s0 - widen(s0), s1 + widen(s1), r0 - widen(r0), r1 + widen(r1));
-        Some(Self {
-            apex,
-            planes: [u - axis * s0, axis * s1 - u, v - axis * r0, axis * r1 - v],
-            axis,
-        })
-    }
-
-    /// The square pyramid from `apex` about the unit `axis` whose four
-    /// sides rise at `slope` from it (tan of their angle to the axis),
-    /// widened by the rounding of its planes.
-    pub fn square(apex: DVec3, axis: DVec3, slope: f64) -> Self {
-        let (u, v) = axis.any_orthonormal_pair();
-        let s = slope * (1.0 + ROUNDING) + ROUNDING;
-        Self {
-            apex,
-            planes: [u + axis * s, axis * s - u, v + axis * s, axis * s - v],
-            axis,
-        }
-    }
-
-    pub fn axis(&self) -> DVec3 {
-        self.axis
-    }
-
-    /// Whether the triangle (corners relative to the apex) lies wholly
-    /// outside one side plane, `slack` allowed.
-    #[inline(always)]
-    pub(super) fn misses(&self, relative: &[DVec3; 3], slack: f64) -> bool {
-        self.planes.iter().any(|&n| {
-            let s = slack * n.abs().element_sum();
-            relative.iter().all(|p| n.dot(*p) < -s)
-        })
-    }
-}
-
 /// The rays of a packet: what each can still reach, and how to test it.
 pub trait Rays {
     /// Whether the walk visits a node's children nearest first (closest
@@ -147,6 +68,11 @@ pub trait Rays {
 
     /// Each ray's deepest depth that still matters (negative: done).
     fn limits(&self) -> &[f64];
+    /// A floor (n, c) below every ray: each point a ray can reach has
+    /// n · (x − apex) ≥ c (none unless they say so).
+    fn floor(&self) -> Option<(DVec3, f64)> {
+        None
+    }
     /// The rays as lines through the apex, for the eight-lane filter.
     fn lines(&self) -> &Lines;
     /// Whether the triangle in leaf slot `slot` matters to these rays
@@ -204,6 +130,7 @@ impl TriangleBvh {
         let frame = FrameCone {
             cone: *cone,
             apex_size: (cone.apex - self.centre).abs().max_element(),
+            floor: rays.floor(),
         };
         let mut farthest = deepest(rays.limits());
         if R::NEAREST_FIRST {
@@ -222,7 +149,7 @@ impl TriangleBvh {
                 state,
                 frame.child_mask(self, node, farthest, state.oct_inv4),
                 {
-                    if self.test_triangle(cone, rays, state.primitive_id as usize, &mut farthest) {
+                    if self.test_triangle(&frame, rays, state.primitive_id as usize, &mut farthest) {
                         break;
                     }
                 }
@@ -264,7 +191,7 @@ impl TriangleBvh {
                 }
                 Visit::Leaf(start, count) => {
                     for slot in start..start + count {
-                        if self.test_triangle(&frame.cone, rays, slot as usize, farthest) {
+                        if self.test_triangle(frame, rays, slot as usize, farthest) {
                             break 'walk;
                         }
                     }
@@ -275,13 +202,26 @@ impl TriangleBvh {
     }
 
     /// The triangle in leaf slot `slot` against the rays, unless it lies
-    /// outside the cone or beyond `farthest`, which follows their deepest
-    /// limit; true when every ray is done.
+    /// outside the cone, below the rays' floor or beyond `farthest`, which
+    /// follows their deepest limit; true when every ray is done.
     #[inline(always)]
-    fn test_triangle(&self, cone: &Cone, rays: &mut impl Rays, slot: usize, farthest: &mut f64) -> bool {
+    fn test_triangle(
+        &self,
+        frame: &FrameCone,
+        rays: &mut impl Rays,
+        slot: usize,
+        farthest: &mut f64,
+    ) -> bool {
+        let cone = &frame.cone;
         let relative = self.corners[slot].map(|p| p - cone.apex);
         let slack = ROUNDING * relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
-        if cone.misses(&relative, slack) {
+        if cone.misses(&relative, slack)
+            || frame.floor.is_some_and(|(n, c)| {
+                relative
+                    .iter()
+                    .all(|p| n.dot(*p) < c - slack * n.abs().element_sum())
+            })
+        {
             return false;
         }
         let nearest = relative
@@ -331,8 +271,17 @@ impl TriangleBvh {
 
     /// Whether each segment from `origins[i]` to `target`, t ∈ (0, t_max)
     /// along target − origin, is blocked, into `blocked`: what
-    /// [`Self::occluded`] gives each. `cone`: from `target` around the origins.
-    pub fn occluded_in_cone(&self, cone: &Cone, origins: &[DVec3], t_max: f64, packet: &mut ShadowPacket) {
+    /// [`Self::occluded`] gives each. `cone`: from `target` around the
+    /// origins; `up`: the normal of the floor the walk puts below them (any
+    /// direction gives the same answers; the surfaces' own cuts the most).
+    pub fn occluded_in_cone(
+        &self,
+        cone: &Cone,
+        (origins, up): (&[DVec3], DVec3),
+        t_max: f64,
+        packet: &mut ShadowPacket,
+    ) {
+        packet.floor = floor_below(cone.apex, up, origins);
         packet.rays.clear();
         packet.limits.clear();
         packet.t_max = t_max;
@@ -458,11 +407,29 @@ impl Rays for PrimaryPacket {
     }
 }
 
+/// The floor (n, c) across `normal` below the apex and every one of
+/// `points`: a segment from a point to the apex stays above a plane that
+/// both its ends lie above, so what lies wholly below it blocks none. It
+/// is lowered by the rounding of the points' heights and of the segments'
+/// own tests, which work relative to the points (10⁻¹² of their distances
+/// from the apex, beside the filters' own 10⁻¹² of a box's or triangle's,
+/// far above it). None for a normal that is not finite.
+fn floor_below(apex: DVec3, normal: DVec3, points: &[DVec3]) -> Option<(DVec3, f64)> {
+    let reach = points
+        .iter()
+        .fold(0.0_f64, |m, &p| m.max((p - apex).abs().max_element()));
+    let lowest = points.iter().fold(0.0_f64, |m, &p| m.min(normal.dot(p - apex)));
+    let floor = lowest - ROUNDING * reach * normal.abs().element_sum();
+    floor.is_finite().then_some((normal, floor))
+}
+
 /// Shadow rays to one point: blocked ones are done (limit −∞).
 #[derive(Debug, Default)]
 pub struct ShadowPacket {
     rays: Vec<ShearedRay>,
     limits: Vec<f64>,
+    /// What lies below it blocks no ray (see [`floor_below`]).
+    floor: Option<(DVec3, f64)>,
     t_max: f64,
     /// The slot of the last triangle found blocking a ray.
     last_blocker: Option<usize>,
@@ -480,6 +447,10 @@ impl ShadowPacket {
 impl Rays for ShadowPacket {
     fn limits(&self) -> &[f64] {
         &self.limits
+    }
+
+    fn floor(&self) -> Option<(DVec3, f64)> {
+        self.floor
     }
 
     fn lines(&self) -> &Lines {
@@ -500,70 +471,4 @@ impl Rays for ShadowPacket {
         }
         blocked
     }
-}
-
-/// The cone, for boxes of the BVH's normalized frame.
-struct FrameCone {
-    cone: Cone,
-    /// The apex's distance from the frame's centre, for the rounding allowance.
-    apex_size: f64,
-}
-
-impl FrameCone {
-    /// obvhs's hit mask of the children of `node` that [`Self::children`] keeps.
-    #[inline(always)]
-    fn child_mask(&self, bvh: &TriangleBvh, node: &CwBvhNode, farthest: f64, oct_inv4: u32) -> u32 {
-        let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
-        let mut hit_mask = 0;
-        self.children(bvh, node, farthest, |_, child| {
-            hit_mask |= extract_byte64(child_bits8, child) << extract_byte64(bit_index8, child);
-        });
-        hit_mask
-    }
-
-    /// Calls `keep(least depth, child)` for each child of `node` whose box
-    /// meets the cone with a least depth no deeper than `farthest`.
-    ///
-    /// A child's box is p + e·q (q its quantized corners, 0 to 255), so a
-    /// plane's value at the box's farthest corner along n is
-    /// n·p + Σ_k (n_k e_k) q_k: three products per plane and child, for the
-    /// eight children side by side. Every box lies within p … p + 255 e,
-    /// whose size sets one rounding allowance for all of them (no smaller
-    /// than each box's own; the rearranged sums round by some 10⁻¹⁵ of it).
-    #[inline(always)]
-    fn children(&self, bvh: &TriangleBvh, node: &CwBvhNode, farthest: f64, mut keep: impl FnMut(f64, usize)) {
-        let scale = 1.0 / bvh.per_scale;
-        // In f64, relative to the apex, in world units.
-        let e = node.compute_extent().as_dvec3() * scale;
-        let p = node.p.as_dvec3() * scale + bvh.centre - self.cone.apex;
-        let size = p.abs().max((p + e * 255.0).abs()).max_element();
-        let slack = ROUNDING * (size + self.apex_size);
-        let mut inside = [true; 8];
-        for n in self.cone.planes {
-            let bound = -slack * n.abs().element_sum();
-            let v = corner_values(node, n, p, e, true);
-            for c in 0..8 {
-                // NaN (never for finite boxes) keeps the child.
-                inside[c] &= v[c] >= bound || v[c].is_nan();
-            }
-        }
-        let depth = corner_values(node, self.cone.axis, p, e, false);
-        for child in 0..8 {
-            let least = depth[child] - slack;
-            if inside[child] && !node.is_child_empty(child) && least <= farthest {
-                keep(least, child);
-            }
-        }
-    }
-}
-
-/// The value of n·x at each child box's corner farthest along n (nearest
-/// when not `farthest`): the box is p + e·q, q its quantized corners.
-#[inline(always)]
-fn corner_values(node: &CwBvhNode, n: DVec3, p: DVec3, e: DVec3, farthest: bool) -> [f64; 8] {
-    let lo = [&node.child_min_x, &node.child_min_y, &node.child_min_z];
-    let hi = [&node.child_max_x, &node.child_max_y, &node.child_max_z];
-    let q: [&[u8; 8]; 3] = std::array::from_fn(|k| if (n[k] > 0.0) == farthest { hi[k] } else { lo[k] });
-    let (base, w) = (n.dot(p), n * e);
-    std::array::from_fn(|c| base + w.x * q[0][c] as f64 + w.y * q[1][c] as f64 + w.z * q[2][c] as f64)
 }

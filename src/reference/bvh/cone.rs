@@ -1,0 +1,182 @@
+//! The cone a packet's rays lie in, and its tests: a triangle's corners
+//! against its side planes, a node's eight child boxes against them and
+//! against the rays' floor, with the allowances for rounding that keep
+//! every test conservative (see `bvh/packet.rs`).
+
+use super::TriangleBvh;
+use glam::DVec3;
+use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
+
+/// Relative allowance for the rounding of depths and plane distances.
+pub(super) const ROUNDING: f64 = 1e-12;
+
+/// A cone of directions from its apex: what every ray of a packet lies in.
+#[derive(Clone, Copy, Debug)]
+pub struct Cone {
+    pub(super) apex: DVec3,
+    /// The inward normals of its four side planes through the apex.
+    pub(super) planes: [DVec3; 4],
+    /// The axis depths are measured along (unit).
+    pub(super) axis: DVec3,
+}
+
+impl Cone {
+    /// The cone spanned by four directions in order around it (the corner
+    /// rays of a pixel): every convex combination of them lies inside.
+    pub fn spanned(apex: DVec3, corners: [DVec3; 4]) -> Self {
+        let axis = (corners[0] + corners[1] + corners[2] + corners[3]).normalize();
+        let planes = std::array::from_fn(|k| {
+            let n = corners[k].cross(corners[(k + 1) % 4]);
+            if n.dot(axis) < 0.0 { -n } else { n }
+        });
+        Self { apex, planes, axis }
+    }
+
+    /// A cone from `apex` holding every point of `points` (at least one),
+    /// None when they do not all lie on one side of a plane through it.
+    pub fn around(apex: DVec3, points: impl Iterator<Item = DVec3> + Clone) -> Option<Self> {
+        let axis = points
+            .clone()
+            .fold(DVec3::ZERO, |s, p| s + (p - apex).normalize_or_zero())
+            .try_normalize()?;
+        let (u, v) = axis.any_orthonormal_pair();
+        let (mut s0, mut s1, mut r0, mut r1) =
+            (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+        for p in points {
+            let w = p - apex;
+            let along = w.dot(axis);
+            if along <= 0.0 || !along.is_finite() {
+                return None;
+            }
+            let (s, r) = (w.dot(u) / along, w.dot(v) / along);
+            (s0, s1, r0, r1) = (s0.min(s), s1.max(s), r0.min(r), r1.max(r));
+        }
+        // Widened by the rounding of the slopes.
+        let widen = |x: f64| ROUNDING * (1.0 + x.abs());
+        let (s0, s1, r0, r1) = (s0 - widen(s0), s1 + widen(s1), r0 - widen(r0), r1 + widen(r1));
+        Some(Self {
+            apex,
+            planes: [u - axis * s0, axis * s1 - u, v - axis * r0, axis * r1 - v],
+            axis,
+        })
+    }
+
+    /// The square pyramid from `apex` about the unit `axis` whose four
+    /// sides rise at `slope` from it (tan of their angle to the axis),
+    /// widened by the rounding of its planes.
+    pub fn square(apex: DVec3, axis: DVec3, slope: f64) -> Self {
+        let (u, v) = axis.any_orthonormal_pair();
+        let s = slope * (1.0 + ROUNDING) + ROUNDING;
+        Self {
+            apex,
+            planes: [u + axis * s, axis * s - u, v + axis * s, axis * s - v],
+            axis,
+        }
+    }
+
+    pub fn axis(&self) -> DVec3 {
+        self.axis
+    }
+
+    /// Whether the triangle (corners relative to the apex) lies wholly
+    /// outside one side plane, `slack` allowed.
+    #[inline(always)]
+    pub(super) fn misses(&self, relative: &[DVec3; 3], slack: f64) -> bool {
+        self.planes.iter().any(|&n| {
+            let s = slack * n.abs().element_sum();
+            relative.iter().all(|p| n.dot(*p) < -s)
+        })
+    }
+}
+
+/// The cone, for boxes of the BVH's normalized frame.
+pub(super) struct FrameCone {
+    pub(super) cone: Cone,
+    /// The apex's distance from the frame's centre, for the rounding allowance.
+    pub(super) apex_size: f64,
+    /// The rays' floor, if any ([`Rays::floor`]).
+    pub(super) floor: Option<(DVec3, f64)>,
+}
+
+impl FrameCone {
+    /// obvhs's hit mask of the children of `node` that [`Self::children`] keeps.
+    #[inline(always)]
+    pub(super) fn child_mask(
+        &self,
+        bvh: &TriangleBvh,
+        node: &CwBvhNode,
+        farthest: f64,
+        oct_inv4: u32,
+    ) -> u32 {
+        let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
+        let mut hit_mask = 0;
+        self.children(bvh, node, farthest, |_, child| {
+            hit_mask |= extract_byte64(child_bits8, child) << extract_byte64(bit_index8, child);
+        });
+        hit_mask
+    }
+
+    /// Calls `keep(least depth, child)` for each child of `node` whose box
+    /// meets the cone with a least depth no deeper than `farthest`.
+    ///
+    /// A child's box is p + e·q (q its quantized corners, 0 to 255), so a
+    /// plane's value at the box's farthest corner along n is
+    /// n·p + Σ_k (n_k e_k) q_k: three products per plane and child, for the
+    /// eight children side by side. Every box lies within p … p + 255 e,
+    /// whose size sets one rounding allowance for all of them (no smaller
+    /// than each box's own; the rearranged sums round by some 10⁻¹⁵ of it).
+    #[inline(always)]
+    pub(super) fn children(
+        &self,
+        bvh: &TriangleBvh,
+        node: &CwBvhNode,
+        farthest: f64,
+        mut keep: impl FnMut(f64, usize),
+    ) {
+        let scale = 1.0 / bvh.per_scale;
+        // In f64, relative to the apex, in world units.
+        let e = node.compute_extent().as_dvec3() * scale;
+        let p = node.p.as_dvec3() * scale + bvh.centre - self.cone.apex;
+        let size = p.abs().max((p + e * 255.0).abs()).max_element();
+        let slack = ROUNDING * (size + self.apex_size);
+        let mut inside = [true; 8];
+        for n in self.cone.planes {
+            keep_above(
+                &mut inside,
+                corner_values(node, n, p, e, true),
+                -slack * n.abs().element_sum(),
+            );
+        }
+        if let Some((n, floor)) = self.floor {
+            let bound = floor - slack * n.abs().element_sum();
+            keep_above(&mut inside, corner_values(node, n, p, e, true), bound);
+        }
+        let depth = corner_values(node, self.cone.axis, p, e, false);
+        for child in 0..8 {
+            let least = depth[child] - slack;
+            if inside[child] && !node.is_child_empty(child) && least <= farthest {
+                keep(least, child);
+            }
+        }
+    }
+}
+
+/// Keeps inside only the children whose farthest corner `values` lie at
+/// or above `bound` (NaN, never for finite boxes, keeps the child).
+#[inline(always)]
+fn keep_above(inside: &mut [bool; 8], values: [f64; 8], bound: f64) {
+    for c in 0..8 {
+        inside[c] &= values[c] >= bound || values[c].is_nan();
+    }
+}
+
+/// The value of n·x at each child box's corner farthest along n (nearest
+/// when not `farthest`): the box is p + e·q, q its quantized corners.
+#[inline(always)]
+fn corner_values(node: &CwBvhNode, n: DVec3, p: DVec3, e: DVec3, farthest: bool) -> [f64; 8] {
+    let lo = [&node.child_min_x, &node.child_min_y, &node.child_min_z];
+    let hi = [&node.child_max_x, &node.child_max_y, &node.child_max_z];
+    let q: [&[u8; 8]; 3] = std::array::from_fn(|k| if (n[k] > 0.0) == farthest { hi[k] } else { lo[k] });
+    let (base, w) = (n.dot(p), n * e);
+    std::array::from_fn(|c| base + w.x * q[0][c] as f64 + w.y * q[1][c] as f64 + w.z * q[2][c] as f64)
+}
