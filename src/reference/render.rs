@@ -149,10 +149,11 @@ impl Reference {
             noise_known: true,
         };
         let n = spp.count();
-        let sees = |x: u32, y: u32, width: u32, height: u32| {
-            !shortcuts.background || self.bvh.meets_cone(&block_cone(setup, (x, y), (width, height)))
-        };
-        if !sees(x0, y0, x1 - x0, y1 - y0) {
+        let sees = !shortcuts.background
+            || self
+                .bvh
+                .meets_cone(&block_cone(setup, (x0, y0), (x1 - x0, y1 - y0)));
+        if !sees {
             if control.cancelled() {
                 return None;
             }
@@ -193,18 +194,14 @@ impl Reference {
                     );
                     continue;
                 }
-                let block_sees = sees(i, j, width, band);
-                if block_sees {
-                    self.trace_run(setup, spp, (i, j), (width, band), &mut buffers);
-                    self.run_samples(setup, &mut buffers);
-                    self.aim_light_packet(setup, &mut buffers);
-                }
+                // No background test here: within a tile that sees something
+                // it costs more than the blocks it spares (engine: 2.7 % of
+                // the process's instructions, same bits).
+                self.trace_run(setup, spp, (i, j), (width, band), &mut buffers);
+                self.run_samples(setup, &mut buffers);
+                self.aim_light_packet(setup, &mut buffers);
                 for k in 0..(width * band) as usize {
-                    let pixel = if block_sees {
-                        self.shade_pixel(setup, k * n as usize, n, false, &mut buffers)
-                    } else {
-                        Pixel::background(n)
-                    };
+                    let pixel = self.shade_pixel(setup, k * n as usize, n, false, &mut buffers);
                     if k < width as usize {
                         tile.add(pixel);
                     } else {
@@ -405,8 +402,8 @@ enum Traced {
 /// as they are (the tests turn them off to show it).
 #[derive(Clone, Copy, Debug)]
 struct Shortcuts {
-    /// Tiles, blocks and pixels whose cone meets no triangle are
-    /// background without a sample cast: the same bits.
+    /// Tiles and pixels whose cone meets no triangle are background
+    /// without a sample cast: the same bits.
     background: bool,
     /// Pixels that one triangle covers, lit by a point light, take their
     /// hits from it and their shadows from one test of the whole pixel
@@ -542,11 +539,11 @@ mod tests {
         assert_eq!(single.noise, runs.noise);
     }
 
-    /// Tiles, blocks and pixels that see only background are told so
-    /// without casting their samples, and the image is the same bit for
-    /// bit: through the eye grid (small scene) and the BVH's packets.
+    /// Tiles and pixels that see only background are told so without
+    /// casting their samples, and the image is the same bit for bit:
+    /// through the eye grid (small scene) and the BVH's packets.
     #[test]
-    fn skipping_background_blocks_changes_no_pixel() {
+    fn skipping_background_tiles_changes_no_pixel() {
         for divisions in [10, 100] {
             let ground = shapes::ground_grid(Vec3::ZERO, 6.0, divisions);
             let scene = Scene {
