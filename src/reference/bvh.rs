@@ -84,12 +84,13 @@ impl TriangleBvh {
     /// Builds the BVH. Triangles with a non-finite corner or zero area can
     /// never be hit and are left out.
     pub fn new(triangles: &[BvhTriangle]) -> Self {
-        Self::in_groups(triangles, build::MIN_GROUP)
+        Self::in_groups(triangles, (build::MIN_GROUP, build::VERY_FAST_FROM))
     }
 
     /// [`Self::new`] built in parallel in groups of `min_group` triangles
-    /// or more (see `bvh/build.rs`).
-    fn in_groups(triangles: &[BvhTriangle], min_group: usize) -> Self {
+    /// or more, by obvhs's very fast build from `very_fast_from` triangles
+    /// (see `bvh/build.rs`).
+    fn in_groups(triangles: &[BvhTriangle], (min_group, very_fast_from): (usize, usize)) -> Self {
         let usable: Vec<usize> = (0..triangles.len())
             .filter(|&i| {
                 let [a, b, c] = triangles[i].corners;
@@ -128,7 +129,7 @@ impl TriangleBvh {
                 Aabb::new(lo.as_vec3a(), hi.as_vec3a())
             })
             .collect();
-        let bvh = build::build_cwbvh(&boxes, min_group);
+        let bvh = build::build_cwbvh(&boxes, min_group, very_fast_from);
         let original: Vec<usize> = bvh
             .primitive_indices
             .iter()
@@ -408,11 +409,17 @@ mod tests {
         }
     }
 
-    /// Built in groups (a new root over eight BVHs), the BVH still finds
-    /// what brute force finds, ray by ray and in packets, on rays aimed at
-    /// corners and edges too.
+    /// Built in groups (a new root over eight BVHs), by obvhs's fast or
+    /// very fast build, the BVH still finds what brute force finds, ray by
+    /// ray and in packets, on rays aimed at corners and edges too.
     #[test]
     fn a_bvh_built_in_groups_equals_brute_force() {
+        for very_fast_from in [usize::MAX, 0] {
+            bvh_in_groups_equals_brute_force(very_fast_from);
+        }
+    }
+
+    fn bvh_in_groups_equals_brute_force(very_fast_from: usize) {
         use crate::reference::sampling::Rng;
         let rng = &mut Rng::new(11, 0, 0);
         let mut tris = quad(0.0, 6.0, true).to_vec();
@@ -425,7 +432,7 @@ mod tests {
                 occludes: s % 3 != 0,
             }));
         }
-        let bvh = TriangleBvh::in_groups(&tris, 300);
+        let bvh = TriangleBvh::in_groups(&tris, (300, very_fast_from));
         let root = &bvh.bvh.as_ref().unwrap().nodes[0];
         assert_eq!(root.imask.count_ones(), 8, "eight groups");
         // A corner, a point on an edge or inside a random triangle.
