@@ -331,19 +331,8 @@ fn a_surface_a_hair_in_front_of_a_hit_is_still_found() {
     // Tiny triangles around it in its plane, off the rays, so that it
     // shares its leaves and nodes with them, not with the large one, and
     // their boxes come no nearer than it.
-    for k in 0..64 {
-        let angle = k as f64 * std::f64::consts::TAU / 64.0;
-        let radius = 0.05 + 0.2 * rng.next_f64();
-        let a = near(radius * angle.cos(), radius * angle.sin());
-        corners.push([a, a + DVec3::X * 0.01, a + DVec3::Y * 0.01]);
-    }
-    let triangles: Vec<BvhTriangle> = corners
-        .into_iter()
-        .map(|corners| BvhTriangle {
-            corners,
-            occludes: true,
-        })
-        .collect();
+    corners.extend(ring(&mut rng, near, DVec3::Y));
+    let triangles = occluders(corners);
     let bvh = TriangleBvh::new(&triangles);
     // Rays at points of the small one (barycentric mixes inside it).
     let directions: Vec<DVec3> = (0..16)
@@ -386,19 +375,8 @@ fn a_blocker_a_hair_above_the_floor_still_blocks() {
             flat(0.01, 0.0, 5e-4),
         ],
     ];
-    for k in 0..64 {
-        let angle = k as f64 * std::f64::consts::TAU / 64.0;
-        let radius = 0.05 + 0.2 * rng.next_f64();
-        let a = flat(radius * angle.cos(), radius * angle.sin(), 5e-4);
-        corners.push([a, a + DVec3::X * 0.01, a + DVec3::Z * 0.01]);
-    }
-    let triangles: Vec<BvhTriangle> = corners
-        .into_iter()
-        .map(|corners| BvhTriangle {
-            corners,
-            occludes: true,
-        })
-        .collect();
+    corners.extend(ring(&mut rng, |x, z| flat(x, z, 5e-4), DVec3::Z));
+    let triangles = occluders(corners);
     let bvh = TriangleBvh::new(&triangles);
     let origins: Vec<DVec3> = (0..24)
         .map(|_| flat(0.03 * (rng.next_f64() - 0.5), 0.03 * (rng.next_f64() - 0.5), 0.0))
@@ -417,4 +395,28 @@ fn a_blocker_a_hair_above_the_floor_still_blocks() {
         "{blocked} of {} blocked",
         origins.len()
     );
+}
+
+/// 64 triangles 1 cm across, 5 to 25 cm from the middle of the plane that
+/// `at` maps (x, y) into, their second side along `side`.
+fn ring(rng: &mut Rng, at: impl Fn(f64, f64) -> DVec3, side: DVec3) -> Vec<[DVec3; 3]> {
+    (0..64)
+        .map(|k| {
+            let angle = k as f64 * std::f64::consts::TAU / 64.0;
+            let radius = 0.05 + 0.2 * rng.next_f64();
+            let a = at(radius * angle.cos(), radius * angle.sin());
+            [a, a + DVec3::X * 0.01, a + side * 0.01]
+        })
+        .collect()
+}
+
+/// Triangles that all cast shadows.
+fn occluders(corners: Vec<[DVec3; 3]>) -> Vec<BvhTriangle> {
+    corners
+        .into_iter()
+        .map(|corners| BvhTriangle {
+            corners,
+            occludes: true,
+        })
+        .collect()
 }

@@ -277,11 +277,7 @@ fn kept_avx(b: &Block, planes: &EdgePlanes, nearest: f32) -> u32 {
     let (dx, dy, dz, reach) = (load(&b.d[0]), load(&b.d[1]), load(&b.d[2]), load(&b.reach));
     let (mut positive, mut negative) = (_mm256_setzero_ps(), _mm256_setzero_ps());
     for e in 0..3 {
-        let [nx, ny, nz] = planes.n[e].map(|x| _mm256_set1_ps(x));
-        let value = _mm256_add_ps(
-            _mm256_add_ps(_mm256_mul_ps(dx, nx), _mm256_mul_ps(dy, ny)),
-            _mm256_mul_ps(dz, nz),
-        );
+        let value = dot_avx([dx, dy, dz], planes.n[e]);
         let margin = _mm256_add_ps(
             _mm256_mul_ps(reach, _mm256_set1_ps(planes.tau[e])),
             _mm256_set1_ps(FLOOR),
@@ -295,6 +291,19 @@ fn kept_avx(b: &Block, planes: &EdgePlanes, nearest: f32) -> u32 {
     let reaches = _mm256_cmp_ps::<_CMP_LE_OQ>(_mm256_set1_ps(nearest), load(&b.limit));
     let misses = _mm256_and_ps(positive, negative);
     _mm256_movemask_ps(_mm256_andnot_ps(misses, reaches)) as u32
+}
+
+/// (x n_x + y n_y) + z n_z in each of eight lanes, `xyz` = [x, y, z].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+fn dot_avx(xyz: [std::arch::x86_64::__m256; 3], n: [f32; 3]) -> std::arch::x86_64::__m256 {
+    use std::arch::x86_64::*;
+    let [nx, ny, nz] = n.map(|x| _mm256_set1_ps(x));
+    _mm256_add_ps(
+        _mm256_add_ps(_mm256_mul_ps(xyz[0], nx), _mm256_mul_ps(xyz[1], ny)),
+        _mm256_mul_ps(xyz[2], nz),
+    )
 }
 
 /// [`kept_avx`] lane by lane, where there is no AVX (and in the tests,
@@ -337,11 +346,7 @@ fn group_kept_avx(b: &Bounds, planes: &EdgePlanes, nearest: f32, halves: usize) 
         let (spread, reach) = (load(&b.spread), load(&b.reach));
         let (mut positive, mut negative) = (_mm256_setzero_ps(), _mm256_setzero_ps());
         for e in 0..3 {
-            let [nx, ny, nz] = planes.n[e].map(|x| _mm256_set1_ps(x));
-            let centre = _mm256_add_ps(
-                _mm256_add_ps(_mm256_mul_ps(cx, nx), _mm256_mul_ps(cy, ny)),
-                _mm256_mul_ps(cz, nz),
-            );
+            let centre = dot_avx([cx, cy, cz], planes.n[e]);
             let spread = _mm256_mul_ps(spread, _mm256_set1_ps(planes.l1[e]));
             let margin = _mm256_add_ps(
                 _mm256_mul_ps(reach, _mm256_set1_ps(planes.tau[e])),
