@@ -30,9 +30,15 @@ const GRID_MAX_TRIANGLES: usize = 16_384;
 /// Pixels whose primary rays walk the BVH as one packet where there is no
 /// eye grid (several samples a pixel), in blocks of two rows by RUN / 2
 /// columns: against one pixel a packet, 2 × 2 renders the 110 k-triangle
-/// engine 14 % faster and 1 M triangles 9 % (4 × 1: 13 % and 7 %; 4 × 2
-/// and runs of 8 or 16 in a row: slower on 1 M triangles).
+/// engine 14 % faster and 1 M triangles 9 % (4 × 1: 13 % and 7 %; runs of
+/// 8 or 16 in a row: slower on 1 M triangles).
 const RUN: u32 = 4;
+/// The blocks' pixels where the scene has fewer triangles than the image
+/// has pixels: 4 × 2 takes 8 % off the 110 k-triangle engine's process at
+/// 512 × 384 (its shadow packets' cones hold few triangles), where it adds
+/// 2 % on 1 M triangles, whose bumpy surfaces fill a wider cone with more
+/// of them (callgrind, 16 spp).
+const WIDE_RUN: u32 = 8;
 
 impl Reference {
     /// Renders the image, in parallel over tiles, reporting progress and
@@ -43,7 +49,13 @@ impl Reference {
         options: &ReferenceOptions,
         control: &RenderControl,
     ) -> Result<ReferenceImage, ReferenceError> {
-        self.render_in_runs(settings, options, control, RUN, Shortcuts::ALL)
+        let pixels = settings.image.width as usize * settings.image.height as usize;
+        let run = if self.bvh_triangles.len() < pixels {
+            WIDE_RUN
+        } else {
+            RUN
+        };
+        self.render_in_runs(settings, options, control, run, Shortcuts::ALL)
     }
 
     /// [`Self::render`] with primary packets of `run` pixels where there is
@@ -497,98 +509,4 @@ fn sample_points(setup: &Setup, spp: Strata, i: u32, j: u32) -> impl Iterator<It
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::scene::{Object, Scene, shapes};
-    use glam::Vec3;
-
-    /// Above the grids' limit, blocks of pixels sharing a packet give every
-    /// pixel exactly what one packet a pixel gives (partial blocks at the
-    /// image's bottom row and the tiles' right edges included).
-    #[test]
-    fn runs_of_pixels_render_what_single_pixels_render() {
-        let mut ground = shapes::ground_grid(Vec3::ZERO, 6.0, 100);
-        ground.append(&shapes::ground_grid(Vec3::new(0.3, 0.7, -0.2), 1.5, 20));
-        let scene = Scene {
-            objects: vec![Object::new("ground", ground, 0)],
-            materials: vec![crate::scene::Material::default()],
-            ..Scene::default()
-        };
-        let reference = Reference::new(&scene);
-        assert!(reference.bvh_triangles.len() > GRID_MAX_TRIANGLES);
-        let mut settings = Settings::default();
-        settings.camera.eye = Vec3::new(1.0, 3.0, 4.0);
-        settings.camera.target = Vec3::ZERO;
-        settings.light.position = Vec3::new(-1.0, 4.0, 1.0);
-        (settings.image.width, settings.image.height) = (23, 7);
-        let options = ReferenceOptions {
-            spp: 4,
-            ..ReferenceOptions::default()
-        };
-        let control = RenderControl::default();
-        let single = reference
-            .render_in_runs(&settings, &options, &control, 1, Shortcuts::ALL)
-            .unwrap();
-        let runs = reference
-            .render_in_runs(&settings, &options, &control, RUN, Shortcuts::ALL)
-            .unwrap();
-        assert!(single.coverage.iter().any(|&c| c > 0.0) && single.visibility.iter().any(|&v| v < 1.0));
-        assert_eq!(single.radiance, runs.radiance);
-        assert_eq!(single.visibility, runs.visibility);
-        assert_eq!(single.coverage, runs.coverage);
-        assert_eq!(single.noise, runs.noise);
-    }
-
-    /// Tiles and pixels that see only background are told so without
-    /// casting their samples, and the image is the same bit for bit:
-    /// through the eye grid (small scene) and the BVH's packets.
-    #[test]
-    fn skipping_background_tiles_changes_no_pixel() {
-        for divisions in [10, 100] {
-            let ground = shapes::ground_grid(Vec3::ZERO, 6.0, divisions);
-            let scene = Scene {
-                objects: vec![Object::new("ground", ground, 0)],
-                materials: vec![crate::scene::Material::default()],
-                ..Scene::default()
-            };
-            let reference = Reference::new(&scene);
-            let mut settings = Settings::default();
-            // Level with the ground's far edge: the top half is sky, the
-            // horizon runs through tiles and blocks.
-            settings.camera.eye = Vec3::new(0.3, 1.0, 2.0);
-            settings.camera.target = Vec3::new(0.0, 0.9, -3.0);
-            settings.light.position = Vec3::new(-1.0, 4.0, 1.0);
-            (settings.image.width, settings.image.height) = (40, 36);
-            let options = ReferenceOptions {
-                spp: 4,
-                ..ReferenceOptions::default()
-            };
-            let setup = Setup::new(&settings, &options, &reference.materials);
-            assert!(!reference.bvh.meets_cone(&block_cone(&setup, (0, 0), (16, 16))));
-            assert!(reference.bvh.meets_cone(&block_cone(&setup, (0, 20), (16, 16))));
-            let control = RenderControl::default();
-            let cast = reference
-                .render_in_runs(
-                    &settings,
-                    &options,
-                    &control,
-                    RUN,
-                    Shortcuts {
-                        background: false,
-                        ..Shortcuts::ALL
-                    },
-                )
-                .unwrap();
-            let skipped = reference
-                .render_in_runs(&settings, &options, &control, RUN, Shortcuts::ALL)
-                .unwrap();
-            assert!(cast.coverage.contains(&0.0) && cast.coverage.contains(&1.0));
-            assert_eq!(cast.radiance, skipped.radiance);
-            assert_eq!(cast.visibility, skipped.visibility);
-            assert_eq!(cast.coverage, skipped.coverage);
-            assert_eq!(cast.noise, skipped.noise);
-            assert_eq!(cast.noise_known, skipped.noise_known);
-            assert_eq!(cast.stats.primary_rays, skipped.stats.primary_rays);
-        }
-    }
-}
+mod tests;
