@@ -350,19 +350,10 @@ impl Reference {
             .as_ref()
             .is_some_and(|grid| !grid.is_crowded_anywhere());
         if setup.shadows && !setup.is_sphere_light() && !grid_answers {
-            let origins = buffers.samples.iter().filter_map(|(s, _)| {
-                let s = s.as_ref()?;
-                let origin = s.shadow_ray_origin(setup.light_position)?;
-                let g = s.geometric_normal;
-                Some((
-                    origin,
-                    if g.dot(setup.light_position - s.p) < 0.0 {
-                        -g
-                    } else {
-                        g
-                    },
-                ))
-            });
+            let origins = buffers
+                .samples
+                .iter()
+                .filter_map(|(s, _)| s.as_ref()?.shadow_ray(setup.light_position));
             buffers.scratch.light_packet.reset(origins);
         }
     }

@@ -37,10 +37,15 @@ pub(super) struct Surface {
 }
 
 impl Surface {
-    /// Where its shadow ray to a point light at `light` starts, None when
-    /// it casts none (nearly certainly: a light on its horizon may go either way).
-    pub(super) fn shadow_ray_origin(&self, light: DVec3) -> Option<DVec3> {
-        (self.shadowed && self.n.dot(light - self.p) > 0.0).then_some(self.shadow_origin)
+    /// Where its shadow ray to a point light at `light` starts, and the
+    /// face's normal on the light's side; None when it casts none (nearly
+    /// certainly: a light on its horizon may go either way).
+    pub(super) fn shadow_ray(&self, light: DVec3) -> Option<(DVec3, DVec3)> {
+        let to_light = light - self.p;
+        (self.shadowed && self.n.dot(to_light) > 0.0).then(|| {
+            let g = self.geometric_normal;
+            (self.shadow_origin, if g.dot(to_light) < 0.0 { -g } else { g })
+        })
     }
 }
 

@@ -82,11 +82,16 @@ impl Cone {
     /// outside one side plane, `slack` allowed.
     #[inline(always)]
     pub(super) fn misses(&self, relative: &[DVec3; 3], slack: f64) -> bool {
-        self.planes.iter().any(|&n| {
-            let s = slack * n.abs().element_sum();
-            relative.iter().all(|p| n.dot(*p) < -s)
-        })
+        self.planes
+            .iter()
+            .any(|&n| wholly_below(relative, n, -slack * n.abs().element_sum()))
     }
+}
+
+/// Whether every corner (relative to the apex) has n · p below `bound`.
+#[inline(always)]
+fn wholly_below(relative: &[DVec3; 3], n: DVec3, bound: f64) -> bool {
+    relative.iter().all(|p| n.dot(*p) < bound)
 }
 
 /// The cone, for boxes of the BVH's normalized frame.
@@ -99,6 +104,16 @@ pub(super) struct FrameCone {
 }
 
 impl FrameCone {
+    /// Whether the triangle (corners relative to the apex) lies wholly
+    /// outside a side plane or below the floor, `slack` allowed.
+    #[inline(always)]
+    pub(super) fn misses(&self, relative: &[DVec3; 3], slack: f64) -> bool {
+        self.cone.misses(relative, slack)
+            || self
+                .floor
+                .is_some_and(|(n, level)| wholly_below(relative, n, level - slack * n.abs().element_sum()))
+    }
+
     /// obvhs's hit mask of the children of `node` that [`Self::children`] keeps.
     #[inline(always)]
     pub(super) fn child_mask(

@@ -215,13 +215,7 @@ impl TriangleBvh {
         let cone = &frame.cone;
         let relative = self.corners[slot].map(|p| p - cone.apex);
         let slack = ROUNDING * relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
-        if cone.misses(&relative, slack)
-            || frame.floor.is_some_and(|(n, c)| {
-                relative
-                    .iter()
-                    .all(|p| n.dot(*p) < c - slack * n.abs().element_sum())
-            })
-        {
+        if frame.misses(&relative, slack) {
             return false;
         }
         let nearest = relative
@@ -281,7 +275,6 @@ impl TriangleBvh {
         t_max: f64,
         packet: &mut ShadowPacket,
     ) {
-        packet.floor = floor_below(cone.apex, up, origins);
         packet.rays.clear();
         packet.limits.clear();
         packet.t_max = t_max;
@@ -294,6 +287,7 @@ impl TriangleBvh {
                 .push(depth + ROUNDING * (o - cone.apex).abs().element_sum());
             spread = spread.max((o - cone.apex).abs().max_element());
         }
+        packet.floor = floor_below(cone.apex, up, (origins, spread));
         packet
             .lines
             .fill(packet.rays.iter().map(|r| r.direction), &packet.limits, spread);
@@ -412,12 +406,10 @@ impl Rays for PrimaryPacket {
 /// both its ends lie above, so what lies wholly below it blocks none. It
 /// is lowered by the rounding of the points' heights and of the segments'
 /// own tests, which work relative to the points (10⁻¹² of their distances
-/// from the apex, beside the filters' own 10⁻¹² of a box's or triangle's,
-/// far above it). None for a normal that is not finite.
-fn floor_below(apex: DVec3, normal: DVec3, points: &[DVec3]) -> Option<(DVec3, f64)> {
-    let reach = points
-        .iter()
-        .fold(0.0_f64, |m, &p| m.max((p - apex).abs().max_element()));
+/// from the apex, `reach` the farthest by |·|∞, beside the filters' own
+/// 10⁻¹² of a box's or triangle's, far above it). None for a normal that
+/// is not finite.
+fn floor_below(apex: DVec3, normal: DVec3, (points, reach): (&[DVec3], f64)) -> Option<(DVec3, f64)> {
     let lowest = points.iter().fold(0.0_f64, |m, &p| m.min(normal.dot(p - apex)));
     let floor = lowest - ROUNDING * reach * normal.abs().element_sum();
     floor.is_finite().then_some((normal, floor))
