@@ -19,16 +19,14 @@ mod app_support;
 use app_support::{SIZE, harness, step_until};
 
 /// Mean radiance (W/m²/sr, luminance-free: the mean of r, g, b) over the
-/// pixels the scene covers, read back from the renderer.
+/// pixels the scene covers (alpha 1), read back from the renderer.
 fn mean_radiance(app: &LabApp) -> f64 {
     let renderer = app.renderer().expect("renderer");
-    let quantity = renderer.read_quantity();
-    let aux = renderer.read_aux();
-    let (sum, n) = quantity
+    let (sum, n) = renderer
+        .read_quantity()
         .iter()
-        .zip(&aux)
-        .filter(|(_, a)| a[3] > 0.0)
-        .fold((0.0, 0usize), |(s, n), (q, _)| {
+        .filter(|q| q[3] > 0.0)
+        .fold((0.0, 0usize), |(s, n), q| {
             (s + (q[0] + q[1] + q[2]) as f64 / 3.0, n + 1)
         });
     assert!(n > 1000, "the scene covers {n} pixels");
@@ -506,12 +504,11 @@ fn a_reference_job_feeds_the_error_view_and_its_rmse() {
     let stats = harness.state().error_stats().unwrap();
 
     let renderer = harness.state().renderer().unwrap();
-    let (quantity, aux) = (renderer.read_quantity(), renderer.read_aux());
-    let (sum2, n) = quantity
+    let (sum2, n) = renderer
+        .read_quantity()
         .iter()
-        .zip(&aux)
-        .filter(|(_, a)| a[3] > 0.0)
-        .fold((0.0, 0), |(s, n), (q, _)| {
+        .filter(|q| q[3] > 0.0)
+        .fold((0.0, 0), |(s, n), q| {
             let y = 0.2126 * q[0] as f64 + 0.7152 * q[1] as f64 + 0.0722 * q[2] as f64;
             (s + y * y, n + 1)
         });

@@ -10,7 +10,7 @@ use glam::{Vec3, Vec4};
 use lumlab::gpu::bvh::{BvhNodeRaw, BvhTriangleRaw, FlatBvh, GpuBvh};
 use lumlab::gpu::raytrace::RayTraceRaw;
 use lumlab::gpu::shaders::Shader;
-use lumlab::gpu::{GpuContext, Renderer};
+use lumlab::gpu::{GpuContext, Renderer, ShadeOptions};
 use lumlab::reference::{Reference, ReferenceOptions, RenderControl};
 use lumlab::scene::Scene;
 use lumlab::settings::{Settings, Visibility};
@@ -418,6 +418,47 @@ fn accumulate_needs_ray_traced_visibility_and_renders_n_frames() {
         "{message}"
     );
     assert!(out.exists());
+}
+
+#[test]
+fn a_mean_begun_without_the_aux_target_restarts_when_it_is_asked_for() {
+    // The app's frames skip the aux target until the probe reads it; the
+    // frames of the mean before then left none in the history.
+    let gpu = common::gpu();
+    let scene = lumlab::scene::default_scene();
+    let mut settings = ray_traced(96, 54);
+    settings.light.radius_m = 0.3;
+    let size = (settings.image.width, settings.image.height);
+    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    let quantity_only = ShadeOptions {
+        aux: false,
+        ..ShadeOptions::default()
+    };
+    renderer.set_shade_options(quantity_only);
+    for _ in 0..3 {
+        renderer.render(&settings, size);
+    }
+    assert_eq!(renderer.accumulation().unwrap().frames, 3);
+    assert!(renderer.read_aux().is_empty(), "no aux target was written");
+    renderer.set_shade_options(ShadeOptions::default());
+    renderer.render(&settings, size);
+    assert_eq!(renderer.accumulation().unwrap().frames, 1, "the mean restarted");
+    let aux = renderer.read_aux();
+    assert_eq!(aux.len(), (size.0 * size.1) as usize);
+    // Coverage is 0 or 1 and V within [0, 1]: no frame without aux in the mean.
+    assert!(
+        aux.iter()
+            .all(|a| (a[3] == 0.0 || a[3] == 1.0) && (0.0..=1.0).contains(&a[0]))
+    );
+    assert!(aux.iter().filter(|a| a[3] == 1.0).count() > aux.len() / 2);
+    // Without the aux target the mean goes on as before: the quantity's
+    // alpha still marks the pixels covered.
+    renderer.set_shade_options(quantity_only);
+    renderer.render(&settings, size);
+    renderer.render(&settings, size);
+    assert_eq!(renderer.accumulation().unwrap().frames, 2);
+    let covered = renderer.read_quantity().iter().filter(|q| q[3] > 0.0).count();
+    assert_eq!(covered, aux.iter().filter(|a| a[3] == 1.0).count());
 }
 
 /// A caterpillar BVH as deep as it has triangles (node 0 the root, an

@@ -8,12 +8,12 @@
 
 use super::drag_device::{DragDevice, DragFrame, DragRenderer, Job};
 use super::render_scale::{FrameScale, RenderScale, shadow_map_side};
-use super::view_readback::{PendingFrame, PendingProbe};
+use super::view_readback::PendingProbe;
 use super::viewport_image::{ImageBinding, ImagePipeline};
 use crate::gpu::readback::ReadState;
 use crate::gpu::timing::PassTimes;
 use crate::gpu::{Capabilities, ShadeOptions};
-use crate::gpu::{ComparisonImage, FloatTarget, FrameReport, PendingScale, Renderer};
+use crate::gpu::{ComparisonImage, FloatTarget, FrameReport, PendingScale, PendingTexels, Renderer};
 use crate::presets::Half;
 use crate::scene::Scene;
 use crate::scene::simplify::{SimplifiedMeshes, TriangleCounts, simplify_in_background};
@@ -33,6 +33,9 @@ struct RenderKey {
     /// pixel to a sphere light): the frame after the drag renders again
     /// even where the drag's render scale had reached 1.
     interaction: bool,
+    /// A still frame writes the aux target (V, texel density): the probe
+    /// reads it. The shading pass costs ~10 % less without it.
+    aux: bool,
 }
 
 /// How long a drag frame waits for the drag device's image on its way
@@ -241,7 +244,8 @@ impl GpuViews {
     }
 
     /// Renders a half if what it shows changed; true when a new image is
-    /// shown. `size`: the image size at this frame's render scale. On a
+    /// shown. `size`: the image size at this frame's render scale; `aux`:
+    /// a still frame writes the aux target the probe reads. On a
     /// drag device, a drag frame shows the last image that came back and
     /// sends the next job; `wake` repaints when its image is back.
     pub fn prepare(
@@ -249,6 +253,7 @@ impl GpuViews {
         half: Half,
         settings: &Settings,
         size: (u32, u32),
+        aux: bool,
         wake: &egui::Context,
     ) -> bool {
         let Some(h) = &mut self.halves[half as usize] else {
@@ -260,6 +265,7 @@ impl GpuViews {
             scene_generation: h.scene_generation,
             comparison_generation: h.comparison_generation,
             interaction: self.render_scale.interacting,
+            aux,
         };
         if self.drag.as_ref().is_some_and(DragRenderer::is_gone) {
             self.drag = None;
@@ -313,7 +319,10 @@ impl GpuViews {
         h.renderer.set_shade_options(if interacting {
             ShadeOptions::INTERACTION
         } else {
-            ShadeOptions::default()
+            ShadeOptions {
+                aux,
+                ..ShadeOptions::STILL
+            }
         });
         let drawn = drawn_at(settings, self.frame_scale);
         let start = Instant::now();
@@ -405,14 +414,12 @@ impl GpuViews {
         ))
     }
 
-    /// Starts reading half A's whole frame (quantity and aux).
-    pub fn request_frame(&self) -> Option<PendingFrame> {
+    /// Starts reading half A's whole quantity target: a pixel is covered
+    /// where its alpha is above 0 (the camera pass writes 1, the clear 0).
+    pub fn request_frame(&self) -> Option<PendingTexels> {
         let h = self.half(Half::A)?;
         let size = h.rendered.as_ref()?.size;
-        Some(PendingFrame::new(
-            h.renderer.request_texels(FloatTarget::Quantity, (0, 0), size)?,
-            h.renderer.request_texels(FloatTarget::Aux, (0, 0), size)?,
-        ))
+        h.renderer.request_texels(FloatTarget::Quantity, (0, 0), size)
     }
 
     /// Frames rendered by a half so far.

@@ -1,6 +1,7 @@
 //! What the app reads back from the viewport's frames without blocking: a
-//! pixel for the probe, half A's whole frame for the error statistics and
-//! the exposure (started by `GpuViews::request_probe` and `request_frame`).
+//! pixel for the probe (started by `GpuViews::request_probe`). Half A's
+//! whole frame, for the error statistics and the exposure, is its quantity
+//! target alone (`GpuViews::request_frame`).
 
 use super::probe::{GpuSample, quantity_is_radiance};
 use crate::gpu::PendingTexels;
@@ -15,14 +16,6 @@ pub struct PendingProbe {
     quantity: PendingTexels,
     aux_value: Option<[f32; 4]>,
     quantity_value: Option<[f32; 4]>,
-}
-
-/// The whole frame of half A, read back for the error statistics.
-pub struct PendingFrame {
-    quantity: PendingTexels,
-    aux: PendingTexels,
-    quantity_value: Option<Vec<[f32; 4]>>,
-    aux_value: Option<Vec<[f32; 4]>>,
 }
 
 impl PendingProbe {
@@ -57,42 +50,6 @@ impl PendingProbe {
                 delta_e: (self.view == DebugView::DeltaE && quantity[0] >= 0.0).then_some(quantity[0]),
             }),
             _ => ReadState::Waiting,
-        }
-    }
-}
-
-/// Half A's quantity and aux targets, row-major from the top.
-pub struct FrameTexels {
-    pub quantity: Vec<[f32; 4]>,
-    pub aux: Vec<[f32; 4]>,
-}
-
-impl PendingFrame {
-    pub fn new(quantity: PendingTexels, aux: PendingTexels) -> Self {
-        Self {
-            quantity,
-            aux,
-            quantity_value: None,
-            aux_value: None,
-        }
-    }
-
-    /// Both targets once they are back.
-    pub fn poll(&mut self) -> ReadState<FrameTexels> {
-        let reads = [
-            (&self.quantity, &mut self.quantity_value),
-            (&self.aux, &mut self.aux_value),
-        ];
-        if !collect(reads, |texels| texels) {
-            return ReadState::Failed;
-        }
-        match (self.quantity_value.take(), self.aux_value.take()) {
-            (Some(quantity), Some(aux)) => ReadState::Ready(FrameTexels { quantity, aux }),
-            (quantity, aux) => {
-                self.quantity_value = quantity;
-                self.aux_value = aux;
-                ReadState::Waiting
-            }
         }
     }
 }

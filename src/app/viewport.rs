@@ -290,7 +290,9 @@ impl Viewport<'_> {
         };
         for &half in halves {
             let s = Self::render_settings(settings, split, half, render_size);
-            out.rendered[half as usize] = gpu.prepare(half, &s, render_size, ui.ctx());
+            // The probe reads V and the texel density from the aux target.
+            let probed = [probe, out.clicked].iter().flatten().any(|p| p.half == half);
+            out.rendered[half as usize] = gpu.prepare(half, &s, render_size, probed, ui.ctx());
         }
         out.preview = gpu.rendered_scale(Half::A) < 1.0;
         if out.preview {

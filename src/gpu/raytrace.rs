@@ -71,17 +71,21 @@ struct Key {
     settings: Settings,
     size: (u32, u32),
     scene_generation: u64,
-    drag: DragRays,
+    variant: FrameVariant,
 }
 
-/// How a frame's rays may differ from what the settings say: a drag frame's
-/// (see [`super::ShadeOptions`]), never folded into a still frame's mean.
+/// How a frame differs from what the settings say (see
+/// [`super::ShadeOptions`]): a drag frame's rays, never folded into a still
+/// frame's mean, and whether the frame writes the aux target, whose history
+/// a mean begun without it lacks.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct DragRays {
+pub struct FrameVariant {
     /// Against the BVH of the scene's simplified meshes, where it has them.
     pub simplified: bool,
     /// One ray a pixel towards a sphere light.
     pub one_light_sample: bool,
+    /// The frame writes the aux target (and its history).
+    pub aux: bool,
 }
 
 /// The previous frame's quantity and aux targets.
@@ -137,18 +141,18 @@ impl RayTracePass {
         settings: &Settings,
         size: (u32, u32),
         shared: &SharedScene,
-        drag: DragRays,
+        variant: FrameVariant,
     ) -> (&wgpu::BindGroup, bool) {
         let scene_generation = shared.generation;
-        let bvh = shared.scene.bvh(drag.simplified);
+        let bvh = shared.scene.bvh(variant.simplified);
         if self.history.as_ref().is_none_or(|h| {
-            h.size != size || h.scene_generation != scene_generation || h.simplified_bvh != drag.simplified
+            h.size != size || h.scene_generation != scene_generation || h.simplified_bvh != variant.simplified
         }) {
             let target = Target {
                 size,
                 format: self.format,
                 scene_generation,
-                simplified_bvh: drag.simplified,
+                simplified_bvh: variant.simplified,
             };
             self.history = Some(History::new(device, &self.layout, &self.uniform, bvh, target));
             self.key = None;
@@ -159,7 +163,7 @@ impl RayTracePass {
             settings: settings.clone(),
             size,
             scene_generation,
-            drag,
+            variant,
         };
         if !traced || self.key.as_ref() != Some(&key) {
             self.frames = 0;
@@ -175,7 +179,7 @@ impl RayTracePass {
         };
         self.frame_seed = self.frame_seed.wrapping_add(1);
         let sphere = settings.light.is_sphere();
-        let (samples, rays_per_frame) = if drag.one_light_sample {
+        let (samples, rays_per_frame) = if variant.one_light_sample {
             (1, 1)
         } else {
             (s.rt_light_samples, settings.ray_traced_rays_per_frame())
@@ -205,17 +209,19 @@ impl RayTracePass {
         (&self.history.as_ref().expect("made above").group, accumulating)
     }
 
-    /// Keeps this frame's targets as the history of the next (ray traced only).
+    /// Keeps this frame's targets as the history of the next (ray traced
+    /// only; the aux target where the frame wrote it).
     pub fn encode_history(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         quantity: &wgpu::Texture,
         aux: &wgpu::Texture,
     ) {
-        let (Some(history), Some(_)) = (&self.history, &self.status) else {
+        let (Some(history), Some(key)) = (&self.history, &self.key) else {
             return;
         };
-        for (from, to) in [(quantity, &history.quantity), (aux, &history.aux)] {
+        let written = [(quantity, &history.quantity), (aux, &history.aux)];
+        for (from, to) in &written[..1 + usize::from(key.variant.aux)] {
             encoder.copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), from.size());
         }
     }

@@ -11,7 +11,7 @@ use super::flat::{FlatTargets, time_flat_pass};
 use super::frame_report::FrameReport;
 use super::light_frustum::{Frustum, LayoutKind, shadow_apex};
 use super::lines::FrustumOverlay;
-use super::raytrace::{Accumulation, DragRays, RayTracePass};
+use super::raytrace::{Accumulation, FrameVariant, RayTracePass};
 use super::readback::{PendingRead, read_texture};
 use super::shade::ShadePass;
 use super::shared::SharedScene;
@@ -50,6 +50,8 @@ pub struct Renderer {
     shade_options: ShadeOptions,
     /// The shadow map's layout in the last frame (None: no map).
     layout_kind: Option<LayoutKind>,
+    /// The last frame wrote the aux target (else it holds an older frame's).
+    aux_written: bool,
     raytrace: RayTracePass,
     /// This view's shadow uniforms (filter and bias may differ between views
     /// that share a map).
@@ -100,6 +102,7 @@ impl Renderer {
             shade,
             shade_options: ShadeOptions::default(),
             layout_kind: None,
+            aux_written: false,
             targets: None,
             has_comparison: false,
             comparison: None,
@@ -369,9 +372,10 @@ impl Renderer {
             settings,
             targets.size,
             shared,
-            DragRays {
+            FrameVariant {
                 simplified,
                 one_light_sample: self.shade_options.one_light_sample,
+                aux: self.shade_options.aux,
             },
         );
         let specialisation = Specialisation::for_frame(
@@ -383,6 +387,7 @@ impl Renderer {
             shared.scene.attributes,
         );
         self.shade.prepare(&self.device, specialisation);
+        self.aux_written = specialisation.aux;
         // The pre-pass and the camera pass are timed as one span: the cost of shading.
         let prepass = specialisation.prepassed;
         if prepass {
@@ -489,7 +494,8 @@ impl Renderer {
 
     /// Starts reading a rectangle of the last frame's quantity or aux target
     /// without blocking (the app's pixel probe and error statistics); None
-    /// before the first frame or when the rectangle leaves the image.
+    /// before the first frame, when the rectangle leaves the image or when
+    /// the last frame did not write the aux target asked for.
     pub fn request_texels(
         &self,
         target: FloatTarget,
@@ -503,7 +509,8 @@ impl Renderer {
         }
         let texture = match target {
             FloatTarget::Quantity => &t.quantity,
-            FloatTarget::Aux => &t.aux,
+            FloatTarget::Aux if self.aux_written => &t.aux,
+            FloatTarget::Aux => return None,
         };
         let bytes_per_texel = texture.format().block_copy_size(None).unwrap_or(16);
         Some(PendingTexels {
@@ -537,10 +544,12 @@ impl Renderer {
             .map_or_else(Vec::new, |t| self.read_float_target(&t.quantity))
     }
 
-    /// The last frame's aux target: V, texel density, cos θ, coverage.
+    /// The last frame's aux target: V, texel density, cos θ, coverage
+    /// (empty when the frame did not write it, see [`ShadeOptions::aux`]).
     pub fn read_aux(&self) -> Vec<[f32; 4]> {
         self.targets
             .as_ref()
+            .filter(|_| self.aux_written)
             .map_or_else(Vec::new, |t| self.read_float_target(&t.aux))
     }
 

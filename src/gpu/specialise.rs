@@ -25,8 +25,8 @@ pub struct ShadeOptions {
     /// the generic one that branches on the uniforms.
     pub specialised: bool,
     /// Also write the aux target (V, texel density, cos θ, coverage) that the
-    /// probe, the error statistics and `Renderer::read_aux` read. Frames
-    /// nobody reads back (the app's interaction frames) skip it.
+    /// probe and `Renderer::read_aux` read. The app's frames skip it but
+    /// where the probe reads it (a still frame of the probed half).
     pub aux: bool,
     /// Draw the depth pre-pass first, so that each pixel is shaded once.
     /// It pays for itself on large images (less CPU on lavapipe at 1000 ×
@@ -53,6 +53,17 @@ pub struct ShadeOptions {
 }
 
 impl ShadeOptions {
+    /// The app's still frames: full size, the quantity only (the probe's
+    /// half adds the aux target).
+    pub const STILL: Self = Self {
+        specialised: true,
+        aux: false,
+        depth_prepass: true,
+        simplified: false,
+        one_light_sample: false,
+        depth_ranges: true,
+    };
+
     /// The app's interaction frames (a drag): read back by nobody, so no aux
     /// target, simplified meshes where the scene has them and one ray a
     /// pixel towards a sphere light, and small, so no depth pre-pass (but
@@ -68,14 +79,11 @@ impl ShadeOptions {
 }
 
 impl Default for ShadeOptions {
+    /// A still frame with both targets: the CLI, the report and the tests read the aux target back.
     fn default() -> Self {
         Self {
-            specialised: true,
             aux: true,
-            depth_prepass: true,
-            simplified: false,
-            one_light_sample: false,
-            depth_ranges: true,
+            ..Self::STILL
         }
     }
 }

@@ -6,8 +6,9 @@ use super::super::LaunchOptions;
 use super::super::command::Command;
 use super::super::gpu_view::GpuViews;
 use super::super::reference::error_stats;
-use super::super::view_readback::{FrameTexels, PendingFrame, PendingProbe};
+use super::super::view_readback::PendingProbe;
 use super::LabApp;
+use crate::gpu::PendingTexels;
 use crate::gpu::readback::ReadState;
 use crate::scene::Scene;
 use crate::tr;
@@ -46,9 +47,9 @@ impl Script {
 pub(super) struct Jobs {
     scene_load: Option<Receiver<SceneLoad>>,
     pub(super) pending_probe: Option<PendingProbe>,
-    pub(super) pending_frame: Option<PendingFrame>,
+    pub(super) pending_frame: Option<PendingTexels>,
     /// The image read back for auto exposure.
-    pending_exposure: Option<PendingFrame>,
+    pending_exposure: Option<PendingTexels>,
     screenshot_tx: Sender<Arc<egui::ColorImage>>,
     screenshot_rx: Receiver<Arc<egui::ColorImage>>,
     screenshot_path: Option<PathBuf>,
@@ -115,10 +116,10 @@ impl LabApp {
         if let Some(pending) = &mut self.jobs.pending_frame {
             match pending.poll() {
                 ReadState::Waiting => {}
-                ReadState::Ready(frame) => {
+                ReadState::Ready(quantity) => {
                     self.jobs.pending_frame = None;
                     if let Some(r) = &self.reference.result {
-                        self.reference.stats = error_stats(&frame.quantity, &frame.aux, &r.image);
+                        self.reference.stats = error_stats(&quantity, &r.image);
                     }
                 }
                 ReadState::Failed => self.jobs.pending_frame = None,
@@ -127,9 +128,9 @@ impl LabApp {
         if let Some(pending) = &mut self.jobs.pending_exposure {
             match pending.poll() {
                 ReadState::Waiting => {}
-                ReadState::Ready(frame) => {
+                ReadState::Ready(quantity) => {
                     self.jobs.pending_exposure = None;
-                    self.set_exposure_from(&frame);
+                    self.set_exposure_from(&quantity);
                 }
                 ReadState::Failed => self.jobs.pending_exposure = None,
             }
@@ -162,13 +163,11 @@ impl LabApp {
     }
 
     /// The exposure that shows the lit pixels' bright end near white.
-    fn set_exposure_from(&mut self, frame: &FrameTexels) {
-        let lit: Vec<f64> = frame
-            .quantity
+    fn set_exposure_from(&mut self, quantity: &[[f32; 4]]) {
+        let lit: Vec<f64> = quantity
             .iter()
-            .zip(&frame.aux)
-            .filter(|(_, aux)| aux[3] > 0.0)
-            .map(|(q, _)| crate::physics::colour::luminance([q[0] as f64, q[1] as f64, q[2] as f64]))
+            .filter(|q| q[3] > 0.0)
+            .map(|q| crate::physics::colour::luminance([q[0] as f64, q[1] as f64, q[2] as f64]))
             .collect();
         match crate::physics::display::auto_exposure_ev(&lit) {
             Some(ev) => {
