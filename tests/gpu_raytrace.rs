@@ -445,11 +445,11 @@ fn a_mean_begun_without_the_aux_target_restarts_when_it_is_asked_for() {
     assert_eq!(renderer.accumulation().unwrap().frames, 1, "the mean restarted");
     let aux = renderer.read_aux();
     assert_eq!(aux.len(), (size.0 * size.1) as usize);
-    // Coverage is 0 or 1 and V within [0, 1]: no frame without aux in the mean.
-    assert!(
-        aux.iter()
-            .all(|a| (a[3] == 0.0 || a[3] == 1.0) && (0.0..=1.0).contains(&a[0]))
-    );
+    // Coverage is 0 or 1 and V within [0, 1] (and an f32 rounding: the
+    // H200 gives 1 + 1 ulp): no frame without aux in the mean.
+    let odd = |a: &&[f32; 4]| !((a[3] == 0.0 || a[3] == 1.0) && (0.0..=1.0 + 1e-6).contains(&a[0]));
+    let odd: Vec<_> = aux.iter().filter(odd).take(5).collect();
+    assert!(odd.is_empty(), "{odd:?}");
     assert!(aux.iter().filter(|a| a[3] == 1.0).count() > aux.len() / 2);
     // Without the aux target the mean goes on as before: the quantity's
     // alpha still marks the pixels covered.
