@@ -33,11 +33,14 @@ impl Cone {
     }
 
     /// A cone from `apex` holding every point of `points` (at least one),
-    /// None when they do not all lie on one side of a plane through it.
+    /// about the direction of their mean; None when some point does not lie
+    /// beyond the plane through the apex across it. (Unit directions
+    /// summed instead cost a square root and a division a point: 0.8 % of
+    /// the 110 k-triangle engine's process, a shadow packet holding 128.)
     pub fn around(apex: DVec3, points: impl Iterator<Item = DVec3> + Clone) -> Option<Self> {
         let axis = points
             .clone()
-            .fold(DVec3::ZERO, |s, p| s + (p - apex).normalize_or_zero())
+            .fold(DVec3::ZERO, |s, p| s + (p - apex))
             .try_normalize()?;
         let (u, v) = axis.any_orthonormal_pair();
         let (mut s0, mut s1, mut r0, mut r1) =
@@ -48,7 +51,8 @@ impl Cone {
             if along <= 0.0 || !along.is_finite() {
                 return None;
             }
-            let (s, r) = (w.dot(u) / along, w.dot(v) / along);
+            let inverse = along.recip();
+            let (s, r) = (w.dot(u) * inverse, w.dot(v) * inverse);
             (s0, s1, r0, r1) = (s0.min(s), s1.max(s), r0.min(r), r1.max(r));
         }
         // Widened by the rounding of the slopes.
