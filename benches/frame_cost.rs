@@ -8,8 +8,8 @@
 //! A second table (`cargo bench --bench frame_cost -- interaction` prints it
 //! alone) gives what the lab's viewport costs while the user orbits, under
 //! the shadow map (two filters) and ray-traced V (a point and a sphere light): the
-//! generic and the specialised camera pass of a still frame (the quantity
-//! target only, as the app draws it but for the probed half) against a minimal flat-colour pass
+//! generic and the specialised camera pass of a still frame as the app
+//! draws it ([`ShadeOptions::still`]) against a minimal flat-colour pass
 //! over the same geometry (their ratio), and the frame rate at the render
 //! scales the app drops to during interaction. Ratios are taken within one
 //! run, so a loaded machine slows both sides alike; the spread is over runs.
@@ -141,13 +141,14 @@ fn interaction(renderer: &mut Renderer) {
         let mut columns: Vec<Vec<f64>> = vec![Vec::new(); 5 + 2 * SCALES.len()];
         for _ in 0..RUNS {
             let mut settings = case.clone();
+            let still = ShadeOptions::still(&settings, false);
             renderer.set_shade_options(ShadeOptions {
                 specialised: false,
-                ..ShadeOptions::STILL
+                ..still
             });
             let (generic, _, _) = orbit(renderer, &mut settings, VIEWPORT);
-            // As the app draws a still frame: the quantity target only.
-            renderer.set_shade_options(ShadeOptions::STILL);
+            // As the app draws a still frame.
+            renderer.set_shade_options(still);
             let (specialised, _, _) = orbit(renderer, &mut settings, VIEWPORT);
             let flat = median((0..FRAMES).filter_map(|_| renderer.minimal_pass_ms()).collect());
             for (column, value) in [flat, generic, specialised, specialised / flat, generic / flat]

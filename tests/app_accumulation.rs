@@ -5,7 +5,7 @@ use lumlab::app::{Command, LabApp};
 use lumlab::settings::{DebugView, Filter, Settings, Visibility};
 
 mod app_support;
-use app_support::{harness, step_until};
+use app_support::{click_at, harness, step_until};
 
 /// A setting's name and how to change it.
 type Change = (&'static str, fn(&mut Settings));
@@ -60,6 +60,34 @@ fn accumulation_restarts_on_every_setting_change() {
         harness.step();
     }
     assert_eq!(frames(harness.state()), 3);
+}
+
+#[test]
+fn a_click_on_the_probe_does_not_restart_the_accumulation() {
+    // The probe reads the aux target, which the app's still frames write
+    // only where it is read; a ray-traced half writes it throughout, since
+    // turning it on would start the mean anew.
+    let mut harness = harness();
+    let mut s = harness.state().settings().clone();
+    s.shadow.visibility = Visibility::RayTraced;
+    s.light.radius_m = 0.3;
+    harness.state_mut().emit(Command::SetSettings(Box::new(s)));
+    step_until(&mut harness, "frames to accumulate", |app| frames(app) >= 3);
+    let before = frames(harness.state());
+    let rect = harness.state().viewport_rect();
+    click_at(
+        &mut harness,
+        egui::pos2(rect.center().x, rect.top() + 0.93 * rect.height()),
+    );
+    // The click's own frame went on with the mean.
+    let after = frames(harness.state());
+    assert!(
+        after > before,
+        "the mean restarted: {after} frames after {before}"
+    );
+    step_until(&mut harness, "the probe's GPU values", |app| {
+        app.probe_gpu().is_some()
+    });
 }
 
 #[test]

@@ -16,7 +16,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 mod app_support;
-use app_support::{SIZE, harness, step_until};
+use app_support::{SIZE, click_at, harness, step_until};
 
 /// Mean radiance (W/m²/sr, luminance-free: the mean of r, g, b) over the
 /// pixels the scene covers (alpha 1), read back from the renderer.
@@ -163,14 +163,6 @@ fn lumlab_number(x: f64) -> String {
     } else {
         text
     }
-}
-
-fn click_at(harness: &mut Harness<'_, LabApp>, pos: egui::Pos2) {
-    harness.event(egui::Event::PointerMoved(pos));
-    for pressed in [true, false] {
-        app_support::primary_button(harness, pos, pressed);
-    }
-    harness.step();
 }
 
 /// Renders the window as kittest draws it (egui + the renderer's texture).

@@ -33,8 +33,8 @@ struct RenderKey {
     /// pixel to a sphere light): the frame after the drag renders again
     /// even where the drag's render scale had reached 1.
     interaction: bool,
-    /// A still frame writes the aux target (V, texel density): the probe
-    /// reads it. The shading pass costs ~10 % less without it.
+    /// A still frame writes the aux target (V, texel density) for the
+    /// probe; the shading pass costs ~10 % less without it.
     aux: bool,
 }
 
@@ -244,8 +244,8 @@ impl GpuViews {
     }
 
     /// Renders a half if what it shows changed; true when a new image is
-    /// shown. `size`: the image size at this frame's render scale; `aux`:
-    /// a still frame writes the aux target the probe reads. On a
+    /// shown. `size`: the image size at this frame's render scale; `probed`:
+    /// the probe reads this half (see [`ShadeOptions::still`]). On a
     /// drag device, a drag frame shows the last image that came back and
     /// sends the next job; `wake` repaints when its image is back.
     pub fn prepare(
@@ -253,19 +253,20 @@ impl GpuViews {
         half: Half,
         settings: &Settings,
         size: (u32, u32),
-        aux: bool,
+        probed: bool,
         wake: &egui::Context,
     ) -> bool {
         let Some(h) = &mut self.halves[half as usize] else {
             return false;
         };
+        let still = ShadeOptions::still(settings, probed);
         let key = RenderKey {
             settings: settings.clone(),
             size,
             scene_generation: h.scene_generation,
             comparison_generation: h.comparison_generation,
             interaction: self.render_scale.interacting,
-            aux,
+            aux: still.aux,
         };
         if self.drag.as_ref().is_some_and(DragRenderer::is_gone) {
             self.drag = None;
@@ -319,10 +320,7 @@ impl GpuViews {
         h.renderer.set_shade_options(if interacting {
             ShadeOptions::INTERACTION
         } else {
-            ShadeOptions {
-                aux,
-                ..ShadeOptions::STILL
-            }
+            still
         });
         let drawn = drawn_at(settings, self.frame_scale);
         let start = Instant::now();

@@ -53,8 +53,8 @@ pub struct ShadeOptions {
 }
 
 impl ShadeOptions {
-    /// The app's still frames: full size, the quantity only (the probe's
-    /// half adds the aux target).
+    /// The app's still frames: full size, the quantity only (see
+    /// [`Self::still`]).
     pub const STILL: Self = Self {
         specialised: true,
         aux: false,
@@ -63,6 +63,17 @@ impl ShadeOptions {
         one_light_sample: false,
         depth_ranges: true,
     };
+
+    /// The app's still frame of `settings`: [`Self::STILL`] with the aux
+    /// target where the probe reads it (`probed`) or under ray-traced V,
+    /// whose mean would start anew when the target is turned on (a click
+    /// on the probe).
+    pub fn still(settings: &Settings, probed: bool) -> Self {
+        Self {
+            aux: probed || settings.shadow.visibility == Visibility::RayTraced,
+            ..Self::STILL
+        }
+    }
 
     /// The app's interaction frames (a drag): read back by nobody, so no aux
     /// target, simplified meshes where the scene has them and one ray a

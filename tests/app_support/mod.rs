@@ -95,3 +95,12 @@ pub fn primary_button(harness: &mut Harness<'_, LabApp>, pos: egui::Pos2, presse
         modifiers: egui::Modifiers::NONE,
     });
 }
+
+/// A click of the primary button at `pos`, and a step.
+pub fn click_at(harness: &mut Harness<'_, LabApp>, pos: egui::Pos2) {
+    harness.event(egui::Event::PointerMoved(pos));
+    for pressed in [true, false] {
+        primary_button(harness, pos, pressed);
+    }
+    harness.step();
+}
