@@ -75,6 +75,9 @@ pub trait Rays {
     }
     /// The rays as lines through the apex, for the eight-lane filter.
     fn lines(&self) -> &Lines;
+    /// Makes the rays and [`Self::lines`] where the packet left that to its
+    /// first triangle (a packet that meets none never pays for them).
+    fn make_ready(&mut self) {}
     /// Whether the triangle in leaf slot `slot` matters to these rays
     /// (every one does, unless they say otherwise).
     fn takes(&self, _bvh: &TriangleBvh, _slot: usize) -> bool {
@@ -92,6 +95,7 @@ pub trait Rays {
         if !self.takes(bvh, slot) {
             return false;
         }
+        self.make_ready();
         let planes = self.lines().planes(relative);
         let mut changed = false;
         for group in 0..self.lines().groups() {
@@ -249,17 +253,14 @@ impl TriangleBvh {
     /// `directions` (each inside the cone), into `hits`: what
     /// [`Self::closest_hit`] gives each with t ∈ (0, ∞).
     pub fn closest_hits_in_cone(&self, cone: &Cone, directions: &[DVec3], packet: &mut PrimaryPacket) {
-        packet.rays.clear();
-        packet.along.clear();
+        packet.directions.clear();
+        packet.directions.extend_from_slice(directions);
         packet.limits.clear();
+        packet.limits.resize(directions.len(), f64::INFINITY);
         packet.hits.clear();
-        for &d in directions {
-            packet.rays.push(ShearedRay::new(cone.apex, d));
-            packet.along.push(d.dot(cone.axis) * (1.0 + ROUNDING));
-            packet.limits.push(f64::INFINITY);
-            packet.hits.push(None);
-        }
-        packet.lines.fill(directions.iter().copied(), &packet.limits, 0.0);
+        packet.hits.resize(directions.len(), None);
+        packet.apex_axis = (cone.apex, cone.axis);
+        packet.ready = false;
         self.walk_cone(cone, packet);
     }
 
@@ -350,6 +351,13 @@ impl<F: FnMut(usize, &[DVec3; 3]) -> bool> Rays for Visitor<F> {
 /// Primary rays from one point: each one's closest hit so far.
 #[derive(Debug, Default)]
 pub struct PrimaryPacket {
+    /// The rays' directions, and the cone's apex and axis: the rays, their
+    /// depths along the axis and their lines are made from them at the
+    /// first triangle the walk tests (`ready`), so that a packet that
+    /// meets none (background) never pays for them.
+    directions: Vec<DVec3>,
+    apex_axis: (DVec3, DVec3),
+    ready: bool,
     rays: Vec<ShearedRay>,
     /// d · axis (rounded up) per ray: depth = t · along.
     along: Vec<f64>,
@@ -392,6 +400,23 @@ impl Rays for PrimaryPacket {
 
     fn lines(&self) -> &Lines {
         &self.lines
+    }
+
+    #[inline(always)]
+    fn make_ready(&mut self) {
+        if self.ready {
+            return;
+        }
+        self.ready = true;
+        let (apex, axis) = self.apex_axis;
+        self.rays.clear();
+        self.along.clear();
+        for &d in &self.directions {
+            self.rays.push(ShearedRay::new(apex, d));
+            self.along.push(d.dot(axis) * (1.0 + ROUNDING));
+        }
+        self.lines
+            .fill(self.directions.iter().copied(), &self.limits, 0.0);
     }
 
     #[inline(always)]
