@@ -276,29 +276,33 @@ impl TriangleBvh {
         t_max: f64,
         packet: &mut ShadowPacket,
     ) {
-        packet.rays.clear();
+        packet.origins.clear();
+        packet.origins.extend_from_slice(origins);
         packet.limits.clear();
         packet.t_max = t_max;
+        packet.apex = cone.apex;
+        packet.ready = false;
         let mut spread = 0.0_f64;
         for &o in origins {
-            packet.rays.push(ShearedRay::new(o, cone.apex - o));
             let depth = (o - cone.apex).dot(cone.axis);
             packet
                 .limits
                 .push(depth + ROUNDING * (o - cone.apex).abs().element_sum());
             spread = spread.max((o - cone.apex).abs().max_element());
         }
+        packet.spread = spread;
         packet.floor = floor_below(cone.apex, up, (origins, spread));
-        packet
-            .lines
-            .fill(packet.rays.iter().map(|r| r.direction), &packet.limits, spread);
         // The triangle that blocked a ray of the previous packet first: it
-        // often blocks these too, and a blocked ray is done (any hit will do).
+        // often blocks these too, and a blocked ray is done (any hit will
+        // do); unless it lies outside the cone, as the walk would find.
         if let Some(slot) = packet.last_blocker {
             let relative = self.corners[slot].map(|p| p - cone.apex);
-            packet.test(self, slot, &relative, f64::MIN);
-            if packet.limits.iter().all(|&l| l < 0.0) {
-                return;
+            let slack = ROUNDING * relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+            if !cone.misses(&relative, slack) {
+                packet.test(self, slot, &relative, f64::MIN);
+                if packet.limits.iter().all(|&l| l < 0.0) {
+                    return;
+                }
             }
         }
         self.walk_cone(cone, packet);
@@ -443,6 +447,14 @@ fn floor_below(apex: DVec3, normal: DVec3, (points, reach): (&[DVec3], f64)) -> 
 /// Shadow rays to one point: blocked ones are done (limit −∞).
 #[derive(Debug, Default)]
 pub struct ShadowPacket {
+    /// The rays' origins, their end (the light) and the origins' spread
+    /// about it: the rays and their lines are made from them at the first
+    /// triangle tested (`ready`), so that a packet whose cone meets none
+    /// (a lit patch) never pays for them.
+    origins: Vec<DVec3>,
+    apex: DVec3,
+    spread: f64,
+    ready: bool,
     rays: Vec<ShearedRay>,
     limits: Vec<f64>,
     /// What lies below it blocks no ray (see [`floor_below`]).
@@ -476,6 +488,20 @@ impl Rays for ShadowPacket {
 
     fn takes(&self, bvh: &TriangleBvh, slot: usize) -> bool {
         bvh.occludes[slot]
+    }
+
+    #[inline(always)]
+    fn make_ready(&mut self) {
+        if self.ready {
+            return;
+        }
+        self.ready = true;
+        self.rays.clear();
+        for &o in &self.origins {
+            self.rays.push(ShearedRay::new(o, self.apex - o));
+        }
+        let directions = self.rays.iter().map(|r| r.direction);
+        self.lines.fill(directions, &self.limits, self.spread);
     }
 
     #[inline(always)]
