@@ -6,6 +6,7 @@ use lumlab::settings::{DebugView, Filter, Settings, Visibility};
 
 mod app_support;
 use app_support::{click_at, harness, step_until};
+use egui_kittest::Harness;
 
 /// A setting's name and how to change it.
 type Change = (&'static str, fn(&mut Settings));
@@ -16,8 +17,9 @@ fn frames(app: &LabApp) -> u32 {
         .map_or(0, |a| a.frames)
 }
 
-#[test]
-fn accumulation_restarts_on_every_setting_change() {
+/// The lab under a ray-traced sphere light of R = 0.3 m, its mean `frames`
+/// deep; the settings it shows.
+fn accumulating(frames_at_least: u32) -> (Harness<'static, LabApp>, Settings) {
     let mut harness = harness();
     let mut s = harness.state().settings().clone();
     s.shadow.visibility = Visibility::RayTraced;
@@ -25,7 +27,15 @@ fn accumulation_restarts_on_every_setting_change() {
     harness
         .state_mut()
         .emit(Command::SetSettings(Box::new(s.clone())));
-    step_until(&mut harness, "frames to accumulate", |app| frames(app) >= 2);
+    step_until(&mut harness, "frames to accumulate", |app| {
+        frames(app) >= frames_at_least
+    });
+    (harness, s)
+}
+
+#[test]
+fn accumulation_restarts_on_every_setting_change() {
+    let (mut harness, mut s) = accumulating(2);
     let changes: [Change; 9] = [
         ("light position", |s| s.light.position.x += 0.1),
         ("light radius", |s| s.light.radius_m = 0.2),
@@ -67,12 +77,7 @@ fn a_click_on_the_probe_does_not_restart_the_accumulation() {
     // The probe reads the aux target, which the app's still frames write
     // only where it is read; a ray-traced half writes it throughout, since
     // turning it on would start the mean anew.
-    let mut harness = harness();
-    let mut s = harness.state().settings().clone();
-    s.shadow.visibility = Visibility::RayTraced;
-    s.light.radius_m = 0.3;
-    harness.state_mut().emit(Command::SetSettings(Box::new(s)));
-    step_until(&mut harness, "frames to accumulate", |app| frames(app) >= 3);
+    let (mut harness, _) = accumulating(3);
     let before = frames(harness.state());
     let rect = harness.state().viewport_rect();
     click_at(

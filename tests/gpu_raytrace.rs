@@ -306,12 +306,18 @@ fn point_light_shadows_are_the_references_on_a_100k_triangle_scene() {
     point_light_matches_the_reference(&scene, &settings);
 }
 
+/// Ray-traced V at 96 × 54 under a sphere light of R = 0.3 m.
+fn under_a_sphere_light() -> Settings {
+    let mut settings = ray_traced(96, 54);
+    settings.light.radius_m = 0.3;
+    settings
+}
+
 #[test]
 fn sphere_light_accumulation_converges_to_the_reference_as_one_over_root_n() {
     let gpu = common::gpu();
     let scene = lumlab::scene::default_scene();
-    let mut settings = ray_traced(96, 54);
-    settings.light.radius_m = 0.3;
+    let settings = under_a_sphere_light();
     let frames = [1, 4, 16, 64, 256];
     let runs = ray_traced_aux(&gpu, &scene, &settings, &frames);
     let options = ReferenceOptions {
@@ -426,8 +432,7 @@ fn a_mean_begun_without_the_aux_target_restarts_when_it_is_asked_for() {
     // frames of the mean before then left none in the history.
     let gpu = common::gpu();
     let scene = lumlab::scene::default_scene();
-    let mut settings = ray_traced(96, 54);
-    settings.light.radius_m = 0.3;
+    let settings = under_a_sphere_light();
     let size = (settings.image.width, settings.image.height);
     let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
     let quantity_only = ShadeOptions {

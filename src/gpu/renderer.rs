@@ -12,17 +12,18 @@ use super::frame_report::FrameReport;
 use super::light_frustum::{Frustum, LayoutKind, shadow_apex};
 use super::lines::FrustumOverlay;
 use super::raytrace::{Accumulation, FrameVariant, RayTracePass};
-use super::readback::{PendingRead, read_texture};
 use super::shade::ShadePass;
 use super::shared::SharedScene;
 use super::specialise::{ShadeOptions, Specialisation};
-use super::targets::{FloatTarget, FrameTargets, PendingScale, PendingTexels, decode_float_texels};
+use super::targets::FrameTargets;
 use super::timing::{GpuTimer, Pass, PassTimes};
 use super::uniforms::{DisplayParamsRaw, GlobalsRaw, ShadowRaw, mat, uniform_buffer};
 use crate::physics::Normalization;
 use crate::scene::{Aabb, Camera, Scene};
 use crate::settings::{DebugView, Settings, Visibility};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+
+mod reads;
 
 /// A reference image to compare with: rgb = radiance L (W/m²/sr), a = V.
 #[derive(Clone, Debug, PartialEq)]
@@ -484,87 +485,6 @@ impl Renderer {
     /// Waits until every submitted frame is done.
     pub fn wait_idle(&self) {
         let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
-    }
-
-    fn read_float_target(&self, texture: &wgpu::Texture) -> Vec<[f32; 4]> {
-        let bytes_per_texel = texture.format().block_copy_size(None).unwrap_or(16);
-        let bytes = read_texture(&self.device, &self.queue, texture, 0, bytes_per_texel);
-        decode_float_texels(&bytes, bytes_per_texel)
-    }
-
-    /// Starts reading a rectangle of the last frame's quantity or aux target
-    /// without blocking (the app's pixel probe and error statistics); None
-    /// before the first frame, when the rectangle leaves the image or when
-    /// the last frame did not write the aux target asked for.
-    pub fn request_texels(
-        &self,
-        target: FloatTarget,
-        origin: (u32, u32),
-        size: (u32, u32),
-    ) -> Option<PendingTexels> {
-        let t = self.targets.as_ref()?;
-        let fits = |o: u32, s: u32, side: u32| s > 0 && o.checked_add(s).is_some_and(|end| end <= side);
-        if !(fits(origin.0, size.0, t.size.0) && fits(origin.1, size.1, t.size.1)) {
-            return None;
-        }
-        let texture = match target {
-            FloatTarget::Quantity => &t.quantity,
-            FloatTarget::Aux if self.aux_written => &t.aux,
-            FloatTarget::Aux => return None,
-        };
-        let bytes_per_texel = texture.format().block_copy_size(None).unwrap_or(16);
-        Some(PendingTexels {
-            read: PendingRead::texture_region(
-                &self.device,
-                &self.queue,
-                texture,
-                origin,
-                size,
-                bytes_per_texel,
-            ),
-            bytes_per_texel,
-        })
-    }
-
-    /// Starts reading the last false-colour scale (see [`Self::read_scale`])
-    /// without blocking.
-    pub fn request_scale(&self) -> PendingScale {
-        PendingScale(PendingRead::buffer(
-            &self.device,
-            &self.queue,
-            self.display.scale_buffer(),
-            16,
-        ))
-    }
-
-    /// The last frame's view quantity, row-major from the top (W/m²/sr for `shaded`).
-    pub fn read_quantity(&self) -> Vec<[f32; 4]> {
-        self.targets
-            .as_ref()
-            .map_or_else(Vec::new, |t| self.read_float_target(&t.quantity))
-    }
-
-    /// The last frame's aux target: V, texel density, cos θ, coverage
-    /// (empty when the frame did not write it, see [`ShadeOptions::aux`]).
-    pub fn read_aux(&self) -> Vec<[f32; 4]> {
-        self.targets
-            .as_ref()
-            .filter(|_| self.aux_written)
-            .map_or_else(Vec::new, |t| self.read_float_target(&t.aux))
-    }
-
-    /// The last frame's displayed image.
-    pub fn read_display(&self) -> image::RgbaImage {
-        let Some(t) = &self.targets else {
-            return image::RgbaImage::new(0, 0);
-        };
-        let bytes = read_texture(&self.device, &self.queue, &t.display, 0, 4);
-        image::RgbaImage::from_raw(t.size.0, t.size.1, bytes).unwrap_or_default()
-    }
-
-    /// The largest value of the last false-colour view (its scale).
-    pub fn read_scale(&self) -> f32 {
-        self.display.read_scale(&self.device, &self.queue)
     }
 }
 
