@@ -63,7 +63,7 @@ fn components_of(ty: Type) -> usize {
 /// [−1, 1] as glTF (and KHR_mesh_quantization) define; others keep their value.
 fn float_decoder(ty: ComponentType, normalized: bool) -> fn(&[u8]) -> f32 {
     match (ty, normalized) {
-        (ComponentType::F32, _) => |b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+        (ComponentType::F32, _) => f32_le,
         (ComponentType::U8, true) => |b| b[0] as f32 / 255.0,
         (ComponentType::U8, false) => |b| b[0] as f32,
         (ComponentType::I8, true) => |b| (b[0] as i8 as f32 / 127.0).max(-1.0),
@@ -79,12 +79,22 @@ fn float_decoder(ty: ComponentType, normalized: bool) -> fn(&[u8]) -> f32 {
     }
 }
 
+/// A little-endian f32, the common case of float attributes.
+fn f32_le(b: &[u8]) -> f32 {
+    f32::from_le_bytes([b[0], b[1], b[2], b[3]])
+}
+
+/// A little-endian u32, the common case of indices.
+fn u32_le(b: &[u8]) -> u32 {
+    u32::from_le_bytes([b[0], b[1], b[2], b[3]])
+}
+
 /// Reads one unsigned index; `None` for the types indices may not have.
 fn index_decoder(ty: ComponentType) -> Option<fn(&[u8]) -> u32> {
     match ty {
         ComponentType::U8 => Some(|b| b[0] as u32),
         ComponentType::U16 => Some(|b| u16::from_le_bytes([b[0], b[1]]) as u32),
-        ComponentType::U32 => Some(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]])),
+        ComponentType::U32 => Some(u32_le),
         _ => None,
     }
 }
@@ -205,7 +215,7 @@ impl<'r, 'b> Data<'r, 'b> {
         accessor: &gltf::json::Accessor,
         ty: ComponentType,
         components: usize,
-        decode: fn(&[u8]) -> T,
+        (decode, packed): (fn(&[u8]) -> T, impl Fn(&[u8]) -> T),
     ) -> Result<Vec<T>, LoadProblem> {
         let size = bytes_of(ty);
         let element_bytes = size * components;
@@ -213,6 +223,11 @@ impl<'r, 'b> Data<'r, 'b> {
         let dense = self.strided(index, accessor, element_bytes)?;
         let mut values = Vec::with_capacity(count * components);
         match dense {
+            // Packed elements: one pass over the components, decoded by
+            // `packed` (the same function, inlined where the caller could).
+            Some(Strided { data, stride }) if stride == element_bytes => {
+                values.extend(data.chunks_exact(size).take(count * components).map(packed));
+            }
             Some(Strided { data, stride }) => {
                 for element in 0..count {
                     let at = element * stride;
@@ -296,13 +311,12 @@ impl<'r, 'b> Data<'r, 'b> {
     /// A float attribute of `components` per element (normalized integers allowed).
     pub fn floats(&self, index: usize, want: &[Type]) -> Result<(Vec<f32>, usize), LoadProblem> {
         let (accessor, ty, components) = self.layout(index, want)?;
-        let values = self.read(
-            index,
-            accessor,
-            ty,
-            components,
-            float_decoder(ty, accessor.normalized),
-        )?;
+        let decode = float_decoder(ty, accessor.normalized);
+        // The common type's packed elements through a function the loop inlines.
+        let values = match ty {
+            ComponentType::F32 => self.read(index, accessor, ty, components, (decode, f32_le))?,
+            _ => self.read(index, accessor, ty, components, (decode, decode))?,
+        };
         Ok((values, components))
     }
 
@@ -325,6 +339,9 @@ impl<'r, 'b> Data<'r, 'b> {
                 format!("indices of type {ty:?}; only unsigned bytes, shorts and ints are allowed"),
             )
         })?;
-        self.read(index, accessor, ty, components, decode)
+        match ty {
+            ComponentType::U32 => self.read(index, accessor, ty, components, (decode, u32_le)),
+            _ => self.read(index, accessor, ty, components, (decode, decode)),
+        }
     }
 }
