@@ -27,7 +27,7 @@ mod depth;
 pub use cover::Cover;
 
 use super::bvh::{BvhTriangle, Hit, closer};
-use super::intersect::{ShearedRay, with_axes};
+use super::intersect::{ShearedRay, extent, with_axes};
 use crate::scene::camera::PixelRays;
 use glam::DVec3;
 
@@ -399,11 +399,6 @@ fn cell_range(relative: &[DVec3; 3], face: usize) -> Option<[usize; 4]> {
         to_cell(v0 - MARGIN),
         to_cell(v1 + MARGIN),
     ])
-}
-
-/// The largest |coordinate| of the corners: the triangle's size, seen from the centre.
-fn extent(relative: &[DVec3; 3]) -> f64 {
-    relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()))
 }
 
 /// The part of the triangle (corners relative to the centre) inside the

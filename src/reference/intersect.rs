@@ -12,6 +12,13 @@
 
 use glam::DVec3;
 
+/// The largest |coordinate| of a triangle's corners (relative to a point:
+/// its size seen from there), which the rounding allowances of the tests
+/// on them scale with.
+pub(super) fn extent(corners: &[DVec3; 3]) -> f64 {
+    corners.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()))
+}
+
 /// The permutation of a ray's axes: kz is the axis of its largest |d|
 /// component; kx, ky the two others in cyclic order, swapped when d_kz < 0
 /// so that the winding is kept.

@@ -289,7 +289,7 @@ impl MeshTriangle {
         // shade.wgsl's surface_at). Missing uvs: zero.
         let normals = ids.map(|i| mesh.normals.get(i).copied().unwrap_or(Vec3::ZERO));
         let uvs = corner_values(&mesh.uvs, ids).unwrap_or([Vec2::ZERO; 3]);
-        let largest = corners.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+        let largest = intersect::extent(&corners);
         let first = normals[0].as_dvec3();
         TriangleInfo {
             object: self.object,

@@ -7,7 +7,7 @@
 use super::TriangleBvh;
 use super::cone::{Cone, ROUNDING};
 use super::packet::Visitor;
-use crate::reference::intersect::ShearedRay;
+use crate::reference::intersect::{ShearedRay, extent};
 use glam::DVec3;
 
 impl TriangleBvh {
@@ -96,7 +96,7 @@ impl BallCone {
     /// of the triangle's plane (corners `relative` to the point).
     fn apart_by_plane(&self, relative: &[DVec3; 3]) -> bool {
         let [a, b, c] = *relative;
-        let size = relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+        let size = extent(relative);
         let m = (b - a).cross(c - a);
         let length = m.length();
         // Both products are rounded to ~10⁻¹⁶ of |m| times the lengths involved.

@@ -34,7 +34,7 @@
 use super::cone::{Cone, FrameCone, ROUNDING};
 use super::lanes::{GROUP, LANES, Lines};
 use super::{Hit, TRAVERSAL, TriangleBvh, closer};
-use crate::reference::intersect::{ShearedRay, with_axes};
+use crate::reference::intersect::{ShearedRay, extent, with_axes};
 use crate::reference::simd::{self, Isa};
 // `UVec2` is named inside obvhs's `traverse!` macro.
 use glam::{DVec3, UVec2};
@@ -205,6 +205,14 @@ impl TriangleBvh {
         WALK.set(stack);
     }
 
+    /// The corners of the triangle in leaf slot `slot` relative to `apex`,
+    /// and the allowance for the rounding of the tests on them.
+    #[inline(always)]
+    fn relative_to(&self, slot: usize, apex: DVec3) -> ([DVec3; 3], f64) {
+        let relative = self.corners[slot].map(|p| p - apex);
+        (relative, ROUNDING * extent(&relative))
+    }
+
     /// The triangle in leaf slot `slot` against the rays, unless it lies
     /// outside the cone, below the rays' floor or beyond `farthest`, which
     /// follows their deepest limit; true when every ray is done.
@@ -217,8 +225,7 @@ impl TriangleBvh {
         farthest: &mut f64,
     ) -> bool {
         let cone = &frame.cone;
-        let relative = self.corners[slot].map(|p| p - cone.apex);
-        let slack = ROUNDING * relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+        let (relative, slack) = self.relative_to(slot, cone.apex);
         if frame.misses(&relative, slack) {
             return false;
         }
@@ -296,8 +303,7 @@ impl TriangleBvh {
         // often blocks these too, and a blocked ray is done (any hit will
         // do); unless it lies outside the cone, as the walk would find.
         if let Some(slot) = packet.last_blocker {
-            let relative = self.corners[slot].map(|p| p - cone.apex);
-            let slack = ROUNDING * relative.iter().fold(0.0_f64, |m, p| m.max(p.abs().max_element()));
+            let (relative, slack) = self.relative_to(slot, cone.apex);
             if !cone.misses(&relative, slack) {
                 packet.test(self, slot, &relative, f64::MIN);
                 if packet.limits.iter().all(|&l| l < 0.0) {
