@@ -26,7 +26,7 @@ pub struct ShadeOptions {
     pub specialised: bool,
     /// Also write the aux target (V, texel density, cos θ, coverage) that the
     /// probe and `Renderer::read_aux` read. The app's frames skip it but
-    /// where the probe reads it (a still frame of the probed half).
+    /// where [`Self::still`] asks for it (the probed half, ray-traced V).
     pub aux: bool,
     /// Draw the depth pre-pass first, so that each pixel is shaded once.
     /// It pays for itself on large images (less CPU on lavapipe at 1000 ×
