@@ -8,6 +8,7 @@
 
 use super::bvh::{Cone, ShadowPacket, TriangleBvh};
 use super::shading::STOP_SHORT_REL;
+use super::simd::{self, Isa};
 use glam::DVec3;
 
 /// Fewer shadow rays than this in a pixel: each on its own.
@@ -50,7 +51,12 @@ impl LightPacket {
             return None;
         }
         let cast = *self.cast.get_or_insert_with(|| {
-            let cone = Cone::around(light, self.origins.iter().copied());
+            // Compiled for AVX2 where the CPU has it, as the walk is.
+            let cone = simd::with(
+                Isa::Avx2,
+                #[inline(always)]
+                || Cone::around(light, self.origins.iter().copied()),
+            );
             if let Some(cone) = &cone {
                 let floor = self.normals.normalize_or_zero();
                 bvh.occluded_in_cone(

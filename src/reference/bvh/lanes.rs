@@ -122,7 +122,9 @@ pub struct EdgePlanes {
 impl Lines {
     /// The rays along `directions` (one per ray, in order) with their
     /// deepest useful depths `limits`, each on a line through the apex from
-    /// an origin within `spread` (|·|∞) of it.
+    /// an origin within `spread` (|·|∞) of it. Inlined into the walks,
+    /// so compiled for AVX2 where they are.
+    #[inline(always)]
     pub fn fill(&mut self, directions: impl Iterator<Item = DVec3>, limits: &[f64], spread: f64) {
         self.blocks.clear();
         self.spread = spread;
