@@ -210,24 +210,28 @@ impl Lines {
     #[inline(always)]
     pub fn planes(&self, [a, b, c]: &[DVec3; 3]) -> EdgePlanes {
         let r = self.spread;
-        let edge = |p: &DVec3, q: &DVec3| {
+        // |corner|∞ + R, once a corner.
+        let [ra, rb, rc] = [a, b, c].map(|p| p.abs().max_element() + r);
+        let edge = |p: &DVec3, q: &DVec3, rp: f64, rq: f64| {
             let n = p.cross(*q);
-            let f32_part = 8.0 * f32::EPSILON as f64 * n.abs().element_sum();
-            let f64_part = 128.0 * f64::EPSILON * (p.abs().max_element() + r) * (q.abs().max_element() + r);
-            // Rounded up to f32.
+            let sum = n.abs().element_sum();
+            let tau = 8.0 * f32::EPSILON as f64 * sum + 128.0 * f64::EPSILON * rp * rq;
+            // τ rounded up to f32; and |n|₁ of n's f32 copy, rounded up
+            // from the f64 sum: each of its terms is |n_i| moved by 2⁻²⁴ of
+            // it at most, or by half the least subnormal.
             (
                 n.as_vec3().to_array(),
-                ((f32_part + f64_part) * (1.0 + 1e-6)) as f32,
+                (tau * (1.0 + 1e-6)) as f32,
+                up(sum * (1.0 + 1e-6) + 3.0 * f64::from(f32::from_bits(1))),
             )
         };
-        let (nu, tu) = edge(c, b);
-        let (nv, tv) = edge(a, c);
-        let (nw, tw) = edge(b, a);
-        let l1 = |n: [f32; 3]| up(n.iter().map(|x| x.abs() as f64).sum::<f64>());
+        let (nu, tu, lu) = edge(c, b, rc, rb);
+        let (nv, tv, lv) = edge(a, c, ra, rc);
+        let (nw, tw, lw) = edge(b, a, rb, ra);
         EdgePlanes {
             n: [nu, nv, nw],
             tau: [tu, tv, tw],
-            l1: [l1(nu), l1(nv), l1(nw)],
+            l1: [lu, lv, lw],
         }
     }
 
