@@ -53,9 +53,26 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
     join(&built, &members)
 }
 
-/// One BVH by obvhs on this thread.
+/// One BVH by obvhs on this thread: its `build_cwbvh` without ordering each
+/// node's children by the eight ray octants, which only obvhs's own
+/// single-ray traversal uses for its visiting order (the packets order
+/// children themselves). On 1 M triangles that ordering was 16 % of the
+/// build's instructions; without it the process runs 7.5 % fewer and the
+/// walks 1 % more (callgrind, 4 spp), the same hits.
 fn build_one(boxes: &[Aabb], params: BvhBuildParams) -> CwBvh {
-    obvhs::cwbvh::builder::build_cwbvh(boxes, params, &mut std::time::Duration::default())
+    let mut bvh2 = obvhs::ploc::PlocBuilder::with_capacity(boxes.len()).build(
+        params.ploc_search_distance,
+        boxes,
+        (0..boxes.len() as u32).collect(),
+        params.sort_precision,
+        params.search_depth_threshold,
+    );
+    obvhs::bvh2::reinsertion::ReinsertionOptimizer::default().run(
+        &mut bvh2,
+        params.reinsertion_batch_ratio,
+        None,
+    );
+    obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf.clamp(1, 3), false, false)
 }
 
 /// The group split at the median of its boxes' centres along the axis
