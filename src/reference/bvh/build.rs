@@ -34,7 +34,8 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
     while groups.len() * 2 <= GROUPS && groups.iter().all(|g| g.len() >= 2 * min_group.max(1)) {
         groups = groups.into_iter().flat_map(|g| halves(boxes, g)).collect();
     }
-    let params = if boxes.len() >= very_fast_from {
+    let very_fast = boxes.len() >= very_fast_from;
+    let params = if very_fast {
         BvhBuildParams::very_fast_build()
     } else {
         // Against medium_build: 8 % less build time on 1 M triangles,
@@ -42,25 +43,28 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
         // 110 k and 1 M triangles).
         BvhBuildParams::fast_build()
     };
+    let build = |boxes: &[Aabb]| build_one(boxes, params, !very_fast);
     if groups.len() == 1 {
-        return build_one(boxes, params);
+        return build(boxes);
     }
     let built: Vec<CwBvh> = groups
         .par_iter()
-        .map(|g| build_one(&g.iter().map(|&i| boxes[i as usize]).collect::<Vec<_>>(), params))
+        .map(|g| build(&g.iter().map(|&i| boxes[i as usize]).collect::<Vec<_>>()))
         .collect();
     let members: Vec<&[u32]> = groups.iter().map(|g| &**g).collect();
     join(&built, &members)
 }
 
-/// One BVH by obvhs on this thread: its `build_cwbvh` without ordering each
-/// node's children by the eight ray octants. That order only steers which
-/// child obvhs's traversal (single rays, the shadow packets) visits first;
-/// the primary packets order children by depth themselves. On 1 M
-/// triangles it was 16 % of the build's instructions: without it the
-/// process runs 7.5 % fewer and the walks 1 % more (the engine's shadow
-/// walk 5 %), callgrind at 4 and 16 spp; the same hits.
-fn build_one(boxes: &[Aabb], params: BvhBuildParams) -> CwBvh {
+/// One BVH by obvhs on this thread: its `build_cwbvh`, each node's
+/// children ordered by the eight ray octants or not (`ordered`). That order
+/// only steers which child obvhs's traversal (single rays, the shadow
+/// packets) visits first; the primary packets order children by depth
+/// themselves. The very fast build leaves it out: on 1 M triangles it was
+/// 16 % of the build's instructions, and without it the process runs 7.5 %
+/// fewer and the walks 1 % more; on the 110 k-triangle engine the walks
+/// ran 2.4 % more (the shadow walk 5 %) for a build 13 % cheaper
+/// (callgrind, 4 and 16 spp); the same hits either way.
+fn build_one(boxes: &[Aabb], params: BvhBuildParams, ordered: bool) -> CwBvh {
     let mut bvh2 = obvhs::ploc::PlocBuilder::with_capacity(boxes.len()).build(
         params.ploc_search_distance,
         boxes,
@@ -73,7 +77,7 @@ fn build_one(boxes: &[Aabb], params: BvhBuildParams) -> CwBvh {
         params.reinsertion_batch_ratio,
         None,
     );
-    obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf.clamp(1, 3), false, false)
+    obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf.clamp(1, 3), ordered, false)
 }
 
 /// The group split at the median of its boxes' centres along the axis
