@@ -22,7 +22,7 @@
 
 use super::{Answer, Cell, DirectionGrid, Item, cell_index, face_coordinates, to_cell};
 use crate::reference::bvh::Hit;
-use crate::reference::intersect::TriangleHit;
+use crate::reference::intersect::{TriangleHit, extent};
 use glam::DVec3;
 
 /// Triple products below this fraction of |d|∞ |X|∞ |Y|∞ (for the edge of
@@ -255,9 +255,10 @@ impl DirectionGrid {
     /// than the rounding of either this test or the watertight one, done
     /// in coordinates relative to the ray's origin (~10⁻¹⁶ of the
     /// coordinates, the centre's own included).
-    fn beside(&self, &[a, b, c]: &[DVec3; 3], w: &[DVec3; 4], reach: f64) -> bool {
+    fn beside(&self, corners: &[DVec3; 3], w: &[DVec3; 4], reach: f64) -> bool {
+        let [a, b, c] = *corners;
         let n = (b - a).cross(c - a);
-        let size = [a, b, c].iter().fold(reach, |m, p| m.max(p.abs().max_element()));
+        let size = extent(corners).max(reach);
         let margin = SIDE_MARGIN * n.abs().element_sum() * (size + self.centre.abs().max_element());
         let centre = -n.dot(a);
         let side = centre.signum();
