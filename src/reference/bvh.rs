@@ -18,6 +18,7 @@
 
 mod ball;
 mod build;
+mod collapse;
 mod cone;
 mod lanes;
 mod packet;

@@ -9,8 +9,11 @@
 
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
+use obvhs::cwbvh::bvh2_to_cwbvh::Bvh2Converter;
 use obvhs::cwbvh::{CwBvh, node::CwBvhNode};
 use rayon::prelude::*;
+
+use super::collapse;
 
 /// Boxes per group at least on scenes: fewer boxes are built as one BVH.
 pub const MIN_GROUP: usize = 32_768;
@@ -77,7 +80,24 @@ fn build_one(boxes: &[Aabb], params: BvhBuildParams, ordered: bool) -> CwBvh {
         params.reinsertion_batch_ratio,
         None,
     );
-    obvhs::cwbvh::bvh2_to_cwbvh::bvh2_to_cwbvh(&bvh2, params.max_prims_per_leaf.clamp(1, 3), ordered, false)
+    if bvh2.nodes.is_empty() {
+        return CwBvh::default();
+    }
+    // obvhs's bvh2_to_cwbvh, with the cost table filled by collapse::fill.
+    let mut converter = Bvh2Converter::new(&bvh2, ordered, false);
+    collapse::fill(
+        &bvh2,
+        params.max_prims_per_leaf.clamp(1, 3),
+        &mut converter.decisions,
+    );
+    converter.convert_to_cwbvh();
+    CwBvh {
+        nodes: converter.nodes,
+        primitive_indices: converter.primitive_indices,
+        total_aabb: *bvh2.nodes[0].aabb(),
+        exact_node_aabbs: None,
+        uses_spatial_splits: bvh2.uses_spatial_splits,
+    }
 }
 
 /// The group split at the median of its boxes' centres along the axis
