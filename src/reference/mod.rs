@@ -198,15 +198,19 @@ impl Reference {
                 }
             })
             .collect();
-        let bvh_triangles: Vec<BvhTriangle> = mesh_triangles(scene)
-            .map(|t| BvhTriangle {
-                corners: t.corners.map(|p| p.as_dvec3()),
-                occludes: scene.objects[t.object].casts_shadows,
-            })
-            .collect();
-        // The BVH (built on one thread) beside the shading data.
-        let (bvh, triangles) = rayon::join(
-            || TriangleBvh::new(&bvh_triangles),
+        // The BVH's triangles and the BVH beside the shading data, which
+        // takes one thread for most of the BVH's build.
+        let ((bvh_triangles, bvh), triangles) = rayon::join(
+            || {
+                let bvh_triangles: Vec<BvhTriangle> = mesh_triangles(scene)
+                    .map(|t| BvhTriangle {
+                        corners: t.corners.map(|p| p.as_dvec3()),
+                        occludes: scene.objects[t.object].casts_shadows,
+                    })
+                    .collect();
+                let bvh = TriangleBvh::new(&bvh_triangles);
+                (bvh_triangles, bvh)
+            },
             || mesh_triangles(scene).map(|t| t.info(scene)).collect(),
         );
         Self {
