@@ -31,6 +31,7 @@ use glam::{DVec3, UVec2, Vec3A};
 use obvhs::cwbvh::Traversal;
 use obvhs::ray::Ray;
 use obvhs::{aabb::Aabb, cwbvh::CwBvh};
+use rayon::prelude::*;
 
 /// Padding of every triangle's box in the normalized frame (scene extent = 1).
 pub const PAD: f64 = 1e-5;
@@ -131,15 +132,17 @@ impl TriangleBvh {
             })
             .collect();
         let bvh = build::build_cwbvh(&boxes, min_group, very_fast_from);
+        // In the leaves' order, on the pool: the shading data's gathering
+        // beside the build is done by now on large scenes.
         let original: Vec<usize> = bvh
             .primitive_indices
-            .iter()
+            .par_iter()
             .map(|&slot| usable[slot as usize])
             .collect();
         let pad_world = DVec3::splat(PAD * scale);
         Self {
-            corners: original.iter().map(|&i| triangles[i].corners).collect(),
-            occludes: original.iter().map(|&i| triangles[i].occludes).collect(),
+            corners: original.par_iter().map(|&i| triangles[i].corners).collect(),
+            occludes: original.par_iter().map(|&i| triangles[i].occludes).collect(),
             original,
             bvh: Some(bvh),
             centre,
