@@ -9,6 +9,7 @@
 #[macro_use]
 mod named;
 
+pub mod allocator;
 pub mod app;
 pub mod cli;
 pub mod colour;
