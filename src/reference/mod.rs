@@ -287,7 +287,8 @@ fn mesh_triangles(scene: &Scene) -> impl Iterator<Item = MeshTriangle> + '_ {
 /// shading data were copied and their pages faulted in about twice over.
 fn gathered<T>(scene: &Scene, values: impl Iterator<Item = T>) -> Vec<T> {
     let mut gathered = Vec::with_capacity(scene.triangle_count());
-    gathered.extend(values);
+    // Pushed from a fold: extend would step the flat map item by item.
+    values.for_each(|value| gathered.push(value));
     gathered
 }
 
@@ -305,13 +306,14 @@ impl MeshTriangle {
         let uvs = corner_values(&mesh.uvs, ids).unwrap_or([Vec2::ZERO; 3]);
         let largest = intersect::extent(&corners);
         let first = normals[0].as_dvec3();
+        let face_normal = face.normalize_or_zero();
         TriangleInfo {
             object: self.object,
             index: self.index,
             corners: self.corners,
-            face_normal: face.normalize_or_zero(),
+            face_normal,
             flat_normal: (normals[0] == normals[1] && normals[0] == normals[2])
-                .then(|| first.normalize_or(face.normalize_or_zero())),
+                .then(|| first.normalize_or(face_normal)),
             shadow_offset_m: SHADOW_OFFSET_REL * largest,
             normals,
             uvs,
