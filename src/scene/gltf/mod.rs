@@ -31,7 +31,8 @@ use gltf::json::mesh::Semantic;
 use gltf::json::validation::Checked;
 use nodes::Placements;
 use primitive::{LocalPrimitive, Topology};
-use std::collections::HashMap;
+use rayon::prelude::*;
+use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
 /// Extensions a file may require. Quantized attributes are read like any
@@ -180,12 +181,34 @@ impl Loader<'_, '_, '_> {
         let mut undrawn_bounds = Aabb::EMPTY;
         let mut objects = Vec::new();
         let mut triangles_defined = 0;
-        for instance in &placed.meshes {
+        // Each placed triangle mesh in world space, repaired, on the thread
+        // pool: (mesh, triangles out of range, degenerate ones).
+        let repaired: Vec<Vec<_>> = placed
+            .meshes
+            .par_iter()
+            .map(|instance| {
+                let world = instance.world.as_mat4();
+                let singular = !world.determinant().is_normal();
+                let locals = &locals[&instance.mesh];
+                locals
+                    .iter()
+                    .map(|local| {
+                        let local = local
+                            .as_ref()
+                            .filter(|l| l.topology == Topology::Triangles && !singular)?;
+                        let mut placed = local.mesh.transformed(world);
+                        let (out_of_range, degenerate) = primitive::repair_placed(&mut placed);
+                        Some((placed, out_of_range, degenerate))
+                    })
+                    .collect()
+            })
+            .collect();
+        for (instance, repaired) in placed.meshes.iter().zip(repaired) {
             let mesh_json = &root.meshes[instance.mesh];
             let node_json = &root.nodes[instance.node];
             let world = instance.world.as_mat4();
             let (casts, receives) = shadow_flags(&node_json.extras);
-            for (p, local) in locals[&instance.mesh].iter().enumerate() {
+            for (p, (local, repaired)) in locals[&instance.mesh].iter().zip(repaired).enumerate() {
                 let Some(local) = local else {
                     tally.without_positions += 1;
                     continue;
@@ -203,9 +226,7 @@ impl Loader<'_, '_, '_> {
                     }
                 }
                 let mut mesh = None;
-                if local.topology == Topology::Triangles && !singular {
-                    let mut placed = local.mesh.transformed(world);
-                    let (out_of_range, degenerate) = primitive::repair_placed(&mut placed);
+                if let Some((placed, out_of_range, degenerate)) = repaired {
                     tally.out_of_range += out_of_range;
                     tally.degenerate += degenerate;
                     mesh = Some(placed).filter(|m| !m.indices.is_empty());
@@ -309,39 +330,54 @@ impl Loader<'_, '_, '_> {
         &self,
         placed: &Placements,
     ) -> Result<HashMap<usize, Vec<Option<LocalPrimitive>>>, LoadProblem> {
-        let root = self.root;
+        let mut seen = HashSet::new();
+        let meshes: Vec<usize> = placed
+            .meshes
+            .iter()
+            .map(|instance| instance.mesh)
+            .filter(|&mesh| seen.insert(mesh))
+            .collect();
+        // Each mesh on the thread pool; the first problem in the placements'
+        // order is the one reported.
+        let built: Vec<_> = meshes
+            .par_iter()
+            .map(|&mesh| self.mesh_primitives(mesh))
+            .collect();
         let mut locals = HashMap::new();
-        for instance in &placed.meshes {
-            if locals.contains_key(&instance.mesh) {
-                continue;
-            }
-            let mut built = Vec::new();
-            for (p, json) in root.meshes[instance.mesh].primitives.iter().enumerate() {
-                let uv_set = match json.material {
-                    Some(m) => {
-                        let material = root.materials.get(m.value()).ok_or_else(|| {
-                            out_of_range(
-                                &format!("mesh {} primitive", instance.mesh),
-                                p,
-                                "material",
-                                m.value(),
-                                root.materials.len(),
-                            )
-                        })?;
-                        material
-                            .pbr_metallic_roughness
-                            .base_color_texture
-                            .as_ref()
-                            .map_or(0, |t| t.tex_coord)
-                    }
-                    None => 0,
-                };
-                let what = format!("mesh {} primitive {p}", instance.mesh);
-                built.push(primitive::build(self.data, json, &what, uv_set)?);
-            }
-            locals.insert(instance.mesh, built);
+        for (mesh, built) in meshes.into_iter().zip(built) {
+            locals.insert(mesh, built?);
         }
         Ok(locals)
+    }
+
+    /// Mesh `mesh`'s primitives in its own frame.
+    fn mesh_primitives(&self, mesh: usize) -> Result<Vec<Option<LocalPrimitive>>, LoadProblem> {
+        let root = self.root;
+        let mut built = Vec::new();
+        for (p, json) in root.meshes[mesh].primitives.iter().enumerate() {
+            let uv_set = match json.material {
+                Some(m) => {
+                    let material = root.materials.get(m.value()).ok_or_else(|| {
+                        out_of_range(
+                            &format!("mesh {mesh} primitive"),
+                            p,
+                            "material",
+                            m.value(),
+                            root.materials.len(),
+                        )
+                    })?;
+                    material
+                        .pbr_metallic_roughness
+                        .base_color_texture
+                        .as_ref()
+                        .map_or(0, |t| t.tex_coord)
+                }
+                None => 0,
+            };
+            let what = format!("mesh {mesh} primitive {p}");
+            built.push(primitive::build(self.data, json, &what, uv_set)?);
+        }
+        Ok(built)
     }
 
     /// One warning per kind of repair, with its count.
