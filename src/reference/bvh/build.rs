@@ -209,24 +209,33 @@ impl Quantizer {
     }
 }
 
+/// `n` random boxes in [−1, 1]³ (seed `seed`), of sides up to 0.01, or
+/// up to 0.25 for a share `large` of them.
+#[cfg(test)]
+pub(super) fn random_boxes(seed: u64, n: usize, large: f32) -> Vec<Aabb> {
+    use glam::Vec3A;
+    let mut rng = crate::reference::sampling::Rng::new(seed, 0, 0);
+    let mut r = || rng.next_f64() as f32;
+    (0..n)
+        .map(|_| {
+            let lo = Vec3A::new(r(), r(), r()) * 2.0 - 1.0;
+            let side = if r() < large { 0.25 } else { 0.01 };
+            Aabb::new(lo, lo + Vec3A::new(r(), r(), r()) * side)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::{DVec3, Vec3A};
+    use glam::DVec3;
 
     /// Every box sits once in a leaf, inside its leaf's box (to obvhs's own
     /// f32 rounding) and inside the root's stored box of its group, exactly
     /// (in f64: quantized outward).
     #[test]
     fn a_joined_bvh_holds_every_box_once_inside_its_group() {
-        let mut rng = crate::reference::sampling::Rng::new(5, 0, 0);
-        let mut r = || rng.next_f64() as f32;
-        let boxes: Vec<Aabb> = (0..5000)
-            .map(|_| {
-                let lo = Vec3A::new(r(), r(), r()) * 2.0 - 1.0;
-                Aabb::new(lo, lo + Vec3A::new(r(), r(), r()) * 0.01)
-            })
-            .collect();
+        let boxes = random_boxes(5, 5000, 0.0);
         let bvh = build_cwbvh(&boxes, 1000, VERY_FAST_FROM);
         assert_eq!(bvh.nodes[0].imask, 0b1111, "four groups");
         let mut seen = vec![0; boxes.len()];

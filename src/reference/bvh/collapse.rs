@@ -107,28 +107,19 @@ fn decision(kind: DecisionKind, cost: f32, (left, right): (u8, u8)) -> Decision 
 mod tests {
     use super::*;
     use obvhs::BvhBuildParams;
-    use obvhs::aabb::Aabb;
     use obvhs::cwbvh::bvh2_to_cwbvh::Bvh2Converter;
 
     /// On BVHs of boxes of mixed sizes, each of obvhs's presets and leaf
     /// sizes: every entry equal to obvhs's table, costs bit for bit.
     #[test]
     fn the_table_is_obvhs_s_bit_for_bit() {
-        let mut rng = crate::reference::sampling::Rng::new(9, 0, 0);
-        let mut r = || rng.next_f64() as f32;
         for (n, params) in [
             (1, BvhBuildParams::very_fast_build()),
             (2, BvhBuildParams::fast_build()),
             (3000, BvhBuildParams::very_fast_build()),
             (3000, BvhBuildParams::fast_build()),
         ] {
-            let boxes: Vec<Aabb> = (0..n)
-                .map(|_| {
-                    let lo = glam::Vec3A::new(r(), r(), r()) * 4.0 - 2.0;
-                    let size = if r() < 0.1 { 0.5 } else { 0.01 };
-                    Aabb::new(lo, lo + glam::Vec3A::new(r(), r(), r()) * size)
-                })
-                .collect();
+            let boxes = super::super::build::random_boxes(9 + n as u64, n, 0.1);
             let bvh2 = obvhs::ploc::PlocBuilder::with_capacity(n).build(
                 params.ploc_search_distance,
                 &boxes,
