@@ -58,8 +58,9 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
     join(&built, &members)
 }
 
-/// One BVH by obvhs on this thread: its `build_cwbvh`, each node's
-/// children ordered by the eight ray octants or not (`ordered`). That order
+/// One BVH by obvhs on this thread: its `build_cwbvh` (PLOC, reinsertion,
+/// the collapse to CWBVH, whose cost table `collapse::fill` fills), each
+/// node's children ordered by the eight ray octants or not (`ordered`). That order
 /// only steers which child obvhs's traversal (single rays, the shadow
 /// packets) visits first; the primary packets order children by depth
 /// themselves. The very fast build leaves it out: on 1 M triangles it was
