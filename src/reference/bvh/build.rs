@@ -9,6 +9,7 @@
 
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
+use obvhs::bvh2::Bvh2;
 use obvhs::cwbvh::bvh2_to_cwbvh::Bvh2Converter;
 use obvhs::cwbvh::{CwBvh, node::CwBvhNode};
 use rayon::prelude::*;
@@ -69,13 +70,7 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
 /// ran 2.4 % more (the shadow walk 5 %) for a build 13 % cheaper
 /// (callgrind, 4 and 16 spp); the same hits either way.
 fn build_one(boxes: &[Aabb], params: BvhBuildParams, ordered: bool) -> CwBvh {
-    let mut bvh2 = obvhs::ploc::PlocBuilder::with_capacity(boxes.len()).build(
-        params.ploc_search_distance,
-        boxes,
-        (0..boxes.len() as u32).collect(),
-        params.sort_precision,
-        params.search_depth_threshold,
-    );
+    let mut bvh2 = binary(boxes, params);
     obvhs::bvh2::reinsertion::ReinsertionOptimizer::default().run(
         &mut bvh2,
         params.reinsertion_batch_ratio,
@@ -99,6 +94,18 @@ fn build_one(boxes: &[Aabb], params: BvhBuildParams, ordered: bool) -> CwBvh {
         exact_node_aabbs: None,
         uses_spatial_splits: bvh2.uses_spatial_splits,
     }
+}
+
+/// obvhs's binary BVH of `boxes` by PLOC, one box a leaf, before
+/// reinsertion.
+pub(super) fn binary(boxes: &[Aabb], params: BvhBuildParams) -> Bvh2 {
+    obvhs::ploc::PlocBuilder::with_capacity(boxes.len()).build(
+        params.ploc_search_distance,
+        boxes,
+        (0..boxes.len() as u32).collect(),
+        params.sort_precision,
+        params.search_depth_threshold,
+    )
 }
 
 /// The group split at the median of its boxes' centres along the axis

@@ -106,6 +106,7 @@ fn decision(kind: DecisionKind, cost: f32, (left, right): (u8, u8)) -> Decision 
 
 #[cfg(test)]
 mod tests {
+    use super::super::build;
     use super::*;
     use obvhs::BvhBuildParams;
     use obvhs::cwbvh::bvh2_to_cwbvh::Bvh2Converter;
@@ -120,14 +121,8 @@ mod tests {
             (3000, BvhBuildParams::very_fast_build()),
             (3000, BvhBuildParams::fast_build()),
         ] {
-            let boxes = super::super::build::random_boxes(9 + n as u64, n, 0.1);
-            let bvh2 = obvhs::ploc::PlocBuilder::with_capacity(n).build(
-                params.ploc_search_distance,
-                &boxes,
-                (0..n as u32).collect(),
-                params.sort_precision,
-                params.search_depth_threshold,
-            );
+            let boxes = build::random_boxes(9 + n as u64, n, 0.1);
+            let bvh2 = build::binary(&boxes, params);
             for max in 1..=3 {
                 let mut theirs = Bvh2Converter::new(&bvh2, false, false);
                 theirs.calculate_cost(max);
