@@ -229,6 +229,63 @@ fn shadow_packets_block_what_each_ray_and_brute_force_block() {
     );
 }
 
+/// Shadow rays lifted off height-field triangles, as the reference lifts
+/// them (10⁻⁹ of the triangle's largest coordinate along its normal on the
+/// light's side), each passing over its own triangle where the light lies
+/// on that side by more than the lift: the same answers as brute force over
+/// every triangle, own ones included, which the packet never tests.
+#[test]
+fn a_ray_passing_over_its_own_triangle_blocks_as_brute_force_does() {
+    let mut rng = Rng::new(29, 0, 0);
+    let triangles = scene(&mut rng);
+    let field = 2 * (SIDE - 1) * (SIDE - 1);
+    let bvh = TriangleBvh::new(&triangles);
+    let mut packet = ShadowPacket::default();
+    let (mut blocked, mut passed, mut total) = (0, 0, 0);
+    for case in 0..300 {
+        let light = random_apex(&mut rng);
+        let first = (rng.next_f64() * field as f64) as usize % field;
+        let (mut origins, mut passes) = (Vec::new(), Vec::new());
+        for _ in 0..32 {
+            // Triangles within 2 cells of the first one, by index.
+            let near = first as f64 + (rng.next_f64() - 0.5) * 4.0 * (SIDE - 1) as f64;
+            let index = (near.max(0.0) as usize).min(field - 1);
+            let [a, b, c] = triangles[index].corners;
+            let p = a.lerp(b, rng.next_f64()).lerp(c, rng.next_f64());
+            let face = (b - a).cross(c - a).normalize();
+            let to_light = light - p;
+            let n = if face.dot(to_light) < 0.0 { -face } else { face };
+            let lift = 1e-9
+                * [a, b, c]
+                    .iter()
+                    .fold(0.0_f64, |m, q| m.max(q.abs().max_element()));
+            let clear = n.dot(to_light) > lift + 1e-12 * to_light.abs().element_sum();
+            origins.push(p + n * lift);
+            passes.push(if clear { index } else { usize::MAX });
+            passed += usize::from(clear);
+        }
+        let Some(cone) = Cone::around(light, origins.iter().copied()) else {
+            continue;
+        };
+        let up = [DVec3::ZERO, DVec3::Y][case % 2];
+        bvh.occluded_in_cone_past(&cone, (&origins, up, &passes), 1.0 - 1e-9, &mut packet);
+        for (i, &o) in origins.iter().enumerate() {
+            let brute = occluded_brute_force(&triangles, o, light - o, 0.0, 1.0 - 1e-9);
+            assert_eq!(packet.blocked(i), brute, "case {case}: from {o} to {light}");
+            blocked += usize::from(brute);
+            total += 1;
+        }
+    }
+    assert!(
+        passed * 2 > total,
+        "{passed} of {total} rays passed over their triangle"
+    );
+    assert!(
+        blocked > total / 10 && blocked < total * 9 / 10,
+        "{blocked} of {total} blocked"
+    );
+}
+
 #[test]
 fn a_packet_looking_away_or_at_nothing_finds_nothing() {
     let mut rng = Rng::new(24, 0, 0);

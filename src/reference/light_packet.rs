@@ -4,7 +4,11 @@
 //! the light, and walk the BVH as one packet (see
 //! [`TriangleBvh::occluded_in_cone`]), lazily, at the first ray the light's
 //! grid cannot answer. Each ray is still decided by the same f64 test, so
-//! every answer is the one the BVH gives that ray on its own.
+//! every answer is the one the BVH gives that ray on its own; a ray passes
+//! over the triangle it was lifted off where the lift keeps it from that
+//! triangle's plane (`Reference::own_unreached`, as the light's grid does),
+//! an exact test spared for nearly every ray (engine at 32 spp: the walks'
+//! instructions 626 → 552 M).
 
 use super::bvh::{Cone, ShadowPacket, TriangleBvh};
 use super::shading::STOP_SHORT_REL;
@@ -17,6 +21,8 @@ const MIN_RAYS: usize = 4;
 #[derive(Debug, Default)]
 pub(super) struct LightPacket {
     origins: Vec<DVec3>,
+    /// The triangle each ray's segment cannot reach (`usize::MAX`: none).
+    passes: Vec<usize>,
     /// The sum of the unit normals, towards the light, of the surfaces the
     /// origins lie on: the packet's floor lies across it.
     normals: DVec3,
@@ -32,12 +38,15 @@ pub(super) struct LightPacket {
 impl LightPacket {
     /// A new packet for the shadow rays from these origins, each with the
     /// unit normal of its surface towards the light (any direction is
-    /// exact; the surfaces' own cut the most).
-    pub fn reset(&mut self, origins: impl Iterator<Item = (DVec3, DVec3)>) {
+    /// exact; the surfaces' own cut the most) and the triangle it cannot
+    /// reach (`usize::MAX`: none).
+    pub fn reset(&mut self, origins: impl Iterator<Item = (DVec3, DVec3, usize)>) {
         self.origins.clear();
+        self.passes.clear();
         self.normals = DVec3::ZERO;
-        for (origin, normal) in origins {
+        for (origin, normal, passes) in origins {
             self.origins.push(origin);
+            self.passes.push(passes);
             self.normals += normal;
         }
         self.cast = None;
@@ -59,9 +68,9 @@ impl LightPacket {
             );
             if let Some(cone) = &cone {
                 let floor = self.normals.normalize_or_zero();
-                bvh.occluded_in_cone(
+                bvh.occluded_in_cone_past(
                     cone,
-                    (&self.origins, floor),
+                    (&self.origins, floor, &self.passes),
                     1.0 - STOP_SHORT_REL,
                     &mut self.packet,
                 );

@@ -254,12 +254,7 @@ impl Reference {
         packet: &mut LightPacket,
     ) -> bool {
         let t_max = 1.0 - STOP_SHORT_REL;
-        // With the light on the lifted side of the hit triangle's plane, by
-        // more than the offset and the rounding of the dot product, the
-        // segment never reaches that plane: its own triangle need not be tested.
-        let to_light = setup.light_position - p;
-        let clear = self.triangles[triangle].lift_clearance(to_light);
-        let own = (g.dot(to_light) > clear).then_some(triangle);
+        let own = self.own_unreached(setup, (triangle, p, g));
         match setup
             .light_grid
             .as_ref()
@@ -270,6 +265,20 @@ impl Reference {
                 .blocked(&self.bvh, setup.light_position, origin)
                 .unwrap_or_else(|| self.blocked(origin, setup.light_position)),
         }
+    }
+
+    /// The triangle of a point p (face normal g on the eye's side) when its
+    /// lifted shadow ray cannot reach it: with the light on the lifted side
+    /// of its plane, by more than the offset and the rounding of the dot
+    /// product, the segment never reaches that plane.
+    pub(super) fn own_unreached(
+        &self,
+        setup: &Setup,
+        (triangle, p, g): (usize, DVec3, DVec3),
+    ) -> Option<usize> {
+        let to_light = setup.light_position - p;
+        let clear = self.triangles[triangle].lift_clearance(to_light);
+        (g.dot(to_light) > clear).then_some(triangle)
     }
 
     /// Whether the segment from `origin` to `target` is blocked,

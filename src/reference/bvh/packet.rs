@@ -283,8 +283,24 @@ impl TriangleBvh {
         t_max: f64,
         packet: &mut ShadowPacket,
     ) {
+        self.occluded_in_cone_past(cone, (origins, up, &[]), t_max, packet);
+    }
+
+    /// [`Self::occluded_in_cone`], each ray i passing over the triangle
+    /// `passes[i]` (none past the slice's end, or `usize::MAX`), which the
+    /// caller knows cannot block it.
+    pub fn occluded_in_cone_past(
+        &self,
+        cone: &Cone,
+        (origins, up, passes): (&[DVec3], DVec3, &[usize]),
+        t_max: f64,
+        packet: &mut ShadowPacket,
+    ) {
         packet.origins.clear();
         packet.origins.extend_from_slice(origins);
+        packet.passes.clear();
+        packet.passes.extend_from_slice(passes);
+        packet.passes.resize(origins.len(), usize::MAX);
         packet.limits.clear();
         packet.t_max = t_max;
         packet.apex = cone.apex;
@@ -458,6 +474,8 @@ pub struct ShadowPacket {
     /// triangle tested (`ready`), so that a packet whose cone meets none
     /// (a lit patch) never pays for them.
     origins: Vec<DVec3>,
+    /// The triangle each ray passes over (`usize::MAX`: none).
+    passes: Vec<usize>,
     apex: DVec3,
     spread: f64,
     ready: bool,
@@ -512,6 +530,9 @@ impl Rays for ShadowPacket {
 
     #[inline(always)]
     fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, _: &[DVec3; 3], k: usize) -> bool {
+        if bvh.original[slot] == self.passes[k] {
+            return false;
+        }
         let blocked = self.rays[k].hits(&bvh.corners[slot], 0.0, self.t_max);
         if blocked {
             self.limits[k] = f64::NEG_INFINITY;
