@@ -135,8 +135,14 @@ impl TriangleInfo {
     /// shadow ray lifted off it never to reach that plane: the lift, and
     /// the rounding of the dot product.
     fn lift_clearance(&self, to_light: DVec3) -> f64 {
-        self.shadow_offset_m + 1e-12 * to_light.abs().element_sum()
+        lift_clearance(self.shadow_offset_m, to_light)
     }
+}
+
+/// [`TriangleInfo::lift_clearance`] for a lift of `offset_m`.
+#[inline(always)]
+fn lift_clearance(offset_m: f64, to_light: DVec3) -> f64 {
+    offset_m + 1e-12 * to_light.abs().element_sum()
 }
 
 #[derive(Clone, Debug)]

@@ -350,16 +350,10 @@ impl Reference {
             .as_ref()
             .is_some_and(|grid| !grid.is_crowded_anywhere());
         if setup.shadows && !setup.is_sphere_light() && !grid_answers {
-            let origins = buffers.samples.iter().filter_map(|(s, _)| {
-                let s = s.as_ref()?;
-                let (origin, normal) = s.shadow_ray(setup.light_position)?;
-                Some((
-                    origin,
-                    normal,
-                    self.own_unreached(setup, (s.triangle, s.p, s.geometric_normal))
-                        .unwrap_or(usize::MAX),
-                ))
-            });
+            let origins = buffers
+                .samples
+                .iter()
+                .filter_map(|(s, _)| s.as_ref()?.shadow_ray(setup.light_position));
             buffers.scratch.light_packet.reset(origins);
         }
     }

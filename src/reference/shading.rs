@@ -254,12 +254,10 @@ impl Reference {
         packet: &mut LightPacket,
     ) -> bool {
         let t_max = 1.0 - STOP_SHORT_REL;
-        let own = self.own_unreached(setup, (triangle, p, g));
-        match setup
-            .light_grid
-            .as_ref()
-            .map(|g| g.blocked_towards_centre(&self.bvh_triangles, origin, t_max, own))
-        {
+        match setup.light_grid.as_ref().map(|grid| {
+            let own = self.own_unreached(setup, (triangle, p, g));
+            grid.blocked_towards_centre(&self.bvh_triangles, origin, t_max, own)
+        }) {
             Some(Answer::Known(blocked)) => blocked,
             _ => packet
                 .blocked(&self.bvh, setup.light_position, origin)

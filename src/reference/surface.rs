@@ -7,7 +7,7 @@ use super::bvh::Hit;
 use super::grid::{Answer, Cell};
 use super::light_packet::LightPacket;
 use super::shading::Setup;
-use super::{ObjectInfo, Reference, TriangleInfo};
+use super::{ObjectInfo, Reference, TriangleInfo, lift_clearance};
 use crate::physics::BrdfParams;
 use crate::physics::colour::tint;
 use crate::scene::Material;
@@ -30,21 +30,30 @@ pub(super) struct Surface {
     /// c · light colour: L = tint · LightEstimate::scaled_radiance.
     pub tint: DVec3,
     pub(super) brdf: BrdfParams<f64>,
-    /// p lifted off the surface for shadow rays.
+    /// p lifted off the surface for shadow rays, by `shadow_offset_m`.
     pub(super) shadow_origin: DVec3,
+    pub(super) shadow_offset_m: f64,
     /// Shadow rays are cast (shadows on and the object receives them).
     pub(super) shadowed: bool,
 }
 
 impl Surface {
-    /// Where its shadow ray to a point light at `light` starts, and the
-    /// face's normal on the light's side; None when it casts none (nearly
+    /// Where its shadow ray to a point light at `light` starts, the face's
+    /// normal on the light's side, and its triangle where the ray cannot
+    /// reach it (`usize::MAX` where it may: see
+    /// `Reference::own_unreached`); None when it casts none (nearly
     /// certainly: a light on its horizon may go either way).
-    pub(super) fn shadow_ray(&self, light: DVec3) -> Option<(DVec3, DVec3)> {
+    pub(super) fn shadow_ray(&self, light: DVec3) -> Option<(DVec3, DVec3, usize)> {
         let to_light = light - self.p;
         (self.shadowed && self.n.dot(to_light) > 0.0).then(|| {
             let g = self.geometric_normal;
-            (self.shadow_origin, if g.dot(to_light) < 0.0 { -g } else { g })
+            let height = g.dot(to_light);
+            let own = if height > lift_clearance(self.shadow_offset_m, to_light) {
+                self.triangle
+            } else {
+                usize::MAX
+            };
+            (self.shadow_origin, if height < 0.0 { -g } else { g }, own)
         })
     }
 }
@@ -254,6 +263,7 @@ impl<'a> TriangleShading<'a> {
             tint: surface_tint,
             brdf: self.facet.brdf,
             shadow_origin,
+            shadow_offset_m: tri.shadow_offset_m,
             shadowed: self.shadowed(),
         }
     }
