@@ -1,5 +1,7 @@
 //! The app's text as Fluent messages: `assets/i18n/en.ftl` and `fr.ftl`,
-//! embedded in the binary, one bundle per language built once. Code names a
+//! each followed by its `-views.ftl` (the viewport, lecture, timings,
+//! colour and tour texts), embedded in the binary, one bundle per language
+//! built once. Code names a
 //! message by its key (`tr!("light-power")`, `tr!("error-scene-kept", message =
 //! e.to_string())`); the message is looked up in the current language.
 //!
@@ -25,8 +27,16 @@ pub use fluent_bundle::FluentValue;
 /// The Fluent source of `language`'s messages.
 pub fn source(language: Language) -> &'static str {
     match language {
-        Language::Fr => include_str!("../../assets/i18n/fr.ftl"),
-        Language::En => include_str!("../../assets/i18n/en.ftl"),
+        Language::Fr => concat!(
+            include_str!("../../assets/i18n/fr.ftl"),
+            "\n",
+            include_str!("../../assets/i18n/fr-views.ftl")
+        ),
+        Language::En => concat!(
+            include_str!("../../assets/i18n/en.ftl"),
+            "\n",
+            include_str!("../../assets/i18n/en-views.ftl")
+        ),
     }
 }
 
