@@ -269,11 +269,7 @@ impl Reference {
     /// lifted shadow ray cannot reach it: with the light on the lifted side
     /// of its plane, by more than the offset and the rounding of the dot
     /// product, the segment never reaches that plane.
-    pub(super) fn own_unreached(
-        &self,
-        setup: &Setup,
-        (triangle, p, g): (usize, DVec3, DVec3),
-    ) -> Option<usize> {
+    fn own_unreached(&self, setup: &Setup, (triangle, p, g): (usize, DVec3, DVec3)) -> Option<usize> {
         let to_light = setup.light_position - p;
         let clear = self.triangles[triangle].lift_clearance(to_light);
         (g.dot(to_light) > clear).then_some(triangle)
