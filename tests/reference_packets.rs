@@ -247,7 +247,7 @@ fn a_ray_passing_over_its_own_triangle_blocks_as_brute_force_does() {
         let first = (rng.next_f64() * field as f64) as usize % field;
         let (mut origins, mut passes) = (Vec::new(), Vec::new());
         for _ in 0..32 {
-            // Triangles within 2 cells of the first one, by index.
+            // Triangles within about a row of cells of the first one (by index).
             let near = first as f64 + (rng.next_f64() - 0.5) * 4.0 * (SIDE - 1) as f64;
             let index = (near.max(0.0) as usize).min(field - 1);
             let [a, b, c] = triangles[index].corners;
