@@ -145,6 +145,15 @@ fn lift_clearance(offset_m: f64, to_light: DVec3) -> f64 {
     offset_m + 1e-12 * to_light.abs().element_sum()
 }
 
+/// Whether a shadow ray lifted by `offset_m` along g (its face's unit
+/// normal on the lifted side) never reaches its own triangle's plane: the
+/// light (`to_light` from the point) lies on that side by more than the
+/// lift and the rounding of the dot product.
+#[inline(always)]
+fn lift_clears(offset_m: f64, g: DVec3, to_light: DVec3) -> bool {
+    g.dot(to_light) > lift_clearance(offset_m, to_light)
+}
+
 #[derive(Clone, Debug)]
 struct ObjectInfo {
     /// Index into `Reference::materials` (always valid).

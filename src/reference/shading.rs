@@ -28,7 +28,7 @@ use super::light_packet::LightPacket;
 use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
 use super::spectral::SpectralLight;
 use super::surface::Surface;
-use super::{Reference, ReferenceOptions};
+use super::{Reference, ReferenceOptions, lift_clears};
 use crate::colour::ColourModel;
 use crate::colour::chart::illuminant_linear_srgb;
 use crate::physics::brdf::blinn_phong;
@@ -266,13 +266,10 @@ impl Reference {
     }
 
     /// The triangle of a point p (face normal g on the eye's side) when its
-    /// lifted shadow ray cannot reach it: with the light on the lifted side
-    /// of its plane, by more than the offset and the rounding of the dot
-    /// product, the segment never reaches that plane.
+    /// lifted shadow ray cannot reach it (see [`super::lift_clears`]).
     fn own_unreached(&self, setup: &Setup, (triangle, p, g): (usize, DVec3, DVec3)) -> Option<usize> {
-        let to_light = setup.light_position - p;
-        let clear = self.triangles[triangle].lift_clearance(to_light);
-        (g.dot(to_light) > clear).then_some(triangle)
+        let offset_m = self.triangles[triangle].shadow_offset_m;
+        lift_clears(offset_m, g, setup.light_position - p).then_some(triangle)
     }
 
     /// Whether the segment from `origin` to `target` is blocked,

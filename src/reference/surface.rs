@@ -7,7 +7,7 @@ use super::bvh::Hit;
 use super::grid::{Answer, Cell};
 use super::light_packet::LightPacket;
 use super::shading::Setup;
-use super::{ObjectInfo, Reference, TriangleInfo, lift_clearance};
+use super::{ObjectInfo, Reference, TriangleInfo, lift_clears};
 use crate::physics::BrdfParams;
 use crate::physics::colour::tint;
 use crate::scene::Material;
@@ -47,13 +47,16 @@ impl Surface {
         let to_light = light - self.p;
         (self.shadowed && self.n.dot(to_light) > 0.0).then(|| {
             let g = self.geometric_normal;
-            let height = g.dot(to_light);
-            let own = if height > lift_clearance(self.shadow_offset_m, to_light) {
+            let own = if lift_clears(self.shadow_offset_m, g, to_light) {
                 self.triangle
             } else {
                 usize::MAX
             };
-            (self.shadow_origin, if height < 0.0 { -g } else { g }, own)
+            (
+                self.shadow_origin,
+                if g.dot(to_light) < 0.0 { -g } else { g },
+                own,
+            )
         })
     }
 }
