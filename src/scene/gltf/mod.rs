@@ -182,15 +182,16 @@ impl Loader<'_, '_, '_> {
         let mut objects = Vec::new();
         let mut triangles_defined = 0;
         // Each placed triangle mesh in world space, repaired, on the thread
-        // pool: (mesh, triangles out of range, degenerate ones).
-        let repaired: Vec<Vec<_>> = placed
+        // pool: whether its placement is singular, and per primitive (mesh,
+        // triangles out of range, degenerate ones).
+        let repaired: Vec<(bool, Vec<_>)> = placed
             .meshes
             .par_iter()
             .map(|instance| {
                 let world = instance.world.as_mat4();
                 let singular = !world.determinant().is_normal();
                 let locals = &locals[&instance.mesh];
-                locals
+                let meshes = locals
                     .iter()
                     .map(|local| {
                         let local = local
@@ -200,10 +201,11 @@ impl Loader<'_, '_, '_> {
                         let (out_of_range, degenerate) = primitive::repair_placed(&mut placed);
                         Some((placed, out_of_range, degenerate))
                     })
-                    .collect()
+                    .collect();
+                (singular, meshes)
             })
             .collect();
-        for (instance, repaired) in placed.meshes.iter().zip(repaired) {
+        for (instance, (singular, repaired)) in placed.meshes.iter().zip(repaired) {
             let mesh_json = &root.meshes[instance.mesh];
             let node_json = &root.nodes[instance.node];
             let world = instance.world.as_mat4();
@@ -213,7 +215,6 @@ impl Loader<'_, '_, '_> {
                     tally.without_positions += 1;
                     continue;
                 };
-                let singular = !world.determinant().is_normal();
                 if local.topology == Topology::PointsOrLines {
                     tally.points_or_lines += 1;
                 } else {
