@@ -5,25 +5,17 @@
 //! sub-pixel grid (`common::SUBPIXEL_PX`) where it is steep: first estimated
 //! from the neighbouring pixels, then, where the GPU lies beyond that
 //! estimate, the reference traced over the sub-pixel square itself.
+//!
+//! Every GPU frame is drawn on the binary's one GPU thread
+//! (`common::gpu_thread`): run on the test threads, each with a device of its
+//! own, these tests hung on an NVIDIA H200.
 
 mod common;
 
 use lumlab::colour::{ColourModel, Illuminant};
-use lumlab::gpu::Renderer;
 use lumlab::reference::{Reference, ReferenceOptions, RenderControl, luminance};
 use lumlab::scene::Scene;
 use lumlab::settings::Settings;
-use std::sync::{Mutex, MutexGuard};
-
-/// Holds this binary's tests to one at a time, as `--test-threads=1`
-/// would. Run in parallel, each test thread with a device of its own, they
-/// hung on an NVIDIA H200 in 7 of 14 runs, and one at a time passed every
-/// run (README, "On a real GPU"); lavapipe never hung either way.
-fn one_at_a_time() -> MutexGuard<'static, ()> {
-    static GPU_WORK: Mutex<()> = Mutex::new(());
-    // A failed test poisons the lock; the others still run.
-    GPU_WORK.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
-}
 
 /// A `width` × `height` image of the default settings, shadows off.
 fn unshadowed(width: u32, height: u32) -> Settings {
@@ -52,10 +44,7 @@ fn agree_on(scene: &Scene, settings: &Settings, what: &str) {
 }
 
 fn compare_on(scene: &Scene, settings: &Settings) -> (usize, f64) {
-    let gpu = common::gpu();
-    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, scene);
-    renderer.render(settings, (settings.image.width, settings.image.height));
-    let (quantity, aux) = (renderer.read_quantity(), renderer.read_aux());
+    let (_, quantity, aux) = common::gpu_thread::render(scene, settings);
     let model = Reference::new(scene);
     let reference = model
         .render(settings, &ReferenceOptions::DEFAULT, &RenderControl::default())
@@ -130,7 +119,6 @@ fn subpixel_slack(radiance: &[[f64; 3]], width: u32, idx: usize, c: usize) -> f6
 
 #[test]
 fn without_shadows_the_gpu_equals_the_reference_on_every_lit_pixel() {
-    let _gpu = one_at_a_time();
     let mut settings = unshadowed(192, 108);
     agree(&settings, "scene materials");
 
@@ -144,7 +132,6 @@ fn without_shadows_the_gpu_equals_the_reference_on_every_lit_pixel() {
 
 #[test]
 fn vertex_colours_modulate_the_base_colour_alike_on_both() {
-    let _gpu = one_at_a_time();
     let settings = unshadowed(160, 90);
     let plain = lumlab::scene::default_scene();
     let mut coloured = plain.clone();
@@ -181,7 +168,6 @@ fn vertex_colours_modulate_the_base_colour_alike_on_both() {
 /// approximates others to ~0.3 %).
 #[test]
 fn textures_and_the_colour_override_shade_alike_on_both() {
-    let _gpu = one_at_a_time();
     let mut settings = unshadowed(160, 90);
     let mut textured = lumlab::scene::default_scene();
     textured.textures.push(lumlab::scene::Texture {
@@ -194,17 +180,14 @@ fn textures_and_the_colour_override_shade_alike_on_both() {
     }
     agree_on(&textured, &settings, "textured");
     // Green, compared nowhere above (0 in the reference), is 0 on the GPU too.
-    let gpu = common::gpu();
-    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &textured);
-    renderer.render(&settings, (settings.image.width, settings.image.height));
-    assert!(renderer.read_quantity().iter().all(|q| q[1] == 0.0));
+    let (_, quantity, _) = common::gpu_thread::render(&textured, &settings);
+    assert!(quantity.iter().all(|q| q[1] == 0.0));
     settings.material.color_override = Some(glam::Vec3::new(0.3, 0.6, 0.9));
     agree_on(&textured, &settings, "colour override over a texture");
 }
 
 #[test]
 fn under_a_spectral_light_the_gpu_equals_the_spectral_reference() {
-    let _gpu = one_at_a_time();
     // The GPU shades with each material's tristimulus computed once on the
     // CPU; the reference integrates reflectance × emission against the CMFs
     // per sample. Measured chart spectra and uplifted RGB colours, a smooth
@@ -226,7 +209,6 @@ fn penumbra_pixels(visibility: impl Iterator<Item = f64>) -> usize {
 
 #[test]
 fn pcss_penumbra_is_as_wide_as_the_sphere_lights() {
-    let _gpu = one_at_a_time();
     // A close look at the thin occluder's shadow under a 0.25 m sphere light.
     let mut settings = Settings::default();
     settings.image.width = 240;
@@ -239,11 +221,9 @@ fn pcss_penumbra_is_as_wide_as_the_sphere_lights() {
     settings.shadow.filter = lumlab::settings::Filter::Pcss;
     settings.shadow.pcss_blocker_samples = 32;
     settings.shadow.poisson_samples = 32;
-    let gpu = common::gpu();
     let scene = lumlab::scene::default_scene();
-    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
-    renderer.render(&settings, (settings.image.width, settings.image.height));
-    let gpu_penumbra = penumbra_pixels(renderer.read_aux().iter().map(|a| a[0] as f64));
+    let (_, _, aux) = common::gpu_thread::render(&scene, &settings);
+    let gpu_penumbra = penumbra_pixels(aux.iter().map(|a| a[0] as f64));
     let options = ReferenceOptions {
         light_samples: 256,
         ..ReferenceOptions::DEFAULT
@@ -269,11 +249,8 @@ fn wrong_shadow_fraction(filter: lumlab::settings::Filter, bias: &str) -> f64 {
     settings.image.height = 180;
     settings.shadow.filter = filter;
     settings.shadow.bias = settings.shadow.bias.parse_onto(bias).unwrap();
-    let gpu = common::gpu();
     let scene = lumlab::scene::default_scene();
-    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
-    renderer.render(&settings, (settings.image.width, settings.image.height));
-    let (quantity, aux) = (renderer.read_quantity(), renderer.read_aux());
+    let (_, quantity, aux) = common::gpu_thread::render(&scene, &settings);
     let reference = Reference::new(&scene)
         .render(&settings, &ReferenceOptions::DEFAULT, &RenderControl::default())
         .unwrap();
@@ -284,7 +261,6 @@ fn wrong_shadow_fraction(filter: lumlab::settings::Filter, bias: &str) -> f64 {
 
 #[test]
 fn shadow_maps_agree_with_ray_traced_visibility_except_at_edges() {
-    let _gpu = one_at_a_time();
     use lumlab::settings::Filter;
     let auto = wrong_shadow_fraction(Filter::None, "auto");
     let none = wrong_shadow_fraction(Filter::None, "constant:0");
@@ -297,7 +273,6 @@ fn shadow_maps_agree_with_ray_traced_visibility_except_at_edges() {
 
 #[test]
 fn moment_shadow_maps_agree_with_ray_traced_visibility_except_at_edges() {
-    let _gpu = one_at_a_time();
     use lumlab::settings::Filter;
     let vsm = wrong_shadow_fraction(Filter::Vsm, "auto");
     let msm = wrong_shadow_fraction(Filter::Msm, "auto");

@@ -2,6 +2,7 @@
 //! scenes built from `scene::shapes`, and rendering helpers.
 #![allow(dead_code)]
 
+pub mod gpu_thread;
 pub mod kernel;
 
 use glam::Vec3;
