@@ -4,11 +4,12 @@
 //! Each test on a thread of its own with a device of its own hung
 //! `tests/reference_gpu.rs` on an NVIDIA H200 in 7 of 14 runs, every test
 //! thread parked on a futex; with `--test-threads=1` (every test on the
-//! harness's one thread) it passed every run. NVIDIA's driver is known to
-//! stall threads that touched it when many exit at once (README, "On a
-//! real GPU"). Here only this thread touches the GPU, as with
-//! `--test-threads=1`, and it lives as long as the process, while the tests'
-//! CPU work (the reference) still runs in parallel.
+//! harness's one thread) it passed every run. Another project saw NVIDIA's
+//! driver stall threads that had touched it when many exit at once
+//! (docs/performance.md, "On a real GPU"). Here only this thread touches
+//! the GPU, as with `--test-threads=1`, and it lives as long as the
+//! process, while the tests' CPU work (the reference) still runs in
+//! parallel.
 
 use lumlab::gpu::{FrameReport, GpuContext};
 use lumlab::scene::Scene;
