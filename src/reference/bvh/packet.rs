@@ -384,13 +384,22 @@ pub struct PrimaryPacket {
     directions: Vec<DVec3>,
     apex_axis: (DVec3, DVec3),
     ready: bool,
-    rays: Vec<ShearedRay>,
-    /// d · axis (rounded up) per ray: depth = t · along.
-    along: Vec<f64>,
+    rays: Vec<PrimaryRay>,
     limits: Vec<f64>,
     pub hits: Vec<Option<Hit>>,
     /// The rays in blocks for the eight-lane miss test.
     lines: Lines,
+}
+
+/// A primary ray and what its tests need beside it, in one place (one
+/// look-up a test: engine's primary walk −3 %).
+#[derive(Debug)]
+struct PrimaryRay {
+    ray: ShearedRay,
+    /// d · axis (rounded up): depth = t · along.
+    along: f64,
+    /// The farthest t its next hit may have: just past its closest so far.
+    t_max: f64,
 }
 
 impl PrimaryPacket {
@@ -403,15 +412,17 @@ impl PrimaryPacket {
         triangle: usize,
         relative: &[DVec3; 3],
     ) -> bool {
-        let best = &mut self.hits[k];
-        let limit = best.map_or(f64::INFINITY, |b| b.at.t.next_up());
-        if let Some(at) = self.rays[k].intersect_in::<KZ, SWAP>(relative, 0.0, limit)
-            && best.is_none_or(|b| closer(at, triangle, b))
-        {
-            *best = Some(Hit { triangle, at });
-            self.limits[k] = at.t * self.along[k] * (1.0 + ROUNDING);
-            self.lines.set_limit(k, self.limits[k]);
-            return true;
+        let ray = &mut self.rays[k];
+        if let Some(at) = ray.ray.intersect_in::<KZ, SWAP>(relative, 0.0, ray.t_max) {
+            let best = &mut self.hits[k];
+            if best.is_none_or(|b| closer(at, triangle, b)) {
+                *best = Some(Hit { triangle, at });
+                ray.t_max = at.t.next_up();
+                let limit = at.t * ray.along * (1.0 + ROUNDING);
+                self.limits[k] = limit;
+                self.lines.set_limit(k, limit);
+                return true;
+            }
         }
         false
     }
@@ -436,10 +447,12 @@ impl Rays for PrimaryPacket {
         self.ready = true;
         let (apex, axis) = self.apex_axis;
         self.rays.clear();
-        self.along.clear();
         for &d in &self.directions {
-            self.rays.push(ShearedRay::new(apex, d));
-            self.along.push(d.dot(axis) * (1.0 + ROUNDING));
+            self.rays.push(PrimaryRay {
+                ray: ShearedRay::new(apex, d),
+                along: d.dot(axis) * (1.0 + ROUNDING),
+                t_max: f64::INFINITY,
+            });
         }
         self.lines
             .fill(self.directions.iter().copied(), &self.limits, 0.0);
@@ -448,7 +461,7 @@ impl Rays for PrimaryPacket {
     #[inline(always)]
     fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize) -> bool {
         let triangle = bvh.original[slot];
-        with_axes!(self.rays[k].axes(), KZ, SWAP => self.test_axes::<KZ, SWAP>(k, triangle, relative))
+        with_axes!(self.rays[k].ray.axes(), KZ, SWAP => self.test_axes::<KZ, SWAP>(k, triangle, relative))
     }
 }
 
