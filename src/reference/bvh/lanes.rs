@@ -184,6 +184,18 @@ impl Lines {
         self.bounds[k / (LANES * GROUP)].limit[k / LANES % GROUP] = block.deepest();
     }
 
+    /// The deepest of the rays' limits as the blocks hold them (rounded up
+    /// to f32: no shallower than the deepest f64 limit; −∞ when every ray
+    /// is done): one value a block instead of one a ray.
+    pub fn deepest(&self) -> f64 {
+        let deepest = self
+            .bounds
+            .iter()
+            .flat_map(|b| &b.limit)
+            .fold(f32::NEG_INFINITY, |m, &l| if l > m { l } else { m });
+        f64::from(deepest)
+    }
+
     /// Groups of [`GROUP`] blocks, for [`Self::group_may_hit`].
     pub fn groups(&self) -> usize {
         self.bounds.len()

@@ -75,6 +75,11 @@ pub trait Rays {
     }
     /// The rays as lines through the apex, for the eight-lane filter.
     fn lines(&self) -> &Lines;
+    /// No shallower than the deepest of [`Self::limits`], once a test
+    /// changed one: the walk stops short of nothing it needs.
+    fn deepest(&self) -> f64 {
+        deepest(self.limits())
+    }
     /// Makes the rays and [`Self::lines`] where the packet left that to its
     /// first triangle (a packet that meets none never pays for them).
     fn make_ready(&mut self) {}
@@ -235,7 +240,7 @@ impl TriangleBvh {
             - slack;
         // The deepest limit is found again only when one fell.
         if nearest <= *farthest && rays.test(self, slot, &relative, nearest) {
-            *farthest = deepest(rays.limits());
+            *farthest = rays.deepest();
         }
         *farthest < 0.0
     }
@@ -437,6 +442,13 @@ impl Rays for PrimaryPacket {
 
     fn lines(&self) -> &Lines {
         &self.lines
+    }
+
+    /// From the blocks' limits, 32 for a packet of 256 rays (engine's
+    /// primary walk −1.8 %; the shadow packets' walk ran 0.4 % more, its
+    /// coarser bound cutting less).
+    fn deepest(&self) -> f64 {
+        self.lines.deepest()
     }
 
     #[inline(always)]
