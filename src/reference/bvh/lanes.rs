@@ -156,15 +156,23 @@ impl Lines {
             let bounds = &mut self.bounds[b / GROUP];
             let at = b % GROUP;
             // The centre: the mean of the lanes' (f32) directions, as an f32.
-            let d = |l: usize| DVec3::new(block.d[0][l] as f64, block.d[1][l] as f64, block.d[2][l] as f64);
-            let c = ((0..lanes).map(d).sum::<DVec3>() / lanes as f64)
+            let d: [DVec3; LANES] = std::array::from_fn(|l| {
+                DVec3::new(block.d[0][l] as f64, block.d[1][l] as f64, block.d[2][l] as f64)
+            });
+            let c = (d[..lanes].iter().sum::<DVec3>() / lanes as f64)
                 .as_vec3()
                 .as_dvec3();
             // r ≥ |d − c|₂ ≥ |(d − c) · n| / |n|₁ for every lane; the lane
             // test's E differs from d · n, and its f32 value of c · n from
             // c · n, by at most 3 ε₃₂ (|d|∞ + |c|∞) |n|₁ together, with
             // |d|∞ ≤ |c|∞ + r (here 16 ε₃₂, and the pass's own rounding).
-            let r = (0..lanes).map(|l| (d(l) - c).length()).fold(0.0_f64, f64::max);
+            // One square root: the largest of the roots is the root of the
+            // largest (both correctly rounded and monotonic).
+            let r = d[..lanes]
+                .iter()
+                .map(|&dl| (dl - c).length_squared())
+                .fold(0.0_f64, f64::max)
+                .sqrt();
             let spread = r + 16.0 * f32::EPSILON as f64 * (c.abs().max_element() + r);
             let reach = (0..lanes).map(|l| block.reach[l]).fold(0.0_f32, f32::max);
             for (i, ci) in c.to_array().into_iter().enumerate() {
