@@ -68,7 +68,7 @@ impl LightPacket {
             );
             if let Some(cone) = &cone {
                 let floor = self.normals.normalize_or_zero();
-                bvh.occluded_in_cone_past(
+                bvh.occluded_in_cone(
                     cone,
                     (&self.origins, floor, &self.passes),
                     1.0 - STOP_SHORT_REL,

@@ -280,21 +280,11 @@ impl TriangleBvh {
     /// along target − origin, is blocked, into `blocked`: what
     /// [`Self::occluded`] gives each. `cone`: from `target` around the
     /// origins; `up`: the normal of the floor the walk puts below them (any
-    /// direction gives the same answers; the surfaces' own cuts the most).
+    /// direction gives the same answers; the surfaces' own cuts the most);
+    /// each ray i passes over the triangle `passes[i]` (none past the
+    /// slice's end, or `usize::MAX`), which the caller knows cannot block
+    /// it.
     pub fn occluded_in_cone(
-        &self,
-        cone: &Cone,
-        (origins, up): (&[DVec3], DVec3),
-        t_max: f64,
-        packet: &mut ShadowPacket,
-    ) {
-        self.occluded_in_cone_past(cone, (origins, up, &[]), t_max, packet);
-    }
-
-    /// [`Self::occluded_in_cone`], each ray i passing over the triangle
-    /// `passes[i]` (none past the slice's end, or `usize::MAX`), which the
-    /// caller knows cannot block it.
-    pub fn occluded_in_cone_past(
         &self,
         cone: &Cone,
         (origins, up, passes): (&[DVec3], DVec3, &[usize]),
