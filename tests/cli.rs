@@ -191,6 +191,34 @@ fn render_rejects_bad_input_without_leaving_files() {
     no_files_in(&dir);
 }
 
+/// A negative number is a value, not an unknown flag: the error names the
+/// option and the range it takes.
+#[test]
+fn negative_values_are_told_their_range() {
+    let dir = scratch("negative");
+    let out = |name: &str| dir.join(name).to_str().unwrap().to_owned();
+    for (option, value, range) in [
+        ("--power", "-5", "0 … 1e32"),
+        ("--light-radius", "-1", "0 … 1e32"),
+        ("--k", "-0.5", "0 … 1"),
+        ("--size", "-3x4", "1 … 16384"),
+        ("--accumulate", "-2", "1..=65536"),
+    ] {
+        assert_fails(&["render", option, value, "--out", &out("a.png")], 2, range);
+    }
+    assert_fails(
+        &["reference", "--spp", "-3", "--out", &out("a.exr")],
+        2,
+        "1..=65536",
+    );
+    assert_fails(
+        &["render", "--color", "-1,0,0", "--out", &out("a.png")],
+        2,
+        "light.color",
+    );
+    no_files_in(&dir);
+}
+
 #[test]
 fn settings_file_feeds_the_command_line() {
     let dir = scratch("settings");

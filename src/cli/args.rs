@@ -185,31 +185,31 @@ pub struct SceneOptions {
     #[arg(long, value_name = "EYE:TARGET:FOVY|gltf:N", value_parser = camera, allow_hyphen_values = true)]
     pub camera: Option<CameraChoice>,
     /// Image size in pixels.
-    #[arg(long, value_name = "WxH", value_parser = size)]
+    #[arg(long, value_name = "WxH", value_parser = size, allow_hyphen_values = true)]
     pub size: Option<(u32, u32)>,
     /// Light position (m).
     #[arg(long, value_name = "X,Y,Z", value_parser = vec3, allow_hyphen_values = true)]
     pub light: Option<Vec3>,
     /// Light power Φ (W).
-    #[arg(long, value_name = "W", value_parser = non_negative)]
+    #[arg(long, value_name = "W", value_parser = non_negative, allow_negative_numbers = true)]
     pub power: Option<f32>,
     /// Sphere light radius R (m); 0 = point light.
-    #[arg(long, value_name = "R", value_parser = non_negative)]
+    #[arg(long, value_name = "R", value_parser = non_negative, allow_negative_numbers = true)]
     pub light_radius: Option<f32>,
     /// Light colour (linear RGB).
-    #[arg(long, value_name = "R,G,B", value_parser = vec3)]
+    #[arg(long, value_name = "R,G,B", value_parser = vec3, allow_hyphen_values = true)]
     pub color: Option<Vec3>,
     /// Diffuse/specular mix k ∈ [0, 1] (applies to every object).
-    #[arg(long, value_name = "K", value_parser = unit_interval)]
+    #[arg(long, value_name = "K", value_parser = unit_interval, allow_negative_numbers = true)]
     pub k: Option<f32>,
     /// Blinn-Phong exponent m ∈ [0, 1e6] (applies to every object).
-    #[arg(long, value_name = "M", value_parser = exponent)]
+    #[arg(long, value_name = "M", value_parser = exponent, allow_negative_numbers = true)]
     pub m: Option<f32>,
     /// Lobe normalization: none|ndf|approx|exact.
     #[arg(long, value_name = "NAME", value_parser = normalization)]
     pub norm: Option<Normalization>,
     /// Shadow-map resolution (texels, 256 … 65536), clamped to the device limit and memory budget.
-    #[arg(long, value_name = "N", value_parser = shadow_res)]
+    #[arg(long, value_name = "N", value_parser = shadow_res, allow_negative_numbers = true)]
     pub shadow_res: Option<u32>,
     /// Shadow filter: none|hw2x2|pcf|poisson|pcss|vsm|evsm|msm.
     #[arg(long, value_name = "NAME", value_parser = filter)]
@@ -218,10 +218,10 @@ pub struct SceneOptions {
     #[arg(long, value_name = "NAME", value_parser = visibility)]
     pub visibility: Option<Visibility>,
     /// Ray-traced shadow rays per pixel and frame towards a sphere light (1 … 256).
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
     pub rt_samples: Option<u32>,
     /// PCF kernel size: 3|5|7|9.
-    #[arg(long, value_name = "N", value_parser = pcf_size)]
+    #[arg(long, value_name = "N", value_parser = pcf_size, allow_negative_numbers = true)]
     pub pcf_size: Option<u32>,
     /// Depth bias: auto | constant:D | slope:D,S | normal:N (D in m, N in texels).
     #[arg(long, value_name = "MODE", value_parser = bias)]

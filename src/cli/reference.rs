@@ -28,14 +28,14 @@ pub struct ReferenceArgs {
 pub struct Sampling {
     /// Primary samples per pixel: 1 = the pixel centre; more are stratified over the pixel (box filter).
     #[arg(long, value_name = "N", default_value_t = ReferenceOptions::DEFAULT.spp,
-          value_parser = clap::value_parser!(u32).range(1..=65536))]
+          value_parser = clap::value_parser!(u32).range(1..=65536), allow_negative_numbers = true)]
     pub spp: u32,
     /// Samples of the sphere light's cone per primary sample (squares stratify best).
     #[arg(long, value_name = "N", default_value_t = ReferenceOptions::DEFAULT.light_samples,
-          value_parser = clap::value_parser!(u32).range(1..=1048576))]
+          value_parser = clap::value_parser!(u32).range(1..=1048576), allow_negative_numbers = true)]
     pub light_samples: u32,
     /// Seed of the random numbers (same seed, same image).
-    #[arg(long, value_name = "S", default_value_t = 0)]
+    #[arg(long, value_name = "S", default_value_t = 0, allow_negative_numbers = true)]
     pub seed: u64,
     /// Sample the sphere light's cone even where nothing can block it (plain
     /// Monte Carlo everywhere, to show its noise); by default the diffuse

@@ -19,7 +19,8 @@ pub struct RenderArgs {
     pub out: PathBuf,
     /// Ray-traced visibility: render N frames and average them (the sphere
     /// light's noise falls as 1/√N); needs `--visibility ray-traced`.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=65536))]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=65536),
+          allow_negative_numbers = true)]
     pub accumulate: Option<u32>,
     /// Print the GPU adapter used.
     #[arg(long)]

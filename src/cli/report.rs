@@ -27,7 +27,7 @@ pub struct ReportArgs {
     pub sweep: Option<PathBuf>,
     /// Timed frames per configuration (the median is reported).
     #[arg(long, value_name = "N", default_value_t = report::DEFAULT_FRAMES as u32,
-          value_parser = clap::value_parser!(u32).range(1..=1000))]
+          value_parser = clap::value_parser!(u32).range(1..=1000), allow_negative_numbers = true)]
     pub frames: u32,
     /// Output folder: new, empty, or an earlier report's (its files are replaced, others kept).
     #[arg(long, value_name = "DIR")]
