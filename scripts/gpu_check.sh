@@ -6,9 +6,10 @@
 #   bash scripts/gpu_check.sh run       # there: every check, logs and a summary under $OUT
 #
 # With the device tool: run `bash scripts/gpu_check.sh run` with carry [".gl"]. The adapter is
-# chosen by WGPU_ADAPTER_NAME (default: the NVIDIA GPU nvidia-smi names, else wgpu's choice). Each test binary runs
-# with a time limit, and reference_gpu several times (REPEATS): a run that hangs is reported with
-# its threads' stacks (gdb, where installed), not waited for.
+# chosen by WGPU_ADAPTER_NAME (default: the NVIDIA GPU nvidia-smi names, else wgpu's choice).
+# Each check runs within a time limit, reference_gpu several times (REPEATS): a run that hangs is
+# cut short with its threads' stacks (gdb, else each thread's kernel wait channel). The exit
+# status is 1 when any check failed or hung.
 set -uo pipefail
 
 # The GPU test binaries checked on real hardware.
