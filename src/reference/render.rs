@@ -91,8 +91,13 @@ impl Reference {
             .flat_map(|ty| (0..width.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
             .collect();
         let spp = Strata::new(options.spp);
+        // One tile a job: rayon otherwise hands each thread a run of tiles
+        // whose last part no idle thread may take, and the tiles' costs are
+        // very uneven (background, a model's edges); with two threads one
+        // sat idle for up to a fifth of the engine's render.
         let rendered: Vec<Option<Tile>> = tiles
             .par_iter()
+            .with_max_len(1)
             .map(|&(x0, y0)| self.render_tile(&setup, spp, (x0, y0), run, shortcuts, control))
             .collect();
         if control.cancelled() {
