@@ -2,7 +2,8 @@
 //! spheres, one mesh each) written to a temporary folder, then loaded,
 //! flattened and checked as the lab does at start-up.
 //!
-//! Peak memory of the same load: `cargo run --release --example scene_load_memory`.
+//! Then the peak memory of the same load, in a fresh process that only
+//! loads it: `lumlab info` on the same file (its last line).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use lumlab::scene;
@@ -28,6 +29,18 @@ fn load_a_million_triangles(c: &mut Criterion) {
         })
     });
     group.finish();
+    let info = std::process::Command::new(env!("CARGO_BIN_EXE_lumlab"))
+        .arg("info")
+        .arg("--scene")
+        .arg(&path)
+        .output()
+        .expect("lumlab info runs");
+    let text = String::from_utf8_lossy(if info.status.success() {
+        &info.stdout
+    } else {
+        &info.stderr
+    });
+    println!("lumlab info: {}", text.lines().last().unwrap_or("(no output)"));
 }
 
 criterion_group!(benches, load_a_million_triangles);

@@ -30,7 +30,7 @@ impl ImageFormat {
 }
 
 /// The file's bytes, encoded in place (no copy of the image).
-fn encode<P>(
+pub(crate) fn encode<P>(
     image: &image::ImageBuffer<P, Vec<P::Subpixel>>,
     format: image::ImageFormat,
 ) -> anyhow::Result<Vec<u8>>

@@ -145,6 +145,28 @@ pub fn write_atomically_to_finish(path: &Path, bytes: &[u8]) -> std::io::Result<
     write(path, bytes, false)
 }
 
+/// The environment variable that lets the tests holding a generated asset
+/// to its generator write the asset anew instead of failing.
+#[cfg(test)]
+const RENEW_ASSETS: &str = "LUMLAB_RENEW_ASSETS";
+
+/// For a test that found the asset checked in at `path` (relative to the
+/// crate) to differ from what its generator makes now, `fresh`: writes
+/// `fresh` there when `LUMLAB_RENEW_ASSETS` is set (then commit it), and
+/// fails otherwise, saying how to renew it. The assets' generators are the
+/// library's own code (`scene::default_scene::build`, `app::icon::draw`);
+/// every such test has `generated_asset` in its name.
+#[cfg(test)]
+pub(crate) fn renew_asset_or_fail(path: &str, fresh: &[u8]) {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join(path);
+    if std::env::var_os(RENEW_ASSETS).is_some() {
+        write_atomically(&file, fresh).unwrap_or_else(|e| panic!("writing {}: {e}", file.display()));
+        eprintln!("wrote {} ({} bytes): commit it", file.display(), fresh.len());
+    } else {
+        panic!("{path} is stale: run `{RENEW_ASSETS}=1 cargo test --lib generated_asset` and commit it");
+    }
+}
+
 fn write(path: &Path, bytes: &[u8], interruptible: bool) -> std::io::Result<()> {
     let target = resolve(path).map_err(std::io::Error::other)?;
     let existing = std::fs::metadata(&target).ok();

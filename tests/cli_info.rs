@@ -76,6 +76,16 @@ fn info_without_a_scene_describes_the_built_in_one() {
         text.contains("triangles") && text.contains("gold sphere"),
         "{text}"
     );
+    let loaded = text.lines().last().unwrap_or_default();
+    assert!(
+        loaded.starts_with("loaded     in ") && loaded.contains(" s"),
+        "{text}"
+    );
+    #[cfg(target_os = "linux")]
+    assert!(
+        loaded.contains(", peak memory ") && loaded.ends_with(" MiB"),
+        "{text}"
+    );
 }
 
 #[test]

@@ -5,6 +5,7 @@ use crate::scene::{self, SceneFacts};
 use anyhow::Context;
 use std::fmt::Write;
 use std::path::PathBuf;
+use std::time::Instant;
 
 named_enum! {
     /// Output format of `lumlab info`.
@@ -29,17 +30,47 @@ fn format(text: &str) -> Result<InfoFormat, String> {
 }
 
 pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
+    let start = Instant::now();
     let (scene, name) = match &args.scene {
         Some(path) => (scene::load(path)?, path.display().to_string()),
         None => (scene::default_scene(), "built-in scene".to_string()),
     };
+    let load = Load {
+        seconds: start.elapsed().as_secs_f64(),
+        peak_mib: peak_memory_mib(),
+    };
     let facts = scene.facts();
     let text = match args.format {
-        InfoFormat::Text => text(&name, &facts),
+        InfoFormat::Text => text(&name, &facts) + &load.line(),
         InfoFormat::Json => serde_json::to_string_pretty(&facts).context("cannot format the facts")? + "\n",
     };
     print!("{text}");
     Ok(())
+}
+
+/// What loading the scene took: not a fact of the scene, so in the text
+/// only (the JSON stays the same for the same file).
+struct Load {
+    seconds: f64,
+    peak_mib: Option<f64>,
+}
+
+impl Load {
+    fn line(&self) -> String {
+        let memory = self
+            .peak_mib
+            .map_or(String::new(), |mib| format!(", peak memory {mib:.0} MiB"));
+        format!("loaded     in {:.3} s{memory}\n", self.seconds)
+    }
+}
+
+/// The process's peak resident memory so far in MiB: `VmHWM` of
+/// /proc/self/status (Linux; None elsewhere).
+fn peak_memory_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
 }
 
 fn xyz(v: Option<[f32; 3]>) -> String {
