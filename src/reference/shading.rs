@@ -208,9 +208,9 @@ impl Reference {
         let tri = &self.triangles[s.triangle];
         let inc = incidence(s.p, s.n, setup.light_position);
         Some(ShadingSample {
-            object: tri.object,
-            triangle: tri.index,
-            material: self.objects[tri.object].material_index,
+            object: tri.object(),
+            triangle: tri.index(),
+            material: self.objects[tri.object()].material_index,
             distance_m: s.distance_m,
             position: s.p,
             normal: s.n,

@@ -104,6 +104,8 @@ pub(super) struct TriangleShading<'a> {
     tri: &'a TriangleInfo,
     object: &'a ObjectInfo,
     material: &'a Material,
+    /// The face's unit normal (counter-clockwise winding).
+    face: DVec3,
     /// The colour and tint where neither a texture nor vertex colours
     /// vary them over the triangle.
     plain: Option<(DVec3, DVec3)>,
@@ -113,7 +115,7 @@ pub(super) struct TriangleShading<'a> {
 impl<'a> TriangleShading<'a> {
     pub(super) fn new(reference: &'a Reference, setup: &'a Setup, triangle: usize) -> Self {
         let tri = &reference.triangles[triangle];
-        let object = &reference.objects[tri.object];
+        let object = &reference.objects[tri.object()];
         // An index out of range was mapped to the default material when the
         // reference was built; the GPU's materials buffer does the same.
         let material = &reference.materials[object.material];
@@ -122,20 +124,25 @@ impl<'a> TriangleShading<'a> {
             _ => default,
         };
         let varies = material.base_color_texture.is_some() || object.colours.is_some();
+        let corners = tri.corners.map(|p| p.as_dvec3());
+        // The face's unit normal (counter-clockwise winding); zero for a
+        // degenerate one.
+        let face = (corners[1] - corners[0])
+            .cross(corners[2] - corners[0])
+            .normalize_or_zero();
+        let flat = tri.flat_normal(face);
         let mut shading = Self {
             setup,
             triangle,
             tri,
             object,
             material,
+            face,
             plain: None,
             facet: Facet {
-                corners: tri.corners.map(|p| p.as_dvec3()),
-                normals: tri
-                    .flat_normal
-                    .is_none()
-                    .then(|| tri.normals.map(|n| n.as_dvec3())),
-                normal: tri.flat_normal.unwrap_or(tri.face_normal),
+                corners,
+                normals: flat.is_none().then(|| tri.normals.map(|n| n.as_dvec3())),
+                normal: flat.unwrap_or(face),
                 double_sided: material.double_sided,
                 brdf: BrdfParams {
                     k: own(material.k, setup.k),
@@ -204,7 +211,7 @@ impl<'a> TriangleShading<'a> {
     /// The face's normal on the eye's side, `to_eye` pointing there (any
     /// length).
     pub(super) fn geometric_normal(&self, to_eye: DVec3) -> DVec3 {
-        let face = self.tri.face_normal;
+        let face = self.face;
         if face.dot(to_eye) < 0.0 { -face } else { face }
     }
 
@@ -248,7 +255,7 @@ impl<'a> TriangleShading<'a> {
             // The texture and the vertex colours modulate the base colour.
             let vertex_colour = self
                 .object
-                .corner_colours(tri.index)
+                .corner_colours(tri.index())
                 .map_or(DVec3::ONE, |[c0, c1, c2]| {
                     c0.as_dvec3() * b0 + c1.as_dvec3() * b1 + c2.as_dvec3() * b2
                 });
