@@ -195,8 +195,9 @@ impl ObjectInfo {
 pub struct Reference {
     bvh: TriangleBvh,
     /// The BVH's triangles, in the order of `triangles`: what the direction
-    /// grids are built from.
-    bvh_triangles: Vec<BvhTriangle>,
+    /// grids are built from, so kept only where they are (see
+    /// `render::GRID_MAX_TRIANGLES`; 79 MB on 1 M triangles).
+    grid_triangles: Vec<BvhTriangle>,
     triangles: Vec<TriangleInfo>,
     objects: Vec<ObjectInfo>,
     /// The scene's materials, then the default one for invalid indices.
@@ -229,7 +230,7 @@ impl Reference {
             .collect();
         // The BVH's triangles and the BVH beside the shading data, which
         // takes one thread for most of the BVH's build.
-        let ((bvh_triangles, bvh), triangles) = rayon::join(
+        let ((mut grid_triangles, bvh), triangles) = rayon::join(
             || {
                 let bvh_triangles = gathered(
                     scene,
@@ -243,10 +244,13 @@ impl Reference {
             },
             || gathered(scene, mesh_triangles(scene).map(|t| t.info(scene))),
         );
+        if !render::builds_grids(triangles.len()) {
+            grid_triangles = Vec::new();
+        }
         Self {
             bvh,
-            skipped_triangles: scene.triangle_count() - bvh_triangles.len(),
-            bvh_triangles,
+            skipped_triangles: scene.triangle_count() - triangles.len(),
+            grid_triangles,
             triangles,
             objects,
             materials,

@@ -27,6 +27,12 @@ const TILE: u32 = 16;
 /// the packets of a pixel's rays go through the BVH faster than building
 /// the grids takes.
 const GRID_MAX_TRIANGLES: usize = 16_384;
+
+/// Whether a scene of this many triangles is rendered through direction
+/// grids (else through the BVH alone).
+pub(super) fn builds_grids(triangles: usize) -> bool {
+    triangles <= GRID_MAX_TRIANGLES
+}
 /// Pixels whose primary rays walk the BVH as one packet where there is no
 /// eye grid (several samples a pixel), in blocks of two rows by RUN / 2
 /// columns: against one pixel a packet, 2 × 2 renders the 110 k-triangle
@@ -50,7 +56,7 @@ impl Reference {
         control: &RenderControl,
     ) -> Result<ReferenceImage, ReferenceError> {
         let pixels = settings.image.width as usize * settings.image.height as usize;
-        let run = if self.bvh_triangles.len() < pixels {
+        let run = if self.triangles.len() < pixels {
             WIDE_RUN
         } else {
             RUN
@@ -75,13 +81,13 @@ impl Reference {
         // Every primary ray leaves the eye and every point-light shadow ray
         // ends at the light: both are cast through direction grids there,
         // unless the scene is so large that their cells would be crowded.
-        let grids = self.bvh_triangles.len() <= GRID_MAX_TRIANGLES;
+        let grids = builds_grids(self.triangles.len());
         let light_grid = grids && setup.shadows && !setup.is_sphere_light();
         let (eye_grid, light_grid) = rayon::join(
-            || grids.then(|| DirectionGrid::new(setup.rays.eye, &self.bvh_triangles, |_| true)),
+            || grids.then(|| DirectionGrid::new(setup.rays.eye, &self.grid_triangles, |_| true)),
             || {
                 light_grid
-                    .then(|| DirectionGrid::new(setup.light_position, &self.bvh_triangles, |t| t.occludes))
+                    .then(|| DirectionGrid::new(setup.light_position, &self.grid_triangles, |t| t.occludes))
             },
         );
         (setup.eye_grid, setup.light_grid) = (eye_grid, light_grid);

@@ -256,7 +256,7 @@ impl Reference {
         let t_max = 1.0 - STOP_SHORT_REL;
         match setup.light_grid.as_ref().map(|grid| {
             let own = self.own_unreached(setup, (triangle, p, g));
-            grid.blocked_towards_centre(&self.bvh_triangles, origin, t_max, own)
+            grid.blocked_towards_centre(&self.grid_triangles, origin, t_max, own)
         }) {
             Some(Answer::Known(blocked)) => blocked,
             _ => packet

@@ -270,7 +270,7 @@ mod tests {
             ..ReferenceOptions::default()
         };
         let rays = settings.camera.pixel_rays(160, 120);
-        let grid = DirectionGrid::new(rays.eye, &reference.bvh_triangles, |_| true);
+        let grid = DirectionGrid::new(rays.eye, &reference.grid_triangles, |_| true);
         let covered = (0..160 * 120)
             .filter(|k| {
                 let (i, j) = ((k % 160) as f64, (k / 160) as f64);

@@ -427,7 +427,7 @@ mod tests {
                 ..ReferenceOptions::default()
             };
             let setup = Setup::new(&settings, &options, &reference.materials);
-            let grid = DirectionGrid::new(setup.rays.eye, &reference.bvh_triangles, |_| true);
+            let grid = DirectionGrid::new(setup.rays.eye, &reference.grid_triangles, |_| true);
             let spp = Strata::new(spp);
             let (mut lanes, mut buffers) = (Lanes::default(), PixelBuffers::default());
             for (i, j) in (0..96).flat_map(|j| (0..128).map(move |i| (i, j))) {
