@@ -396,6 +396,13 @@ mod tests {
     /// A triangle with an index out of range is skipped and counted; the
     /// triangles after it, in its object and the next, keep their own
     /// object, index and material.
+    /// The shading data is the largest part of a large scene's memory
+    /// (110 MB on 1 M triangles): each byte added to it is 1 MB more there.
+    #[test]
+    fn the_shading_data_takes_112_bytes_a_triangle() {
+        assert_eq!(std::mem::size_of::<TriangleInfo>(), 112);
+    }
+
     #[test]
     fn skipped_triangles_leave_the_others_in_place() {
         let mut lower = shapes::ground(Vec3::ZERO, 4.0);
