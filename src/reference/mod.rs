@@ -393,9 +393,6 @@ mod tests {
         reference.trace_pixel(s, &ReferenceOptions::default(), 8.0, 6.0)
     }
 
-    /// A triangle with an index out of range is skipped and counted; the
-    /// triangles after it, in its object and the next, keep their own
-    /// object, index and material.
     /// The shading data is the largest part of a large scene's memory
     /// (110 MB on 1 M triangles): each byte added to it is 1 MB more there.
     #[test]
@@ -403,6 +400,9 @@ mod tests {
         assert_eq!(std::mem::size_of::<TriangleInfo>(), 112);
     }
 
+    /// A triangle with an index out of range is skipped and counted; the
+    /// triangles after it, in its object and the next, keep their own
+    /// object, index and material.
     #[test]
     fn skipped_triangles_leave_the_others_in_place() {
         let mut lower = shapes::ground(Vec3::ZERO, 4.0);

@@ -33,6 +33,7 @@ const GRID_MAX_TRIANGLES: usize = 16_384;
 pub(super) fn builds_grids(triangles: usize) -> bool {
     triangles <= GRID_MAX_TRIANGLES
 }
+
 /// Pixels whose primary rays walk the BVH as one packet where there is no
 /// eye grid (several samples a pixel), in blocks of two rows by RUN / 2
 /// columns: against one pixel a packet, 2 × 2 renders the 110 k-triangle
