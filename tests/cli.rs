@@ -1,19 +1,10 @@
 //! The command-line contract of DESIGN.md: outputs, exit codes, one-line
 //! errors, and no partial files.
 
+mod cli_support;
+
+use cli_support::{lumlab, stderr, stderr_lines};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn lumlab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lumlab"))
-        .args(args)
-        .output()
-        .expect("the lumlab binary runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
 
 /// A fresh empty directory for one test's files.
 fn scratch(name: &str) -> PathBuf {
@@ -26,9 +17,8 @@ fn scratch(name: &str) -> PathBuf {
 fn assert_fails(args: &[&str], code: i32, mentions: &str) {
     let out = lumlab(args);
     assert_eq!(out.status.code(), Some(code), "{args:?}: {}", stderr(&out));
-    let err = stderr(&out);
-    let lines: Vec<&str> = err.lines().filter(|l| !l.contains("XDG_RUNTIME_DIR")).collect();
-    assert_eq!(lines.len(), 1, "{args:?}: not one line: {err}");
+    let lines = stderr_lines(&out);
+    assert_eq!(lines.len(), 1, "{args:?}: not one line: {lines:?}");
     assert!(
         lines[0].contains(mentions),
         "{args:?}: '{}' does not mention {mentions}",

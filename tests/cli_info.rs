@@ -2,21 +2,16 @@
 //! models and the built-in scene, text for people, and a one-line error
 //! with exit code 1 on a broken file.
 
+mod cli_support;
 mod scene_support;
+
+use cli_support::lumlab;
 
 use scene_support::builder::Doc;
 use scene_support::samples;
 
 use serde_json::Value;
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn lumlab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lumlab"))
-        .args(args)
-        .output()
-        .expect("the lumlab binary runs")
-}
 
 fn info_json(scene: &Path) -> Value {
     let out = lumlab(&["info", "--scene", scene.to_str().unwrap(), "--format", "json"]);

@@ -1,44 +1,13 @@
 //! `lumlab colour`: the CSV contract of DESIGN.md, the published white
 //! points, the agreement under D65, and one-line usage errors.
 
+mod cli_support;
+
+use cli_support::{csv_rows, lumlab, stderr, stdout};
 use std::collections::HashMap;
-use std::process::{Command, Output};
 
 /// DESIGN.md's columns, exactly.
 const HEADER: &str = "illuminant,patch,X,Y,Z,approx_X,approx_Y,approx_Z,delta_e2000";
-
-fn lumlab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lumlab"))
-        .args(args)
-        .output()
-        .expect("the lumlab binary runs")
-}
-
-fn stdout(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-/// The CSV's rows as maps from column to field.
-fn rows(text: &str) -> Vec<HashMap<String, String>> {
-    let mut lines = text.lines();
-    assert_eq!(lines.next(), Some(HEADER));
-    let names: Vec<&str> = HEADER.split(',').collect();
-    lines
-        .map(|line| {
-            let fields: Vec<&str> = line.split(',').collect();
-            assert_eq!(fields.len(), names.len(), "{line}");
-            names
-                .iter()
-                .map(|n| n.to_string())
-                .zip(fields.iter().map(|f| f.to_string()))
-                .collect()
-        })
-        .collect()
-}
 
 fn number(row: &HashMap<String, String>, column: &str) -> f64 {
     row[column]
@@ -50,7 +19,7 @@ fn number(row: &HashMap<String, String>, column: &str) -> f64 {
 fn csv_has_the_contract_columns_and_24_rows_per_illuminant() {
     let out = lumlab(&["colour", "--format", "csv"]);
     assert!(out.status.success(), "{}", stderr(&out));
-    let rows = rows(&stdout(&out));
+    let rows = csv_rows(&stdout(&out), HEADER);
     let mut order: Vec<String> = Vec::new();
     let mut counts: HashMap<String, usize> = HashMap::new();
     for r in &rows {
@@ -74,7 +43,7 @@ fn white_patch_under_d65_is_near_the_cie_white_point() {
     // The white patch reflects about 88 % (N. Ohta), so its XYZ is about
     // 0.88 × (95.047, 100, 108.883): chromaticity near D65's (0.3127, 0.3290).
     let out = lumlab(&["colour", "--illuminant", "D65", "--format", "csv"]);
-    let rows = rows(&stdout(&out));
+    let rows = csv_rows(&stdout(&out), HEADER);
     assert_eq!(rows.len(), 24);
     let white = rows
         .iter()
@@ -89,7 +58,7 @@ fn white_patch_under_d65_is_near_the_cie_white_point() {
 #[test]
 fn under_d65_the_rgb_product_equals_the_spectral_result() {
     let out = lumlab(&["colour", "--illuminant", "D65", "--format", "csv"]);
-    for r in rows(&stdout(&out)) {
+    for r in csv_rows(&stdout(&out), HEADER) {
         assert!(
             number(&r, "delta_e2000") < 0.05,
             "{}: {}",
@@ -103,7 +72,7 @@ fn under_d65_the_rgb_product_equals_the_spectral_result() {
 fn blackbody_illuminant_is_accepted_and_named() {
     let out = lumlab(&["colour", "--illuminant", "blackbody:3000", "--format", "csv"]);
     assert!(out.status.success(), "{}", stderr(&out));
-    let rows = rows(&stdout(&out));
+    let rows = csv_rows(&stdout(&out), HEADER);
     assert_eq!(rows.len(), 24);
     assert!(rows.iter().all(|r| r["illuminant"] == "blackbody:3000"));
 }

@@ -14,7 +14,6 @@ use lumlab::colour::shading::{ColourModel, pixel_delta_e, spectral_colour};
 use lumlab::colour::{Illuminant, PATCH_COUNT, delta_e2000, patch_reflectance};
 use lumlab::gpu::Renderer;
 use lumlab::gpu::delta_e::{WGSL, lab_white_relative};
-use lumlab::gpu::shaders::with_common;
 use lumlab::physics::colour::luminance;
 use lumlab::scene::default_scene::{
     CHART_COLUMNS, CHART_FRONT_Z_M, CHART_GAP_M, CHART_ORIGIN_XY, CHART_PATCH_GAP_M, CHART_PATCH_M,
@@ -41,26 +40,17 @@ struct Case {
     b: vec3<f32>,
     columns: mat3x3<f32>,
 }
-@group(0) @binding(0) var<storage, read> cases: array<Case>;
-@group(0) @binding(1) var<storage, read_write> results: array<f32>;
 
-@compute @workgroup_size(64)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = id.x;
-    if i >= arrayLength(&cases) {
-        return;
-    }
-    let c = cases[i];
+fn each(c: Case) -> f32 {
     if c.lab != 0u {
-        results[i] = delta_e2000(c.a, c.b);
-    } else {
-        results[i] = pixel_delta_e(c.a, c.b, c.columns);
+        return delta_e2000(c.a, c.b);
     }
+    return pixel_delta_e(c.a, c.b, c.columns);
 }
 "#;
 
 fn run(cases: &[Case]) -> Vec<f32> {
-    common::kernel::run(&with_common(&format!("{WGSL}{KERNEL}")), cases)
+    common::kernel::run(&format!("{WGSL}{KERNEL}"), "f32", "each", cases)
 }
 
 fn lab_case(a: DVec3, b: DVec3) -> Case {

@@ -6,7 +6,6 @@
 mod common;
 
 use bytemuck::{Pod, Zeroable};
-use lumlab::gpu::shaders::with_common;
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
@@ -24,8 +23,6 @@ struct Case {
     n: i32,
     f: f32,
 }
-@group(0) @binding(0) var<storage, read> cases: array<Case>;
-@group(0) @binding(1) var<storage, read_write> results: array<vec2<f32>>;
 // Named by shadow_map.wgsl, pcf.wgsl and disc.wgsl; unused here.
 @group(2) @binding(0) var<uniform> shadow: Shadow;
 
@@ -36,13 +33,6 @@ fn sums(c: Case) -> vec2<f32> {
         one_by_one += pcf_weight(k, c.n, c.f);
     }
     return vec2<f32>(pcf_weight_sum(c.lo, c.hi, c.n, c.f), one_by_one);
-}
-
-@compute @workgroup_size(64)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    if id.x < arrayLength(&cases) {
-        results[id.x] = sums(cases[id.x]);
-    }
 }
 "#;
 
@@ -65,7 +55,7 @@ fn kernel_weights_sum_in_closed_form_as_one_by_one() {
         include_str!("../shaders/pcf.wgsl"),
         include_str!("../shaders/disc.wgsl")
     );
-    let results: Vec<[f32; 2]> = common::kernel::run(&with_common(&source), &cases);
+    let results: Vec<[f32; 2]> = common::kernel::run(&source, "vec2<f32>", "sums", &cases);
     for (c, [closed, one_by_one]) in cases.iter().zip(results) {
         let known: f64 = (c.lo..=c.hi)
             .map(|k| match k {

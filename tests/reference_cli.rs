@@ -2,22 +2,13 @@
 //! summary, and its errors (one line, exit 2 for usage, 1 at run time, no
 //! file left behind).
 
+mod cli_support;
+
+use cli_support::{lumlab, stderr};
 use lumlab::reference::{Reference, ReferenceOptions, RenderControl};
 use lumlab::scene;
 use lumlab::settings::Settings;
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn lumlab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lumlab"))
-        .args(args)
-        .output()
-        .expect("the lumlab binary runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
 
 fn files_in(dir: &Path) -> usize {
     std::fs::read_dir(dir).map_or(0, |d| d.count())

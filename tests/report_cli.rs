@@ -3,33 +3,11 @@
 //! figure, the images and the page), and its errors (one line, non-zero
 //! exit, nothing half-written left behind).
 
+mod cli_support;
+
+use cli_support::{csv_fields, lumlab, stderr};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn lumlab(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lumlab"))
-        .args(args)
-        .output()
-        .expect("the lumlab binary runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
-
-/// Splits a CSV line, keeping quoted commas.
-fn fields(line: &str) -> Vec<String> {
-    let (mut out, mut field, mut quoted) = (Vec::new(), String::new(), false);
-    for ch in line.chars() {
-        match ch {
-            '"' => quoted = !quoted,
-            ',' if !quoted => out.push(std::mem::take(&mut field)),
-            _ => field.push(ch),
-        }
-    }
-    out.push(field);
-    out
-}
+use std::process::Output;
 
 fn names_in(dir: &Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(dir)
@@ -79,7 +57,7 @@ fn a_small_sweep_writes_the_csv_the_plot_the_images_and_the_page() {
 
     let csv = std::fs::read_to_string(out.join("report.csv")).unwrap();
     let mut lines = csv.lines();
-    let header = fields(lines.next().unwrap());
+    let header = csv_fields(lines.next().unwrap());
     for column in [
         "config",
         "frame_ms",
@@ -96,7 +74,7 @@ fn a_small_sweep_writes_the_csv_the_plot_the_images_and_the_page() {
         );
     }
     let column = |name: &str| header.iter().position(|h| h == name).unwrap();
-    let rows: Vec<Vec<String>> = lines.map(fields).collect();
+    let rows: Vec<Vec<String>> = lines.map(csv_fields).collect();
     assert_eq!(rows.len(), 1 + 4 + 1, "{csv}");
     let number = |row: &[String], name: &str| -> f64 { row[column(name)].parse().unwrap() };
     for row in &rows {
@@ -166,7 +144,7 @@ fn a_small_sweep_writes_the_csv_the_plot_the_images_and_the_page() {
     assert_eq!(norms.lines().count(), 1 + 4 * 4);
     // exact keeps a(0°) = 1.
     for line in norms.lines().filter(|l| l.starts_with("exact,")) {
-        let a0: f64 = fields(line)[3].parse().unwrap();
+        let a0: f64 = csv_fields(line)[3].parse().unwrap();
         assert!((a0 - 1.0).abs() < 1e-5, "{line}");
     }
 

@@ -1,65 +1,12 @@
 //! `lumlab stability`: every hard case passes in f64, f32 and on the GPU, the
 //! naive formulas visibly break, and a missing GPU is a one-line error.
 
-use std::process::{Command, Output};
+mod cli_support;
+
+use cli_support::{csv_rows, lumlab, lumlab_with_env, stderr_lines, stdout};
 
 /// The CSV contract scripts rely on.
 const HEADER: &str = "quantity,case,f64,f32,gpu,diff_f32,diff_gpu,tol_f32,tol_gpu,abs_floor,defined,naive_f32,diff_naive,naive_flag,status,why";
-
-fn lumlab(args: &[&str], env: &[(&str, &str)]) -> Output {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_lumlab"));
-    command.args(args);
-    for (key, value) in env {
-        command.env(key, value);
-    }
-    command.output().expect("the lumlab binary runs")
-}
-
-fn stdout(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
-/// stderr without the software driver's XDG_RUNTIME_DIR warnings.
-fn stderr_lines(out: &Output) -> Vec<String> {
-    String::from_utf8_lossy(&out.stderr)
-        .lines()
-        .filter(|l| !l.contains("XDG_RUNTIME_DIR"))
-        .map(str::to_string)
-        .collect()
-}
-
-/// The fields of one CSV line (quoted fields may hold commas).
-fn fields(line: &str) -> Vec<String> {
-    let mut out = vec![String::new()];
-    let mut quoted = false;
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        match c {
-            '"' if quoted && chars.peek() == Some(&'"') => {
-                chars.next();
-                out.last_mut().unwrap().push('"');
-            }
-            '"' => quoted = !quoted,
-            ',' if !quoted => out.push(String::new()),
-            c => out.last_mut().unwrap().push(c),
-        }
-    }
-    out
-}
-
-/// The rows of the CSV as maps from column name to field.
-fn rows(text: &str) -> Vec<std::collections::HashMap<String, String>> {
-    let mut lines = text.lines();
-    assert_eq!(lines.next(), Some(HEADER));
-    let names = fields(HEADER);
-    lines
-        .map(|line| {
-            let f = fields(line);
-            assert_eq!(f.len(), names.len(), "{line}");
-            names.iter().cloned().zip(f).collect()
-        })
-        .collect()
-}
 
 fn finite(field: &str) -> bool {
     field.parse::<f64>().is_ok_and(f64::is_finite)
@@ -67,9 +14,9 @@ fn finite(field: &str) -> bool {
 
 #[test]
 fn every_case_is_ok_on_the_gpu_and_naive_formulas_break() {
-    let out = lumlab(&["stability", "--format", "csv"], &[]);
+    let out = lumlab(&["stability", "--format", "csv"]);
     assert!(out.status.success(), "{:?}", stderr_lines(&out));
-    let rows = rows(&stdout(&out));
+    let rows = csv_rows(&stdout(&out), HEADER);
     assert!(rows.len() > 250, "{} rows", rows.len());
     for row in &rows {
         let case = format!("{} {}", row["quantity"], row["case"]);
@@ -100,7 +47,7 @@ fn every_case_is_ok_on_the_gpu_and_naive_formulas_break() {
 
 #[test]
 fn the_table_explains_each_group_and_sums_up() {
-    let out = lumlab(&["stability"], &[]);
+    let out = lumlab(&["stability"]);
     assert!(out.status.success(), "{:?}", stderr_lines(&out));
     let text = stdout(&out);
     for group in ["norm", "lobe", "brdf", "irradiance", "sphere", "depth", "shadow"] {
@@ -117,7 +64,7 @@ fn the_table_explains_each_group_and_sums_up() {
 fn without_an_adapter_the_install_hint_is_one_line_unless_cpu_only() {
     // No Metal on the machines the tests run on: no adapter at all.
     let no_gpu = [("WGPU_BACKEND", "metal")];
-    let out = lumlab(&["stability"], &no_gpu);
+    let out = lumlab_with_env(&["stability"], &no_gpu);
     assert_eq!(out.status.code(), Some(1));
     let err = stderr_lines(&out);
     assert_eq!(err.len(), 1, "{err:?}");
@@ -128,15 +75,15 @@ fn without_an_adapter_the_install_hint_is_one_line_unless_cpu_only() {
     );
     assert!(stdout(&out).is_empty());
 
-    let out = lumlab(&["stability", "--cpu-only", "--format", "csv"], &no_gpu);
+    let out = lumlab_with_env(&["stability", "--cpu-only", "--format", "csv"], &no_gpu);
     assert!(out.status.success(), "{:?}", stderr_lines(&out));
-    let rows = rows(&stdout(&out));
+    let rows = csv_rows(&stdout(&out), HEADER);
     assert!(rows.iter().all(|r| r["gpu"].is_empty() && r["status"] == "ok"));
 }
 
 #[test]
 fn an_unknown_format_is_a_usage_error() {
-    let out = lumlab(&["stability", "--format", "json"], &[]);
+    let out = lumlab(&["stability", "--format", "json"]);
     assert_eq!(out.status.code(), Some(2));
     let err = stderr_lines(&out);
     assert_eq!(err.len(), 1, "{err:?}");

@@ -11,7 +11,6 @@ mod common;
 use bytemuck::{Pod, Zeroable};
 use glam::{DVec3, Vec3};
 use lumlab::gpu::Renderer;
-use lumlab::gpu::shaders::with_common;
 use lumlab::physics::{BrdfParams, Normalization, brdf, colour};
 use lumlab::reference::{Reference, ReferenceOptions, RenderControl, luminance};
 use lumlab::scene::shapes::{cuboid, ground};
@@ -46,17 +45,9 @@ struct Result {
     luminance: f32,
     tint: vec3<f32>,
 }
-@group(0) @binding(0) var<storage, read> cases: array<Case>;
-@group(0) @binding(1) var<storage, read_write> results: array<Result>;
 
-@compute @workgroup_size(64)
-fn main(@builtin(global_invocation_id) id: vec3<u32>) {
-    let i = id.x;
-    if i >= arrayLength(&cases) {
-        return;
-    }
-    let c = cases[i];
-    results[i] = Result(blinn_phong(c.n, c.l, c.o, c.k, c.m, c.norm), luminance(c.n), tint(c.n, c.l));
+fn each(c: Case) -> Result {
+    return Result(blinn_phong(c.n, c.l, c.o, c.k, c.m, c.norm), luminance(c.n), tint(c.n, c.l));
 }
 "#;
 
@@ -72,7 +63,7 @@ struct GpuResult {
 }
 
 fn run_kernel(cases: &[Case]) -> Vec<GpuResult> {
-    common::kernel::run(&with_common(KERNEL), cases)
+    common::kernel::run(KERNEL, "Result", "each", cases)
 }
 
 fn case(n: Vec3, l: Vec3, o: Vec3, k: f32, m: f32, norm: Normalization) -> Case {

@@ -1,14 +1,30 @@
-//! Runs a WGSL compute kernel over an array of cases on the test's GPU:
-//! `source` (composed by the caller, e.g. `gpu::shaders::with_common`) has
-//! `main` with `cases` at binding 0 (storage, read) and `results` at binding
-//! 1 (storage, read_write), one result per case, 64 invocations a group.
+//! Runs a WGSL compute kernel over an array of cases on the test's GPU, one
+//! invocation a case, 64 a group. The caller's `declarations` (after
+//! `gpu::shaders::with_common`'s prelude) define `struct Case` and the
+//! function named `each`, which maps one case to its result of WGSL type
+//! `result`; this module adds the bindings (`cases` at 0, `results` at 1)
+//! and `main`.
 
 use bytemuck::Pod;
 use lumlab::gpu::readback::map_and_read;
+use lumlab::gpu::shaders::with_common;
 
 /// The kernel's results, one per case.
-pub fn run<C: Pod, R: Pod>(source: &str, cases: &[C]) -> Vec<R> {
+pub fn run<C: Pod, R: Pod>(declarations: &str, result: &str, each: &str, cases: &[C]) -> Vec<R> {
     use wgpu::util::DeviceExt;
+    let source = with_common(&format!(
+        "{declarations}
+@group(0) @binding(0) var<storage, read> cases: array<Case>;
+@group(0) @binding(1) var<storage, read_write> results: array<{result}>;
+
+@compute @workgroup_size(64)
+fn main(@builtin(global_invocation_id) id: vec3<u32>) {{
+    if id.x < arrayLength(&cases) {{
+        results[id.x] = {each}(cases[id.x]);
+    }}
+}}
+"
+    ));
     let gpu = super::gpu();
     let device = &gpu.device;
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
