@@ -5,7 +5,7 @@ use lumlab::app::{Command, LabApp};
 use lumlab::settings::{DebugView, Filter, Settings, Visibility};
 
 mod app_support;
-use app_support::{click_at, harness, step_until};
+use app_support::{click_viewport, harness, step_until, wait_for_probe};
 use egui_kittest::Harness;
 
 /// A setting's name and how to change it.
@@ -79,20 +79,14 @@ fn a_click_on_the_probe_does_not_restart_the_accumulation() {
     // turning it on would start the mean anew.
     let (mut harness, _) = accumulating(3);
     let before = frames(harness.state());
-    let rect = harness.state().viewport_rect();
-    click_at(
-        &mut harness,
-        egui::pos2(rect.center().x, rect.top() + 0.93 * rect.height()),
-    );
+    click_viewport(&mut harness, 0.93);
     // The click's own frame went on with the mean.
     let after = frames(harness.state());
     assert!(
         after > before,
         "the mean restarted: {after} frames after {before}"
     );
-    step_until(&mut harness, "the probe's GPU values", |app| {
-        app.probe_gpu().is_some()
-    });
+    wait_for_probe(&mut harness);
 }
 
 #[test]

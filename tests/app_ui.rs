@@ -16,7 +16,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 mod app_support;
-use app_support::{SIZE, click_at, harness, step_until};
+use app_support::{SIZE, click_viewport, harness, step_until, wait_for_probe};
 
 /// Mean radiance (W/m²/sr, luminance-free: the mean of r, g, b) over the
 /// pixels the scene covers (alpha 1), read back from the renderer.
@@ -87,14 +87,8 @@ fn presets_set_their_documented_values() {
 fn probe_numbers_are_the_physics_of_the_clicked_pixel() {
     let mut harness = harness();
     // Low in the middle of the viewport: the ground in front of the objects.
-    let rect = harness.state().viewport_rect();
-    click_at(
-        &mut harness,
-        egui::pos2(rect.center().x, rect.top() + 0.93 * rect.height()),
-    );
-    step_until(&mut harness, "the probe's GPU values", |app| {
-        app.probe_gpu().is_some()
-    });
+    click_viewport(&mut harness, 0.93);
+    wait_for_probe(&mut harness);
     let app = harness.state();
     let pixel = app.probe_pixel().expect("a pixel was probed");
     let t = app.probe_terms().expect("the pixel shows the ground");
@@ -551,14 +545,8 @@ fn the_cpu_reference_job_agrees_with_the_gpu_without_shadows() {
     harness.state_mut().settings_mut().shadow.enabled = true;
     harness.state_mut().settings_mut().view.mode = DebugView::Shaded;
     harness.run();
-    let rect = harness.state().viewport_rect();
-    click_at(
-        &mut harness,
-        egui::pos2(rect.center().x, rect.top() + 0.7 * rect.height()),
-    );
-    step_until(&mut harness, "the probe's GPU values", |app| {
-        app.probe_gpu().is_some()
-    });
+    click_viewport(&mut harness, 0.7);
+    wait_for_probe(&mut harness);
     render(&mut harness)
         .save(screenshot_dir().join("app-probe.png"))
         .unwrap();

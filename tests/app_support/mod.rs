@@ -86,6 +86,21 @@ pub fn step_until(harness: &mut Harness<'_, LabApp>, what: &str, mut done: impl 
     panic!("timed out waiting for {what}");
 }
 
+/// Clicks the viewport halfway across, `down` of its height from its top
+/// edge (0 … 1).
+pub fn click_viewport(harness: &mut Harness<'_, LabApp>, down: f32) {
+    let rect = harness.state().viewport_rect();
+    click_at(
+        harness,
+        egui::pos2(rect.center().x, rect.top() + down * rect.height()),
+    );
+}
+
+/// Steps until the probe has read its GPU values back.
+pub fn wait_for_probe(harness: &mut Harness<'_, LabApp>) {
+    step_until(harness, "the probe's GPU values", |app| app.probe_gpu().is_some());
+}
+
 /// Presses or releases the primary button at `pos` (the next step sees it).
 pub fn primary_button(harness: &mut Harness<'_, LabApp>, pos: egui::Pos2, pressed: bool) {
     harness.event(egui::Event::PointerButton {
