@@ -5,7 +5,7 @@
 //! one pixel traced alone (the probe) gives the value the full render gave it.
 
 use glam::DVec3;
-use std::f64::consts::TAU;
+use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// SplitMix64 (Steele, Lea & Flood 2014): a tiny generator whose outputs pass
 /// BigCrush; here seeded per pixel sample by hashing its coordinates.
@@ -140,12 +140,46 @@ impl Cone {
         let cos_theta = 1.0 - gap;
         // sin²θ = 1 − cos²θ = gap (2 − gap), exact for small gaps.
         let sin2_theta = (gap * (2.0 - gap)).max(0.0);
-        let (s, c) = (TAU * v).sin_cos();
+        let (s, c) = sin_cos_turns(v);
         ConeSample {
             direction: self.w * cos_theta + (self.t1 * c + self.t2 * s) * sin2_theta.sqrt(),
             cos_theta,
             sin2_theta,
         }
+    }
+}
+
+/// (sin 2πv, cos 2πv) for v ∈ [0, 1], within 2 ulp of 1 of `sin_cos` and a
+/// third of its instructions (the sphere light's samples spent 17 % of theirs
+/// in libm's `sin_cos`). The nearest quarter turn q is found exactly (4v and
+/// 4v − q are exact), leaving an angle |a| ≤ π/4 whose sine and cosine are
+/// their Taylor series up to a¹⁷ and a¹⁶: the first terms left out,
+/// a¹⁹/19! and a¹⁸/18!, stay below 2e-18.
+fn sin_cos_turns(v: f64) -> (f64, f64) {
+    let x = 4.0 * v;
+    // round() is a libm call without SSE4.1; x ≥ 0 truncates.
+    let quarter = (x + 0.5) as u64;
+    let a = (x - quarter as f64) * FRAC_PI_2;
+    let a2 = a * a;
+    let a4 = a2 * a2;
+    // The series' terms after a and 1 (±1/n!), paired for a shorter chain
+    // of dependent operations than Horner's.
+    let sin_tail = (-1.0 / 6.0 + a2 * (1.0 / 120.0))
+        + a4 * (-1.0 / 5040.0 + a2 * (1.0 / 362_880.0))
+        + a4 * a4
+            * ((-1.0 / 39_916_800.0 + a2 * (1.0 / 6_227_020_800.0))
+                + a4 * (-1.0 / 1_307_674_368_000.0 + a2 * (1.0 / 355_687_428_096_000.0)));
+    let cos_tail = (-1.0 / 2.0 + a2 * (1.0 / 24.0))
+        + a4 * (-1.0 / 720.0 + a2 * (1.0 / 40_320.0))
+        + a4 * a4
+            * ((-1.0 / 3_628_800.0 + a2 * (1.0 / 479_001_600.0))
+                + a4 * (-1.0 / 87_178_291_200.0 + a2 * (1.0 / 20_922_789_888_000.0)));
+    let (sin_a, cos_a) = (a + a * a2 * sin_tail, 1.0 + a2 * cos_tail);
+    match quarter & 3 {
+        0 => (sin_a, cos_a),
+        1 => (cos_a, -sin_a),
+        2 => (-sin_a, -cos_a),
+        _ => (-cos_a, sin_a),
     }
 }
 
@@ -189,6 +223,30 @@ pub fn collapsed_strata_variance(y: &[f64]) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sin_cos_turns_is_libms_within_its_rounding() {
+        let mut rng = Rng::new(7, 0, 0);
+        // The quarter turns' edges, where the reduction switches, and random v.
+        let edges = (0..=8).flat_map(|k| {
+            let v = k as f64 / 8.0;
+            [v, v.next_up(), v.next_down().max(0.0)]
+        });
+        for v in edges
+            .chain((0..100_000).map(|_| rng.next_f64()))
+            .filter(|v| (0.0..=1.0).contains(v))
+        {
+            let (s, c) = sin_cos_turns(v);
+            // libm's own argument 2πv is rounded: half an ulp of it more.
+            let (s0, c0) = (TAU * v).sin_cos();
+            let tolerance = 2.3e-16 + TAU * v * f64::EPSILON / 2.0;
+            assert!(
+                (s - s0).abs() <= tolerance && (c - c0).abs() <= tolerance,
+                "v = {v}: ({s}, {c}) against ({s0}, {c0})"
+            );
+            assert!((s * s + c * c - 1.0).abs() <= 4.5e-16, "v = {v}");
+        }
+    }
 
     #[test]
     fn strata_are_the_squarest_factor_pair() {
