@@ -157,8 +157,9 @@ impl Cone {
 /// a¹⁹/19! and a¹⁸/18!, stay below 2e-18.
 fn sin_cos_turns(v: f64) -> (f64, f64) {
     let x = 4.0 * v;
-    // round() is a libm call without SSE4.1; x ≥ 0 truncates.
-    let quarter = (x + 0.5) as u64;
+    // round() is a libm call without SSE4.1; x ≥ 0 truncates (to i64: one
+    // instruction each way, where u64 takes several).
+    let quarter = (x + 0.5) as i64;
     let a = (x - quarter as f64) * FRAC_PI_2;
     let a2 = a * a;
     let a4 = a2 * a2;
