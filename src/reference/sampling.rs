@@ -157,10 +157,12 @@ impl Cone {
 /// a¹⁹/19! and a¹⁸/18!, stay below 2e-18.
 fn sin_cos_turns(v: f64) -> (f64, f64) {
     let x = 4.0 * v;
-    // round() is a libm call without SSE4.1; x ≥ 0 truncates (to i64: one
-    // instruction each way, where u64 takes several).
-    let quarter = (x + 0.5) as i64;
-    let a = (x - quarter as f64) * FRAC_PI_2;
+    // Rounded to the nearest integer by adding 1.5 · 2⁵²: its low bits are
+    // then that integer (round() is a libm call without SSE4.1).
+    const ROUNDER: f64 = 6_755_399_441_055_744.0;
+    let rounded = x + ROUNDER;
+    let quarter = rounded.to_bits();
+    let a = (x - (rounded - ROUNDER)) * FRAC_PI_2;
     let a2 = a * a;
     let a4 = a2 * a2;
     // The series' terms after a and 1 (±1/n!), paired for a shorter chain
