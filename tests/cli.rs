@@ -3,7 +3,7 @@
 
 mod cli_support;
 
-use cli_support::{lumlab, stderr, stderr_lines};
+use cli_support::{assert_refused, lumlab, stderr};
 use std::path::{Path, PathBuf};
 
 /// A fresh empty directory for one test's files.
@@ -15,15 +15,7 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 fn assert_fails(args: &[&str], code: i32, mentions: &str) {
-    let out = lumlab(args);
-    assert_eq!(out.status.code(), Some(code), "{args:?}: {}", stderr(&out));
-    let lines = stderr_lines(&out);
-    assert_eq!(lines.len(), 1, "{args:?}: not one line: {lines:?}");
-    assert!(
-        lines[0].contains(mentions),
-        "{args:?}: '{}' does not mention {mentions}",
-        lines[0]
-    );
+    assert_refused(&lumlab(args), code, mentions);
 }
 
 fn no_files_in(dir: &Path) {

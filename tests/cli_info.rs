@@ -5,8 +5,7 @@
 mod cli_support;
 mod scene_support;
 
-use cli_support::lumlab;
-
+use cli_support::{lumlab, stderr};
 use scene_support::builder::Doc;
 use scene_support::samples;
 
@@ -15,7 +14,7 @@ use std::path::Path;
 
 fn info_json(scene: &Path) -> Value {
     let out = lumlab(&["info", "--scene", scene.to_str().unwrap(), "--format", "json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "{}", stderr(&out));
     serde_json::from_slice(&out.stdout).expect("JSON on stdout")
 }
 

@@ -4,8 +4,10 @@
 //! interrupt that leaves the folder as it was, the usual file permissions,
 //! and every repair or impossible light said in a warning.
 
+mod cli_support;
 mod scene_support;
 
+use cli_support::{assert_refused, names_in, stderr_lines};
 use scene_support::builder::Doc;
 use std::os::unix::fs::PermissionsExt;
 use std::path::Path;
@@ -37,36 +39,6 @@ fn run_within(command: &mut Command, limit: Duration) -> Output {
 
 fn run(args: &[&str]) -> Output {
     run_within(lumlab().args(args), Duration::from_secs(120))
-}
-
-/// The error lines (the Vulkan loader's notes aside).
-fn errors(out: &Output) -> Vec<String> {
-    String::from_utf8_lossy(&out.stderr)
-        .lines()
-        .filter(|l| !l.contains("XDG_RUNTIME_DIR"))
-        .map(str::to_owned)
-        .collect()
-}
-
-/// Fails with `code` and one line that mentions `mentions`.
-fn assert_refused(out: &Output, code: i32, mentions: &str) {
-    let lines = errors(out);
-    assert_eq!(out.status.code(), Some(code), "{lines:?}");
-    assert_eq!(lines.len(), 1, "not one line: {lines:?}");
-    assert!(
-        lines[0].contains(mentions),
-        "'{}' does not mention {mentions}",
-        lines[0]
-    );
-}
-
-fn names_in(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
 }
 
 fn mode(path: &Path) -> u32 {
@@ -211,7 +183,7 @@ fn an_interrupted_report_leaves_the_folder_as_it_was() {
         "slow to stop: {:?}",
         stop.elapsed()
     );
-    assert_eq!(output.status.code(), Some(130), "{:?}", errors(&output));
+    assert_eq!(output.status.code(), Some(130), "{:?}", stderr_lines(&output));
     assert_eq!(names_in(dir.path()), before);
 }
 
@@ -226,7 +198,7 @@ fn outputs_get_the_permissions_any_program_gives_them() {
             Command::new("sh").args(["-c", &script, env!("CARGO_BIN_EXE_lumlab")]),
             Duration::from_secs(60),
         );
-        assert!(out.status.success(), "{:?}", errors(&out));
+        assert!(out.status.success(), "{:?}", stderr_lines(&out));
     };
     under_umask_022(shown);
     assert_eq!(mode(&png), 0o644);
@@ -247,7 +219,7 @@ fn outputs_get_the_permissions_any_program_gives_them() {
     let link = dir.path().join("link.png");
     std::os::unix::fs::symlink("target.png", &link).unwrap();
     let out = run(&["reference", "--size", "16x9", "--out", link.to_str().unwrap()]);
-    assert!(out.status.success(), "{:?}", errors(&out));
+    assert!(out.status.success(), "{:?}", stderr_lines(&out));
     assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
     assert_eq!(image::open(dir.path().join("target.png")).unwrap().width(), 16);
     assert_eq!(names_in(dir.path()), ["a.png", "link.png", "target.png"]);
@@ -263,11 +235,11 @@ fn repairs_and_impossible_lights_are_said() {
     assert_refused(&refused, 2, "cuts through 'ground'");
     for command in ["reference", "render"] {
         let out = run(&[&[command][..], &cutting, &["--allow-impossible", "--out", png]].concat());
-        assert!(out.status.success(), "{command}: {:?}", errors(&out));
-        let warned = errors(&out)
+        assert!(out.status.success(), "{command}: {:?}", stderr_lines(&out));
+        let warned = stderr_lines(&out)
             .iter()
             .any(|l| l.starts_with("lumlab: warning: the sphere light"));
-        assert!(warned, "{command}: {:?}", errors(&out));
+        assert!(warned, "{command}: {:?}", stderr_lines(&out));
     }
 
     // A zero-area triangle beside a good square: dropped, and said.
@@ -292,10 +264,12 @@ fn repairs_and_impossible_lights_are_said() {
         &["--out", png],
     ]
     .concat());
-    assert!(out.status.success(), "{:?}", errors(&out));
+    assert!(out.status.success(), "{:?}", stderr_lines(&out));
     assert!(
-        errors(&out).iter().any(|l| l.starts_with("lumlab: warning:")),
+        stderr_lines(&out)
+            .iter()
+            .any(|l| l.starts_with("lumlab: warning:")),
         "{:?}",
-        errors(&out)
+        stderr_lines(&out)
     );
 }

@@ -5,20 +5,9 @@
 
 mod cli_support;
 
-use cli_support::{csv_fields, lumlab, stderr};
+use cli_support::{csv_fields, lumlab, names_in, stderr};
 use std::path::Path;
 use std::process::Output;
-
-fn names_in(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .map(|d| {
-            d.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-                .collect()
-        })
-        .unwrap_or_default();
-    names.sort();
-    names
-}
 
 const SWEEP: &str = r#"
 [[config]]

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 use std::collections::HashMap;
+use std::path::Path;
 use std::process::{Command, Output};
 
 /// Runs the binary with `args`.
@@ -34,6 +35,29 @@ pub fn stderr_lines(out: &Output) -> Vec<String> {
         .filter(|l| !l.contains("XDG_RUNTIME_DIR"))
         .map(str::to_string)
         .collect()
+}
+
+/// Fails with `code` and one line on stderr (the driver's notes aside)
+/// that mentions `mentions`.
+pub fn assert_refused(out: &Output, code: i32, mentions: &str) {
+    let lines = stderr_lines(out);
+    assert_eq!(out.status.code(), Some(code), "{lines:?}");
+    assert_eq!(lines.len(), 1, "not one line: {lines:?}");
+    assert!(
+        lines[0].contains(mentions),
+        "'{}' does not mention {mentions}",
+        lines[0]
+    );
+}
+
+/// The names of the entries of `dir`, sorted.
+pub fn names_in(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
 }
 
 /// The fields of one CSV line (quoted fields may hold commas, and `""` in
