@@ -15,12 +15,16 @@
 //!
 //! The f64 test decides every hit, so the BVH answers exactly what testing
 //! every triangle would (see `closest_hit_brute_force` and the tests).
+//! Single rays test a node's eight children in one AVX2 register where the
+//! CPU has it (`node_avx`: obvhs's test, the same bits).
 
 mod ball;
 mod build;
 mod collapse;
 mod cone;
 mod lanes;
+#[cfg(target_arch = "x86_64")]
+mod node_avx;
 mod packet;
 
 use super::intersect::{ShearedRay, TriangleHit};
@@ -29,6 +33,7 @@ pub use packet::{PrimaryPacket, ShadowPacket};
 // `UVec2` is named inside obvhs's `traverse!` macro.
 use glam::{DVec3, UVec2, Vec3A};
 use obvhs::cwbvh::Traversal;
+use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::ray::Ray;
 use obvhs::{aabb::Aabb, cwbvh::CwBvh};
 use rayon::prelude::*;
@@ -225,13 +230,39 @@ impl TriangleBvh {
     pub fn closest_hit(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
         let bvh = self.bvh.as_ref()?;
         let query = self.query(origin, direction, t_min, t_max)?;
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2.
+            return unsafe { self.closest_hit_avx2(bvh, &query, (t_min, t_max)) };
+        }
+        self.closest_hit_in(bvh, &query, (t_min, t_max), CwBvhNode::intersect_ray)
+    }
+
+    /// [`Self::closest_hit`]'s walk with the node test in AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn closest_hit_avx2(&self, bvh: &CwBvh, query: &Query, range: (f64, f64)) -> Option<Hit> {
+        self.closest_hit_in(bvh, query, range, |node, ray, octant| {
+            node_avx::children_hit(node, ray, octant)
+        })
+    }
+
+    /// [`Self::closest_hit`]'s walk, with `children` as the node test.
+    #[inline(always)]
+    fn closest_hit_in(
+        &self,
+        bvh: &CwBvh,
+        query: &Query,
+        (t_min, t_max): (f64, f64),
+        children: impl Fn(&CwBvhNode, &Ray, u32) -> u32,
+    ) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut limit = t_max;
         let mut ray = query.ray;
         TRAVERSAL.with_borrow_mut(|state| {
             state.reinit(ray.direction);
             let mut node;
-            obvhs::traverse!(bvh, node, state, node.intersect_ray(&ray, state.oct_inv4), {
+            obvhs::traverse!(bvh, node, state, children(node, &ray, state.oct_inv4), {
                 let slot = state.primitive_id as usize;
                 if let Some(at) = query.sheared.intersect(&self.corners[slot], t_min, limit) {
                     let triangle = self.original[slot];
@@ -256,12 +287,38 @@ impl TriangleBvh {
         let Some(query) = self.query(origin, direction, t_min, t_max) else {
             return false;
         };
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2.
+            return unsafe { self.occluded_avx2(bvh, &query, (t_min, t_max)) };
+        }
+        self.occluded_in(bvh, &query, (t_min, t_max), CwBvhNode::intersect_ray)
+    }
+
+    /// [`Self::occluded`]'s walk with the node test in AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn occluded_avx2(&self, bvh: &CwBvh, query: &Query, range: (f64, f64)) -> bool {
+        self.occluded_in(bvh, query, range, |node, ray, octant| {
+            node_avx::children_hit(node, ray, octant)
+        })
+    }
+
+    /// [`Self::occluded`]'s walk, with `children` as the node test.
+    #[inline(always)]
+    fn occluded_in(
+        &self,
+        bvh: &CwBvh,
+        query: &Query,
+        (t_min, t_max): (f64, f64),
+        children: impl Fn(&CwBvhNode, &Ray, u32) -> u32,
+    ) -> bool {
         let ray = query.ray;
         let mut blocked = false;
         TRAVERSAL.with_borrow_mut(|state| {
             state.reinit(ray.direction);
             let mut node;
-            obvhs::traverse!(bvh, node, state, node.intersect_ray(&ray, state.oct_inv4), {
+            obvhs::traverse!(bvh, node, state, children(node, &ray, state.oct_inv4), {
                 let slot = state.primitive_id as usize;
                 if self.occludes[slot] && query.sheared.hits(&self.corners[slot], t_min, t_max) {
                     blocked = true;
@@ -270,6 +327,14 @@ impl TriangleBvh {
             });
         });
         blocked
+    }
+
+    /// A ray's f32 copy from `origin` along `direction` and the BVH's
+    /// nodes, for the node tests' tests.
+    #[cfg(test)]
+    fn ray_and_nodes(&self, origin: DVec3, direction: DVec3) -> Option<(Ray, &[CwBvhNode])> {
+        let query = self.query(origin, direction, 0.0, f64::INFINITY)?;
+        Some((query.ray, &self.bvh.as_ref()?.nodes))
     }
 }
 
