@@ -230,51 +230,20 @@ impl TriangleBvh {
     pub fn closest_hit(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> Option<Hit> {
         let bvh = self.bvh.as_ref()?;
         let query = self.query(origin, direction, t_min, t_max)?;
-        #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2.
-            return unsafe { self.closest_hit_avx2(bvh, &query, (t_min, t_max)) };
-        }
-        self.closest_hit_in(bvh, &query, (t_min, t_max), CwBvhNode::intersect_ray)
-    }
-
-    /// [`Self::closest_hit`]'s walk with the node test in AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    fn closest_hit_avx2(&self, bvh: &CwBvh, query: &Query, range: (f64, f64)) -> Option<Hit> {
-        self.closest_hit_in(bvh, query, range, |node, ray, octant| {
-            node_avx::children_hit(node, ray, octant)
-        })
-    }
-
-    /// [`Self::closest_hit`]'s walk, with `children` as the node test.
-    #[inline(always)]
-    fn closest_hit_in(
-        &self,
-        bvh: &CwBvh,
-        query: &Query,
-        (t_min, t_max): (f64, f64),
-        children: impl Fn(&CwBvhNode, &Ray, u32) -> u32,
-    ) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut limit = t_max;
-        let mut ray = query.ray;
-        TRAVERSAL.with_borrow_mut(|state| {
-            state.reinit(ray.direction);
-            let mut node;
-            obvhs::traverse!(bvh, node, state, children(node, &ray, state.oct_inv4), {
-                let slot = state.primitive_id as usize;
-                if let Some(at) = query.sheared.intersect(&self.corners[slot], t_min, limit) {
-                    let triangle = self.original[slot];
-                    if best.is_none_or(|b| closer(at, triangle, b)) {
-                        best = Some(Hit { triangle, at });
-                        // Equal distances stay candidates (lowest index wins).
-                        limit = at.t.next_up();
-                        // Keep every node up to the new best (plus a few pads).
-                        ray.tmax = ((at.t - query.t_start) * query.s_per_t + PAD_S) as f32;
-                    }
+        self.walk_ray(bvh, &query, |slot, far| {
+            if let Some(at) = query.sheared.intersect(&self.corners[slot], t_min, limit) {
+                let triangle = self.original[slot];
+                if best.is_none_or(|b| closer(at, triangle, b)) {
+                    best = Some(Hit { triangle, at });
+                    // Equal distances stay candidates (lowest index wins).
+                    limit = at.t.next_up();
+                    // Keep every node up to the new best (plus a few pads).
+                    *far = ((at.t - query.t_start) * query.s_per_t + PAD_S) as f32;
                 }
-            });
+            }
+            false
         });
         best
     }
@@ -287,46 +256,29 @@ impl TriangleBvh {
         let Some(query) = self.query(origin, direction, t_min, t_max) else {
             return false;
         };
+        let mut blocked = false;
+        self.walk_ray(bvh, &query, |slot, _| {
+            if self.occludes[slot] && query.sheared.hits(&self.corners[slot], t_min, t_max) {
+                blocked = true;
+            }
+            blocked
+        });
+        blocked
+    }
+
+    /// Walks the BVH along `query`'s f32 ray, calling `visit(slot, far)`
+    /// for each triangle slot of the leaves it enters, until `visit` says
+    /// stop (true); `far` is the f32 ray's far limit, which `visit` may
+    /// bring nearer. A node's children are tested in AVX2 where the CPU
+    /// has it (the same bits as obvhs's test).
+    #[inline(always)]
+    fn walk_ray(&self, bvh: &CwBvh, query: &Query, visit: impl FnMut(usize, &mut f32) -> bool) {
         #[cfg(target_arch = "x86_64")]
         if std::arch::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2.
-            return unsafe { self.occluded_avx2(bvh, &query, (t_min, t_max)) };
+            return unsafe { walk_ray_avx2(bvh, query, visit) };
         }
-        self.occluded_in(bvh, &query, (t_min, t_max), CwBvhNode::intersect_ray)
-    }
-
-    /// [`Self::occluded`]'s walk with the node test in AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    fn occluded_avx2(&self, bvh: &CwBvh, query: &Query, range: (f64, f64)) -> bool {
-        self.occluded_in(bvh, query, range, |node, ray, octant| {
-            node_avx::children_hit(node, ray, octant)
-        })
-    }
-
-    /// [`Self::occluded`]'s walk, with `children` as the node test.
-    #[inline(always)]
-    fn occluded_in(
-        &self,
-        bvh: &CwBvh,
-        query: &Query,
-        (t_min, t_max): (f64, f64),
-        children: impl Fn(&CwBvhNode, &Ray, u32) -> u32,
-    ) -> bool {
-        let ray = query.ray;
-        let mut blocked = false;
-        TRAVERSAL.with_borrow_mut(|state| {
-            state.reinit(ray.direction);
-            let mut node;
-            obvhs::traverse!(bvh, node, state, children(node, &ray, state.oct_inv4), {
-                let slot = state.primitive_id as usize;
-                if self.occludes[slot] && query.sheared.hits(&self.corners[slot], t_min, t_max) {
-                    blocked = true;
-                    break;
-                }
-            });
-        });
-        blocked
+        walk_ray_with(bvh, query, visit, CwBvhNode::intersect_ray);
     }
 
     /// A ray's f32 copy from `origin` along `direction` and the BVH's
@@ -336,6 +288,39 @@ impl TriangleBvh {
         let query = self.query(origin, direction, 0.0, f64::INFINITY)?;
         Some((query.ray, &self.bvh.as_ref()?.nodes))
     }
+}
+
+/// [`TriangleBvh::walk_ray`] with the node test in AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn walk_ray_avx2(bvh: &CwBvh, query: &Query, visit: impl FnMut(usize, &mut f32) -> bool) {
+    walk_ray_with(bvh, query, visit, |node, ray, octant| {
+        node_avx::children_hit(node, ray, octant)
+    });
+}
+
+/// [`TriangleBvh::walk_ray`] with `children` as the node test.
+#[inline(always)]
+fn walk_ray_with(
+    bvh: &CwBvh,
+    query: &Query,
+    mut visit: impl FnMut(usize, &mut f32) -> bool,
+    children: impl Fn(&CwBvhNode, &Ray, u32) -> u32,
+) {
+    let mut ray = query.ray;
+    TRAVERSAL.with_borrow_mut(|state| {
+        state.reinit(ray.direction);
+        let mut node;
+        // A plain `break` would only leave the leaf's triangles, and the
+        // walk would go on (as obvhs's own any-hit walk, the block's label).
+        'walk: {
+            obvhs::traverse!(bvh, node, state, children(node, &ray, state.oct_inv4), {
+                if visit(state.primitive_id as usize, &mut ray.tmax) {
+                    break 'walk;
+                }
+            });
+        }
+    });
 }
 
 thread_local! {
