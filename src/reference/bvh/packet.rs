@@ -152,17 +152,21 @@ impl TriangleBvh {
         {
             state.reinit(cone.axis.as_vec3a());
             let mut node;
-            obvhs::traverse!(
-                bvh,
-                node,
-                state,
-                frame.child_mask(self, node, farthest, state.oct_inv4),
-                {
-                    if self.test_triangle(&frame, rays, state.primitive_id as usize, &mut farthest) {
-                        break;
+            // Out of the whole walk once every ray is done (a plain `break`
+            // leaves only the leaf's triangles).
+            'walk: {
+                obvhs::traverse!(
+                    bvh,
+                    node,
+                    state,
+                    frame.child_mask(self, node, farthest, state.oct_inv4),
+                    {
+                        if self.test_triangle(&frame, rays, state.primitive_id as usize, &mut farthest) {
+                            break 'walk;
+                        }
                     }
-                }
-            );
+                );
+            }
         }
         TRAVERSAL.set(owned);
     }
