@@ -311,8 +311,9 @@ fn walk_ray_with(
     TRAVERSAL.with_borrow_mut(|state| {
         state.reinit(ray.direction);
         let mut node;
-        // A plain `break` would only leave the leaf's triangles, and the
-        // walk would go on (as obvhs's own any-hit walk, the block's label).
+        // A plain `break` would leave only the leaf's triangles and the walk
+        // would go on: it leaves through the block's label, as obvhs's own
+        // any-hit walk does.
         'walk: {
             obvhs::traverse!(bvh, node, state, children(node, &ray, state.oct_inv4), {
                 if visit(state.primitive_id as usize, &mut ray.tmax) {
