@@ -217,7 +217,10 @@ fn occluders_gathered_near_a_ball_block_exactly_what_brute_force_does() {
         let from = point_on(&triangles, &mut rng) + DVec3::Y * 1e-6;
         let centre = random_point(&mut rng, 6.0) + DVec3::Y * 4.0;
         let radius = 0.05 + rng.next_f64();
-        if !bvh.gather_near_ball(from, centre, radius, 4000, &mut candidates) {
+        // Any plane through the point may be the walk's floor where the
+        // ball lies above it: here the horizontal one, every other trial.
+        let surface = if trial % 2 == 0 { DVec3::Y } else { DVec3::ZERO };
+        if !bvh.gather_near_ball((from, surface), centre, radius, 4000, &mut candidates) {
             continue;
         }
         gathered += 1;

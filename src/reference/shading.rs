@@ -323,9 +323,13 @@ impl Reference {
         // ray against those few (or, when there are many, through the BVH).
         let Scratch { y, candidates, .. } = scratch;
         let gathered = s.shadowed
-            && self
-                .bvh
-                .gather_near_ball(s.shadow_origin, q, radius, MAX_CANDIDATES, candidates);
+            && self.bvh.gather_near_ball(
+                (s.shadow_origin, s.geometric_normal),
+                q,
+                radius,
+                MAX_CANDIDATES,
+                candidates,
+            );
         let le = sphere_radiance(setup.power_w, radius);
         let to_centre = q - s.p;
         let d2 = to_centre.length_squared();

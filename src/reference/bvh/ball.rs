@@ -17,10 +17,13 @@ impl TriangleBvh {
     /// Conservative (see [`BallCone`]): an empty list means no segment is
     /// blocked. False, with `out` unfinished, when more than `limit` are
     /// found or `from` lies (nearly) in the ball: cast each ray through the
-    /// BVH instead.
+    /// BVH instead. `surface`: the normal (either way, or zero) of the
+    /// surface `from` was lifted off, whose plane through `from` is the
+    /// walk's floor when the whole ball lies above it (see
+    /// [`BallCone::floor`]).
     pub fn gather_near_ball(
         &self,
-        from: DVec3,
+        (from, surface): (DVec3, DVec3),
         centre: DVec3,
         radius: f64,
         limit: usize,
@@ -30,6 +33,7 @@ impl TriangleBvh {
         let Some(ball) = BallCone::new(from, centre, radius) else {
             return false;
         };
+        let floor = ball.floor(surface);
         let mut fits = true;
         let keep = |slot: usize, relative: &[DVec3; 3]| {
             if !self.occludes[slot] || ball.apart_by_plane(relative) {
@@ -41,7 +45,10 @@ impl TriangleBvh {
             }
             fits
         };
-        self.walk_cone(&ball.pyramid, &mut Visitor::new(ball.deepest, keep));
+        self.walk_cone(
+            &ball.pyramid,
+            &mut Visitor::new(ball.deepest, keep).with_floor(floor),
+        );
         fits
     }
 
@@ -90,6 +97,19 @@ impl BallCone {
             pyramid: Cone::square(from, to_centre / distance, slope),
             deepest: (distance + radius) * (1.0 + ROUNDING),
         })
+    }
+
+    /// The plane through the point (0) across `surface` as a floor (n, 0),
+    /// n towards the ball, when the whole ball lies above it (by a margin
+    /// for the rounding of its height): every segment from the point to
+    /// the ball then stays on or above the plane, and a triangle wholly
+    /// below it blocks none (the walk allows for the rounding of its own
+    /// tests). None for a zero or non-finite normal.
+    fn floor(&self, surface: DVec3) -> Option<(DVec3, f64)> {
+        let n = surface.try_normalize()?;
+        let n = if n.dot(self.centre) < 0.0 { -n } else { n };
+        let margin = self.radius * (1.0 + ROUNDING) + ROUNDING * self.centre.abs().max_element();
+        (n.dot(self.centre) > margin).then_some((n, 0.0))
     }
 
     /// Whether the point (0) and the whole ball lie strictly on one side
@@ -199,7 +219,9 @@ mod tests {
                 4.0 * rng.next_f64() - 2.0,
             );
             let radius = 0.05 + 0.8 * rng.next_f64();
-            if !bvh.gather_near_ball(from, centre, radius, usize::MAX, &mut candidates) {
+            // The surface's normal, or none (the walk without a floor).
+            let surface = if case % 3 == 0 { DVec3::ZERO } else { n };
+            if !bvh.gather_near_ball((from, surface), centre, radius, usize::MAX, &mut candidates) {
                 // Only from inside the ball: each ray then goes through the BVH.
                 assert!((centre - from).length() <= radius * (1.0 + 1e-9), "case {case}");
                 continue;

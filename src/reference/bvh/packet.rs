@@ -336,6 +336,8 @@ pub struct Visitor<F> {
     /// [deepest] while the walk goes on, then [−1]: it stops.
     limits: [f64; 1],
     lines: Lines,
+    /// What lies wholly below it is not visited ([`Rays::floor`]).
+    floor: Option<(DVec3, f64)>,
     visit: F,
 }
 
@@ -345,14 +347,25 @@ impl<F: FnMut(usize, &[DVec3; 3]) -> bool> Visitor<F> {
         Self {
             limits: [deepest],
             lines: Lines::default(),
+            floor: None,
             visit,
         }
+    }
+
+    /// The visitor with a floor (n, c): triangles and nodes wholly below
+    /// n · (x − apex) = c are passed over.
+    pub fn with_floor(self, floor: Option<(DVec3, f64)>) -> Self {
+        Self { floor, ..self }
     }
 }
 
 impl<F: FnMut(usize, &[DVec3; 3]) -> bool> Rays for Visitor<F> {
     fn limits(&self) -> &[f64] {
         &self.limits
+    }
+
+    fn floor(&self) -> Option<(DVec3, f64)> {
+        self.floor
     }
 
     fn lines(&self) -> &Lines {
