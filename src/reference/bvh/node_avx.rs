@@ -68,6 +68,13 @@ mod tests {
     use crate::reference::sampling::Rng;
     use glam::DVec3;
 
+    /// The ray's octant as obvhs's walk passes it to the node test.
+    fn octant(ray: &Ray) -> u32 {
+        let mut traversal = obvhs::cwbvh::Traversal::default();
+        traversal.reinit(ray.direction);
+        traversal.oct_inv4
+    }
+
     /// Every node of a BVH over random triangles, against random rays
     /// (from inside the scene and outside, some along an axis), gives
     /// obvhs's mask.
@@ -100,9 +107,7 @@ mod tests {
             let Some((ray, nodes)) = bvh.ray_and_nodes(origin, direction) else {
                 continue;
             };
-            let mut traversal = obvhs::cwbvh::Traversal::default();
-            traversal.reinit(ray.direction);
-            let octant = traversal.oct_inv4;
+            let octant = octant(&ray);
             for node in nodes {
                 let expected = node.intersect_ray(&ray, octant);
                 // SAFETY: the CPU has AVX2 (checked above).
@@ -163,11 +168,10 @@ mod tests {
             // Some rays end near the box too.
             let far = if k % 4 == 0 { byte() as f32 * 1e-3 } else { 1e3 };
             let ray = Ray::new(origin, direction, 0.0, far);
-            let mut traversal = obvhs::cwbvh::Traversal::default();
-            traversal.reinit(ray.direction);
-            let expected = node.intersect_ray(&ray, traversal.oct_inv4);
+            let octant = octant(&ray);
+            let expected = node.intersect_ray(&ray, octant);
             // SAFETY: the CPU has AVX2 (checked above).
-            let got = unsafe { children_hit(&node, &ray, traversal.oct_inv4) };
+            let got = unsafe { children_hit(&node, &ray, octant) };
             assert_eq!(got, expected, "node {k}");
             entered += (expected != 0) as usize;
             passed += (expected == 0) as usize;
