@@ -6,7 +6,7 @@ use super::grid::DirectionGrid;
 use super::image::{ReferenceImage, RenderStats};
 use super::sampling::{PixelStreams, Rng, Strata};
 use super::shading::{Scratch, Setup};
-use super::surface::Surface;
+use super::surface::{ShadingCache, Surface};
 use super::{Reference, ReferenceError, ReferenceOptions, RenderControl, pixel_index};
 use crate::settings::Settings;
 use cover::{BlockCovers, Covered};
@@ -190,6 +190,8 @@ impl Reference {
             return Some(tile);
         }
         let mut buffers = PixelBuffers::default();
+        // Kept from block to block: neighbours share triangles.
+        let mut shading = ShadingCache::default();
         let mut blocks = (shortcuts.covers && n > 1).then(|| BlockCovers::new([x0, y0, x1, y1]));
         // Blocks of `run` pixels, two rows by run / 2 columns (or one row).
         let (cols, rows) = if run > 1 { (run / 2, 2) } else { (1, 1) };
@@ -207,7 +209,13 @@ impl Reference {
                         _ => None,
                     };
                     tile.add(
-                        match self.trace_pixel_samples(setup, spp, (i, j), (shortcuts, block), &mut buffers) {
+                        match self.trace_pixel_samples(
+                            setup,
+                            spp,
+                            (i, j),
+                            (shortcuts, block),
+                            (&mut buffers, &mut shading),
+                        ) {
                             Traced::Background => Pixel::background(n),
                             Traced::Shaded(pixel) => pixel,
                             Traced::Samples { shadows_clear } => {
@@ -222,7 +230,7 @@ impl Reference {
                 // it costs more than the blocks it spares (engine: 2.7 % of
                 // the process's instructions, same bits).
                 self.trace_run(setup, spp, (i, j), (width, band), &mut buffers);
-                self.run_samples(setup, &mut buffers);
+                self.run_samples(setup, &mut buffers, &mut shading);
                 self.aim_light_packet(setup, &mut buffers);
                 for k in 0..(width * band) as usize {
                     let pixel = self.shade_pixel(setup, k * n as usize, n, false, &mut buffers);
@@ -279,12 +287,16 @@ impl Reference {
     /// Every sample of a traced block, pixel by pixel (row by row), into
     /// `buffers.samples`.
     #[inline(always)]
-    fn run_samples(&self, setup: &Setup, buffers: &mut PixelBuffers) {
+    fn run_samples<'a>(
+        &'a self,
+        setup: &'a Setup,
+        buffers: &mut PixelBuffers,
+        shading: &mut ShadingCache<'a>,
+    ) {
         buffers.samples.clear();
-        let mut shading = None;
         for s in 0..buffers.directions.len() {
-            let surface = buffers.packet.hits[s]
-                .map(|hit| self.surface_at(setup, buffers.directions[s], hit, &mut shading));
+            let surface =
+                buffers.packet.hits[s].map(|hit| self.surface_at(setup, buffers.directions[s], hit, shading));
             buffers.samples.push((surface, buffers.run_samples[s].clone()));
         }
     }
@@ -297,13 +309,13 @@ impl Reference {
     /// background shortcut is taken and the pixel lies in an empty cell of
     /// the eye grid; the pixel itself when a covered one is shaded at once.
     #[inline(always)]
-    fn trace_pixel_samples(
-        &self,
-        setup: &Setup,
+    fn trace_pixel_samples<'a>(
+        &'a self,
+        setup: &'a Setup,
         spp: Strata,
         (i, j): (u32, u32),
         (shortcuts, block): (Shortcuts, Option<&Covered>),
-        buffers: &mut PixelBuffers,
+        (buffers, shading): (&mut PixelBuffers, &mut ShadingCache<'a>),
     ) -> Traced {
         let n = spp.count();
         if let (Some(grid), Some(block)) = (&setup.eye_grid, block)
@@ -340,12 +352,11 @@ impl Reference {
             });
         if packet {
             self.trace_run(setup, spp, (i, j), (1, 1), buffers);
-            self.run_samples(setup, buffers);
+            self.run_samples(setup, buffers, shading);
         } else {
-            let mut shading = None;
             trace_samples(setup, spp, (i, j), buffers, |towards| {
                 let hit = self.primary_hit(setup, towards, cell)?;
-                Some(self.surface_at(setup, towards, hit, &mut shading))
+                Some(self.surface_at(setup, towards, hit, shading))
             });
         }
         Traced::Samples { shadows_clear: false }

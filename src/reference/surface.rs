@@ -308,21 +308,114 @@ impl Reference {
     }
 
     /// The surface where the primary ray along `towards` (not normalized)
-    /// lands, its closest hit being `hit`, `shading` that of the triangle
-    /// last met (kept, or made anew for another): neighbouring samples
-    /// mostly meet the same triangle.
+    /// lands, its closest hit being `hit`, with the shading of its triangle
+    /// from `cache` (kept, or made anew): neighbouring samples mostly meet
+    /// the same few triangles.
     #[inline(always)]
     pub(super) fn surface_at<'a>(
         &'a self,
         setup: &'a Setup,
         towards: DVec3,
         hit: Hit,
-        shading: &mut Option<TriangleShading<'a>>,
+        cache: &mut ShadingCache<'a>,
     ) -> Surface {
-        let shading = match shading.take() {
-            Some(same) if same.triangle == hit.triangle => shading.insert(same),
-            _ => shading.insert(TriangleShading::new(self, setup, hit.triangle)),
+        let slot = &mut cache.slots[hit.triangle % CACHED];
+        let shading = match slot {
+            Some(same) if same.triangle == hit.triangle => same,
+            _ => slot.insert(TriangleShading::new(self, setup, hit.triangle)),
         };
         shading.surface(self, towards, hit)
+    }
+}
+
+/// How many triangles' shading a [`ShadingCache`] keeps.
+const CACHED: usize = 8;
+
+/// The shading of the triangles met last, by triangle index modulo
+/// [`CACHED`] (a pixel's edge alternates between two or three).
+pub(super) struct ShadingCache<'a> {
+    slots: [Option<TriangleShading<'a>>; CACHED],
+}
+
+impl Default for ShadingCache<'_> {
+    fn default() -> Self {
+        Self {
+            slots: std::array::from_fn(|_| None),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::ReferenceOptions;
+    use crate::reference::intersect::TriangleHit;
+    use crate::scene::{Object, Scene, shapes};
+    use crate::settings::Settings;
+    use glam::{Vec3, Vec4};
+
+    /// Samples that hop between many triangles (more than the cache keeps,
+    /// many of them in the same slot), of two materials and of every
+    /// orientation, get the surface their own triangle's shading gives.
+    #[test]
+    fn the_shading_cache_gives_each_triangle_its_own_surface() {
+        let material = |colour: Vec4| Material {
+            base_color: colour,
+            ..Material::default()
+        };
+        let scene = Scene {
+            objects: vec![
+                Object::new("red", shapes::sphere(Vec3::ZERO, 1.0, 12, 8), 0),
+                Object::new("blue", shapes::sphere(Vec3::new(3.0, 0.0, 0.0), 1.0, 12, 8), 1),
+            ],
+            materials: vec![
+                material(Vec4::new(0.8, 0.1, 0.1, 1.0)),
+                material(Vec4::new(0.1, 0.2, 0.9, 1.0)),
+            ],
+            ..Scene::default()
+        };
+        let reference = Reference::new(&scene);
+        let setup = Setup::new(
+            &Settings::default(),
+            &ReferenceOptions::default(),
+            &reference.materials,
+        );
+        let count = reference.triangles.len();
+        assert!(count > 8 * CACHED);
+        let mut cache = ShadingCache::default();
+        let towards = DVec3::new(0.1, -0.2, -1.0);
+        for step in 0..2000 {
+            // Strides that fill and evict every slot.
+            let triangle = (step * 7 + (step / 5) * CACHED) % count;
+            let hit = Hit {
+                triangle,
+                at: TriangleHit {
+                    t: 2.0,
+                    barycentric: [0.2, 0.3, 0.5],
+                },
+            };
+            let got = reference.surface_at(&setup, towards, hit, &mut cache);
+            let fresh = TriangleShading::new(&reference, &setup, triangle).surface(&reference, towards, hit);
+            assert_eq!(got.triangle, triangle);
+            assert_eq!(
+                (
+                    got.p,
+                    got.n,
+                    got.geometric_normal,
+                    got.tint,
+                    got.color,
+                    got.shadow_origin
+                ),
+                (
+                    fresh.p,
+                    fresh.n,
+                    fresh.geometric_normal,
+                    fresh.tint,
+                    fresh.color,
+                    fresh.shadow_origin
+                ),
+                "step {step}, triangle {triangle}"
+            );
+        }
     }
 }
