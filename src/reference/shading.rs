@@ -203,7 +203,7 @@ pub(super) struct LightEstimate {
 impl Reference {
     /// Everything about the primary sample through (x, y): the pixel probe.
     pub(super) fn probe(&self, setup: &Setup, x: f64, y: f64, rng: &mut Rng) -> Option<ShadingSample> {
-        let s = self.surface(setup, setup.rays.towards(x, y), None)?;
+        let (s, (distance_m, uv, color)) = self.probed_surface(setup, setup.rays.towards(x, y))?;
         let estimate = self.light(setup, &s, rng, false, &mut Scratch::default());
         let tri = &self.triangles[s.triangle];
         let inc = incidence(s.p, s.n, setup.light_position);
@@ -211,12 +211,12 @@ impl Reference {
             object: tri.object(),
             triangle: tri.index(),
             material: self.objects[tri.object()].material_index,
-            distance_m: s.distance_m,
+            distance_m,
             position: s.p,
             normal: s.n,
             geometric_normal: s.geometric_normal,
-            uv: s.uv,
-            color: s.color,
+            uv,
+            color,
             k: s.brdf.k,
             m: s.brdf.m,
             to_light: inc.l,

@@ -17,7 +17,6 @@ use glam::{DVec2, DVec3};
 pub(super) struct Surface {
     /// Index into `Reference::triangles`.
     pub(super) triangle: usize,
-    pub(super) distance_m: f64,
     pub(super) p: DVec3,
     /// The shading normal (towards the viewer on double-sided materials).
     pub(super) n: DVec3,
@@ -25,8 +24,6 @@ pub(super) struct Surface {
     pub(super) geometric_normal: DVec3,
     /// Unit direction to the eye.
     pub(super) o: DVec3,
-    pub(super) uv: DVec2,
-    pub(super) color: DVec3,
     /// c · light colour: L = tint · LightEstimate::scaled_radiance.
     pub tint: DVec3,
     pub(super) brdf: BrdfParams<f64>,
@@ -240,13 +237,42 @@ impl<'a> TriangleShading<'a> {
     /// meets the triangle at `hit` (barycentrics and distance).
     #[inline(always)]
     pub(super) fn surface(&self, reference: &Reference, towards: DVec3, hit: Hit) -> Surface {
-        let tri = self.tri;
-        let (p, n, o, length) = self.point(towards, hit);
+        let (p, n, o, _) = self.point(towards, hit);
         let (geometric_normal, shadow_origin) = self.lift(p, o);
-        let [b0, b1, b2] = hit.at.barycentric;
+        let (_, _, tint) = self.uv_colour_and_tint(reference, hit.at.barycentric);
+        Surface {
+            triangle: self.triangle,
+            p,
+            n,
+            geometric_normal,
+            o,
+            tint,
+            brdf: self.facet.brdf,
+            shadow_origin,
+            shadow_offset_m: self.tri.shadow_offset_m,
+            shadowed: self.shadowed(),
+        }
+    }
+
+    /// What the probe shows of the point at `hit` beside its [`Surface`]:
+    /// its distance from the eye along `towards`, its uv and its colour c.
+    pub(super) fn probe_values(
+        &self,
+        reference: &Reference,
+        towards: DVec3,
+        hit: Hit,
+    ) -> (f64, DVec2, DVec3) {
+        let (uv, colour, _) = self.uv_colour_and_tint(reference, hit.at.barycentric);
+        (hit.at.t * towards.length(), uv, colour)
+    }
+
+    /// The uv at barycentrics b, and the colour c and tint there.
+    #[inline(always)]
+    fn uv_colour_and_tint(&self, reference: &Reference, [b0, b1, b2]: [f64; 3]) -> (DVec2, DVec3, DVec3) {
+        let tri = self.tri;
         let [t0, t1, t2] = tri.uvs.map(|t| t.as_dvec2());
         let uv = t0 * b0 + t1 * b1 + t2 * b2;
-        let (color, surface_tint) = self.plain.unwrap_or_else(|| {
+        let (colour, tint) = self.plain.unwrap_or_else(|| {
             let texture = self
                 .material
                 .base_color_texture
@@ -261,36 +287,28 @@ impl<'a> TriangleShading<'a> {
                 });
             self.colour_and_tint(texture.unwrap_or(DVec3::ONE) * vertex_colour)
         });
-        Surface {
-            triangle: self.triangle,
-            distance_m: hit.at.t * length,
-            p,
-            n,
-            geometric_normal,
-            o,
-            uv,
-            color,
-            tint: surface_tint,
-            brdf: self.facet.brdf,
-            shadow_origin,
-            shadow_offset_m: tri.shadow_offset_m,
-            shadowed: self.shadowed(),
-        }
+        (uv, colour, tint)
     }
 }
 
 impl Reference {
     /// The surface seen along `towards` from the eye (`PixelRays::towards`
-    /// of an image point); None on background. `cell`: the eye grid's cell
-    /// of the point's pixel, when one holds it whole (see
-    /// [`super::grid::DirectionGrid::pixel_cell`]).
-    #[inline(always)]
-    pub(super) fn surface(&self, setup: &Setup, towards: DVec3, cell: Option<Cell>) -> Option<Surface> {
-        let hit = self.primary_hit(setup, towards, cell)?;
-        Some(TriangleShading::new(self, setup, hit.triangle).surface(self, towards, hit))
+    /// of an image point) and what the probe shows beside it
+    /// ([`TriangleShading::probe_values`]); None on background.
+    pub(super) fn probed_surface(
+        &self,
+        setup: &Setup,
+        towards: DVec3,
+    ) -> Option<(Surface, (f64, DVec2, DVec3))> {
+        let hit = self.primary_hit(setup, towards, None)?;
+        let shading = TriangleShading::new(self, setup, hit.triangle);
+        Some((
+            shading.surface(self, towards, hit),
+            shading.probe_values(self, towards, hit),
+        ))
     }
 
-    /// The closest hit along `towards` from the eye, as [`Self::surface`]
+    /// The closest hit along `towards` from the eye, as [`Self::probed_surface`]
     /// finds it.
     #[inline(always)]
     pub(super) fn primary_hit(&self, setup: &Setup, towards: DVec3, cell: Option<Cell>) -> Option<Hit> {
@@ -398,20 +416,12 @@ mod tests {
             let fresh = TriangleShading::new(&reference, &setup, triangle).surface(&reference, towards, hit);
             assert_eq!(got.triangle, triangle);
             assert_eq!(
-                (
-                    got.p,
-                    got.n,
-                    got.geometric_normal,
-                    got.tint,
-                    got.color,
-                    got.shadow_origin
-                ),
+                (got.p, got.n, got.geometric_normal, got.tint, got.shadow_origin),
                 (
                     fresh.p,
                     fresh.n,
                     fresh.geometric_normal,
                     fresh.tint,
-                    fresh.color,
                     fresh.shadow_origin
                 ),
                 "step {step}, triangle {triangle}"
