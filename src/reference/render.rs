@@ -498,6 +498,12 @@ fn trace_samples(
 fn directions_first(setup: &Setup, spp: Strata, (i, j): (u32, u32), buffers: &mut PixelBuffers) {
     buffers.directions.clear();
     buffers.run_samples.clear();
+    if spp.count() == 1 {
+        let (x, y, rng) = centre_sample(setup, i, j);
+        buffers.directions.push(setup.rays.towards(x, y));
+        buffers.run_samples.push(rng);
+        return;
+    }
     for (sx, sy, rng) in sample_points(setup, spp, i, j) {
         buffers.directions.push(setup.rays.towards(sx, sy));
         buffers.run_samples.push(rng);
@@ -505,21 +511,24 @@ fn directions_first(setup: &Setup, spp: Strata, (i, j): (u32, u32), buffers: &mu
 }
 
 /// Pixel (i, j)'s primary sample points (image coordinates) and their
-/// random streams, stratum by stratum.
+/// random streams, stratum by stratum, for several samples a pixel (one
+/// is the pixel's centre: [`centre_sample`]).
 fn sample_points(setup: &Setup, spp: Strata, i: u32, j: u32) -> impl Iterator<Item = (f64, f64, Rng)> + '_ {
-    let n = spp.count();
+    debug_assert!(spp.count() > 1, "one sample a pixel is its centre, not jittered");
     let streams = PixelStreams::new(setup.seed, pixel_index(setup, i as f64, j as f64));
     let (x, y) = (i as f64, j as f64);
     spp.cells().enumerate().map(move |(s, stratum)| {
         let mut rng = streams.sample(s as u64);
-        // DESIGN.md: one sample per pixel is the pixel centre.
-        let (dx, dy) = if n == 1 {
-            (0.5, 0.5)
-        } else {
-            spp.jittered(stratum, &mut rng)
-        };
+        let (dx, dy) = spp.jittered(stratum, &mut rng);
         (x + dx, y + dy, rng)
     })
+}
+
+/// Pixel (i, j)'s one sample: DESIGN.md makes it the pixel centre.
+#[inline(always)]
+fn centre_sample(setup: &Setup, i: u32, j: u32) -> (f64, f64, Rng) {
+    let streams = PixelStreams::new(setup.seed, pixel_index(setup, i as f64, j as f64));
+    (i as f64 + 0.5, j as f64 + 0.5, streams.sample(0))
 }
 
 #[cfg(test)]
