@@ -173,10 +173,10 @@ impl<'a> TriangleShading<'a> {
 
     /// The point where the primary ray along `towards` (not normalized)
     /// meets the triangle at `hit`, its shading normal (towards the viewer
-    /// on double-sided materials), the unit direction to the eye and the
-    /// length of `towards`: what the light at a point needs of it.
+    /// on double-sided materials) and the unit direction to the eye: what
+    /// the light at a point needs of it.
     #[inline(always)]
-    pub(super) fn point(&self, towards: DVec3, hit: Hit) -> (DVec3, DVec3, DVec3, f64) {
+    pub(super) fn point(&self, towards: DVec3, hit: Hit) -> (DVec3, DVec3, DVec3) {
         let length = towards.length();
         let b = hit.at.barycentric;
         let p = self.facet.point_at(b);
@@ -185,7 +185,7 @@ impl<'a> TriangleShading<'a> {
         if self.facet.double_sided && n.dot(o) < 0.0 {
             n = -n;
         }
-        (p, n, o, length)
+        (p, n, o)
     }
 
     /// The tint of every point, where neither a texture nor vertex colours
@@ -237,7 +237,7 @@ impl<'a> TriangleShading<'a> {
     /// meets the triangle at `hit` (barycentrics and distance).
     #[inline(always)]
     pub(super) fn surface(&self, reference: &Reference, towards: DVec3, hit: Hit) -> Surface {
-        let (p, n, o, _) = self.point(towards, hit);
+        let (p, n, o) = self.point(towards, hit);
         let (geometric_normal, shadow_origin) = self.lift(p, o);
         let (_, _, tint) = self.uv_colour_and_tint(reference, hit.at.barycentric);
         Surface {

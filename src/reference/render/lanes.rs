@@ -362,7 +362,7 @@ mod tests {
         let n = spp.count();
         let mut sums = PixelSums::new(luminance);
         for &towards in directions.iter() {
-            let (p, normal, o, _) = shading.point(towards, cover.hit(towards));
+            let (p, normal, o) = shading.point(towards, cover.hit(towards));
             let light = point_light_at(
                 setup,
                 (p, normal, o),
