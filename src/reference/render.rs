@@ -515,7 +515,7 @@ fn directions_first(setup: &Setup, spp: Strata, (i, j): (u32, u32), buffers: &mu
 /// is the pixel's centre: [`centre_sample`]).
 fn sample_points(setup: &Setup, spp: Strata, i: u32, j: u32) -> impl Iterator<Item = (f64, f64, Rng)> + '_ {
     debug_assert!(spp.count() > 1, "one sample a pixel is its centre, not jittered");
-    let streams = PixelStreams::new(setup.seed, pixel_index(setup, i as f64, j as f64));
+    let streams = pixel_streams(setup, i, j);
     let (x, y) = (i as f64, j as f64);
     spp.cells().enumerate().map(move |(s, stratum)| {
         let mut rng = streams.sample(s as u64);
@@ -527,8 +527,18 @@ fn sample_points(setup: &Setup, spp: Strata, i: u32, j: u32) -> impl Iterator<It
 /// Pixel (i, j)'s one sample: DESIGN.md makes it the pixel centre.
 #[inline(always)]
 fn centre_sample(setup: &Setup, i: u32, j: u32) -> (f64, f64, Rng) {
-    let streams = PixelStreams::new(setup.seed, pixel_index(setup, i as f64, j as f64));
-    (i as f64 + 0.5, j as f64 + 0.5, streams.sample(0))
+    (
+        i as f64 + 0.5,
+        j as f64 + 0.5,
+        pixel_streams(setup, i, j).sample(0),
+    )
+}
+
+/// Pixel (i, j)'s random streams, one a sample: every path that samples
+/// the pixel draws from these, so all give it the same samples.
+#[inline(always)]
+fn pixel_streams(setup: &Setup, i: u32, j: u32) -> PixelStreams {
+    PixelStreams::new(setup.seed, pixel_index(setup, i as f64, j as f64))
 }
 
 #[cfg(test)]

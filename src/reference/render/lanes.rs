@@ -12,7 +12,7 @@ use super::pixel::Pixel;
 use crate::physics::brdf::blinn_phong;
 use crate::physics::radiometry::{incidence, point_irradiance};
 use crate::reference::grid::Cover;
-use crate::reference::sampling::{PixelStreams, Strata};
+use crate::reference::sampling::Strata;
 use crate::reference::shading::{LightEstimate, Setup};
 use crate::reference::simd::{self, Isa};
 use crate::reference::surface::Facet;
@@ -121,7 +121,7 @@ impl Lanes {
         }
         let setup = pixel.setup;
         let (i, j) = pixel.pixel;
-        let streams = PixelStreams::new(setup.seed, super::pixel_index(setup, i as f64, j as f64));
+        let streams = super::pixel_streams(setup, i, j);
         let (x0, y0) = (i as f64, j as f64);
         let (xs, ys, zs) = (&mut self.x[..n], &mut self.y[..n], &mut self.z[..n]);
         let cells = &self.cells[..n];
