@@ -39,6 +39,16 @@ impl Cone {
     /// the 110 k-triangle engine's process, a shadow packet holding 128.)
     #[inline(always)]
     pub fn around(apex: DVec3, points: impl Iterator<Item = DVec3> + Clone) -> Option<Self> {
+        Self::around_reaching(apex, points).map(|(cone, _)| cone)
+    }
+
+    /// [`Self::around`], with the least and the greatest depth of the
+    /// points along its axis.
+    #[inline(always)]
+    pub fn around_reaching(
+        apex: DVec3,
+        points: impl Iterator<Item = DVec3> + Clone,
+    ) -> Option<(Self, [f64; 2])> {
         let axis = points
             .clone()
             .fold(DVec3::ZERO, |s, p| s + (p - apex))
@@ -46,6 +56,7 @@ impl Cone {
         let (u, v) = axis.any_orthonormal_pair();
         let (mut s0, mut s1, mut r0, mut r1) =
             (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+        let (mut near, mut far) = (f64::INFINITY, 0.0_f64);
         for p in points {
             let w = p - apex;
             let along = w.dot(axis);
@@ -54,6 +65,10 @@ impl Cone {
             if !(along > 0.0 && along < f64::INFINITY) {
                 return None;
             }
+            (near, far) = (
+                if along < near { along } else { near },
+                if along > far { along } else { far },
+            );
             let inverse = along.recip();
             let (s, r) = (w.dot(u) * inverse, w.dot(v) * inverse);
             // A NaN slope is passed over, as f64::min and max would.
@@ -63,11 +78,12 @@ impl Cone {
         // Widened by the rounding of the slopes.
         let widen = |x: f64| ROUNDING * (1.0 + x.abs());
         let (s0, s1, r0, r1) = (s0 - widen(s0), s1 + widen(s1), r0 - widen(r0), r1 + widen(r1));
-        Some(Self {
+        let cone = Self {
             apex,
             planes: [u - axis * s0, axis * s1 - u, v - axis * r0, axis * r1 - v],
             axis,
-        })
+        };
+        Some((cone, [near, far]))
     }
 
     /// The square pyramid from `apex` about the unit `axis` whose four
@@ -85,6 +101,14 @@ impl Cone {
 
     pub fn axis(&self) -> DVec3 {
         self.axis
+    }
+
+    /// The larger of its two widths across the axis, as tangents of the
+    /// angle from it (s₁ − s₀ or r₁ − r₀ of [`Self::around`]; twice the
+    /// slope of [`Self::square`]).
+    pub fn width(&self) -> f64 {
+        let [a, b, c, d] = self.planes.map(|n| n.dot(self.axis));
+        (a + b).max(c + d)
     }
 
     /// Whether the triangle (corners relative to the apex) lies wholly
