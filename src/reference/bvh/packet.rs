@@ -502,16 +502,18 @@ fn floor_below(apex: DVec3, normal: DVec3, (points, reach): (&[DVec3], f64)) -> 
 #[derive(Debug, Default)]
 pub struct ShadowPacket {
     /// The rays' origins, their end (the light) and the origins' spread
-    /// about it: the rays and their lines are made from them at the first
-    /// triangle tested (`ready`), so that a packet whose cone meets none
-    /// (a lit patch) never pays for them.
+    /// about it: the rays' lines are made from them at the first triangle
+    /// tested (`ready`), so that a packet whose cone meets none (a lit
+    /// patch) never pays for them, and each ray's sheared form at its first
+    /// exact test (most rays of the 110 k-triangle engine's packets have
+    /// none: −1.2 % of its instructions).
     origins: Vec<DVec3>,
     /// The triangle each ray passes over (`usize::MAX`: none).
     passes: Vec<usize>,
     apex: DVec3,
     spread: f64,
     ready: bool,
-    rays: Vec<ShearedRay>,
+    rays: Vec<Option<ShearedRay>>,
     limits: Vec<f64>,
     /// What lies below it blocks no ray (see [`floor_below`]).
     floor: Option<(DVec3, f64)>,
@@ -553,10 +555,9 @@ impl Rays for ShadowPacket {
         }
         self.ready = true;
         self.rays.clear();
-        for &o in &self.origins {
-            self.rays.push(ShearedRay::new(o, self.apex - o));
-        }
-        let directions = self.rays.iter().map(|r| r.direction);
+        self.rays.resize(self.origins.len(), None);
+        let apex = self.apex;
+        let directions = self.origins.iter().map(|&o| apex - o);
         self.lines.fill(directions, &self.limits, self.spread);
     }
 
@@ -565,7 +566,10 @@ impl Rays for ShadowPacket {
         if bvh.original[slot] == self.passes[k] {
             return false;
         }
-        let blocked = self.rays[k].hits(&bvh.corners[slot], 0.0, self.t_max);
+        let o = self.origins[k];
+        let apex = self.apex;
+        let ray = self.rays[k].get_or_insert_with(|| ShearedRay::new(o, apex - o));
+        let blocked = ray.hits(&bvh.corners[slot], 0.0, self.t_max);
         if blocked {
             self.limits[k] = f64::NEG_INFINITY;
             self.lines.set_limit(k, f64::NEG_INFINITY);
