@@ -105,7 +105,8 @@ impl Cone {
 
     /// The larger of its two widths across the axis, as tangents of the
     /// angle from it (s₁ − s₀ or r₁ − r₀ of [`Self::around`]; twice the
-    /// slope of [`Self::square`]).
+    /// slope of [`Self::square`]). Not for [`Self::spanned`]'s cones, whose
+    /// planes are not of unit length.
     pub fn width(&self) -> f64 {
         let [a, b, c, d] = self.planes.map(|n| n.dot(self.axis));
         (a + b).max(c + d)
