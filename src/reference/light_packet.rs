@@ -307,14 +307,12 @@ mod tests {
             .collect()
     }
 
-    /// Origins on a raised platform's edge and on the ground beyond it, as
-    /// a block of pixels on the platform's silhouette sees them, with a
-    /// strip above the ground that shadows half of the ground's: split
-    /// into two packets, every ray gets what it gets on its own.
-    #[test]
-    fn a_split_packet_gives_each_ray_its_own_answer() {
+    /// A raised platform with a strip above the ground beyond it, a small
+    /// block higher up on the light's other side, and the light.
+    fn platforms() -> (TriangleBvh, DVec3) {
         let mut triangles = grid(0.0, (-3.0, -3.0), 6.0, 40);
         triangles.extend(grid(1.0, (-1.0, -1.0), 2.0, 20));
+        triangles.extend(grid(2.0, (3.3, 0.0), 0.4, 4));
         // The strip over the ground origins' rays where x < 1.52.
         let strip = |x: f64, z: f64| DVec3::new(x, 3.0, z);
         for corners in [
@@ -326,27 +324,75 @@ mod tests {
                 occludes: true,
             });
         }
-        let bvh = TriangleBvh::new(&triangles);
-        let light = DVec3::new(3.0, 10.0, 0.2);
+        (TriangleBvh::new(&triangles), DVec3::new(3.0, 10.0, 0.2))
+    }
+
+    /// `n` origins by the platform's edge and on the ground beyond it, as
+    /// a block of pixels on the platform's silhouette sees them, the
+    /// ground's half in the strip's shadow.
+    fn edge_and_ground(n: usize) -> Vec<DVec3> {
         let mut rng = crate::reference::sampling::Rng::new(7, 0, 0);
-        let mut origins = Vec::new();
-        for k in 0..64 {
-            let (u, z) = (rng.next_f64(), 0.1 + 0.02 * rng.next_f64());
-            origins.push(match k % 2 {
-                0 => DVec3::new(0.96 + 0.04 * u, 1.0 + 1e-6, z),
-                _ => DVec3::new(1.5 + 0.04 * u, 1e-6, z),
-            });
-        }
-        let mut packet = LightPacket::default();
+        (0..n)
+            .map(|k| {
+                let (u, z) = (rng.next_f64(), 0.1 + 0.02 * rng.next_f64());
+                match k % 2 {
+                    0 => DVec3::new(0.96 + 0.04 * u, 1.0 + 1e-6, z),
+                    _ => DVec3::new(1.5 + 0.04 * u, 1e-6, z),
+                }
+            })
+            .collect()
+    }
+
+    /// Each origin's answer from the packet, against the ray's own walk;
+    /// how many the packet told, and how many of those are blocked.
+    fn answers(
+        bvh: &TriangleBvh,
+        light: DVec3,
+        origins: &[DVec3],
+        packet: &mut LightPacket,
+    ) -> (usize, usize) {
         packet.reset(origins.iter().map(|&o| (o, DVec3::Y, usize::MAX)));
-        let t_max = 1.0 - STOP_SHORT_REL;
-        let mut blocked = 0;
-        for &o in &origins {
-            let alone = bvh.occluded(o, light - o, 0.0, t_max);
-            assert_eq!(packet.blocked(&bvh, light, o), Some(alone), "{o}");
-            blocked += usize::from(alone);
+        let (mut told, mut blocked) = (0, 0);
+        for &o in origins {
+            let alone = bvh.occluded(o, light - o, 0.0, 1.0 - STOP_SHORT_REL);
+            if let Some(answer) = packet.blocked(bvh, light, o) {
+                assert_eq!(answer, alone, "{o}");
+                told += 1;
+                blocked += usize::from(alone);
+            }
         }
+        (told, blocked)
+    }
+
+    /// Split into two packets, every ray gets what it gets on its own,
+    /// blocked or not.
+    #[test]
+    fn a_split_packet_gives_each_ray_its_own_answer() {
+        let (bvh, light) = platforms();
+        let origins = edge_and_ground(64);
+        let mut packet = LightPacket::default();
+        let (told, blocked) = answers(&bvh, light, &origins, &mut packet);
         assert!(packet.split && packet.used == 2, "{} parts", packet.used);
-        assert!(0 < blocked && blocked < origins.len(), "{blocked} blocked");
+        assert_eq!(told, origins.len());
+        assert!(0 < blocked && blocked < told, "{blocked} blocked");
+    }
+
+    /// Three origins on the small block, nearest the light and on its
+    /// other side: split off first, too few for a packet, so the packet
+    /// leaves them to their own walks; the others split again in two.
+    #[test]
+    fn a_side_too_small_for_a_packet_goes_ray_by_ray() {
+        let (bvh, light) = platforms();
+        let mut origins = edge_and_ground(48);
+        let alone = [0.05, 0.15, 0.25].map(|z| DVec3::new(3.5, 2.0 + 1e-6, 0.1 + z));
+        origins.extend(alone);
+        let mut packet = LightPacket::default();
+        let (told, blocked) = answers(&bvh, light, &origins, &mut packet);
+        assert!(packet.split && packet.used == 2, "{} parts", packet.used);
+        assert_eq!(told, origins.len() - alone.len());
+        assert!(0 < blocked && blocked < told, "{blocked} blocked");
+        for o in alone {
+            assert_eq!(packet.blocked(&bvh, light, o), None, "{o}");
+        }
     }
 }
