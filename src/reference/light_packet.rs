@@ -55,9 +55,8 @@ pub(super) struct LightPacket {
     cursor: usize,
     /// The packet of every origin, when they were not split.
     whole: ShadowPacket,
-    /// When they were: each origin's packet and place in it (None: its ray
-    /// goes on its own), and the first `used` packets.
-    split: bool,
+    /// When they were (`used` > 0: the first `used` parts were cast):
+    /// each origin's part and place in it (None: its ray goes on its own).
     places: Vec<Option<(usize, usize)>>,
     parts: Vec<Part>,
     used: usize,
@@ -106,9 +105,9 @@ impl LightPacket {
             .chain(0..self.cursor)
             .find(|&i| self.origins[i] == origin)?;
         self.cursor = i;
-        match (self.cast, self.split) {
-            (Some(true), false) => Some(self.whole.blocked(i)),
-            (Some(true), true) => {
+        match self.cast {
+            Some(true) if self.used == 0 => Some(self.whole.blocked(i)),
+            Some(true) => {
                 let (part, k) = self.places[i]?;
                 Some(self.parts[part].packet.blocked(k))
             }
@@ -136,7 +135,7 @@ impl LightPacket {
             return false;
         };
         let n = self.origins.len();
-        self.split = false;
+        self.used = 0;
         if n >= 2 * MIN_RAYS && spread_along((near, far), &cone) {
             let axis = cone.axis();
             self.depths.clear();
@@ -146,10 +145,9 @@ impl LightPacket {
                     .enumerate()
                     .map(|(i, &o)| ((o - light).dot(axis), i)),
             );
-            self.used = 0;
-            self.split = self.cast_split(bvh, light, (0..n, &cone, (near, far)), SPLITS);
+            self.cast_split(bvh, light, (0..n, &cone, (near, far)), SPLITS);
         }
-        if !self.split {
+        if self.used == 0 {
             let floor = self.normal_sum.normalize_or_zero();
             let rays = (&self.origins[..], floor, &self.passes[..]);
             bvh.occluded_in_cone(&cone, rays, 1.0 - STOP_SHORT_REL, &mut self.whole);
@@ -372,7 +370,7 @@ mod tests {
         let origins = edge_and_ground(64);
         let mut packet = LightPacket::default();
         let (told, blocked) = answers(&bvh, light, &origins, &mut packet);
-        assert!(packet.split && packet.used == 2, "{} parts", packet.used);
+        assert_eq!(packet.used, 2, "parts");
         assert_eq!(told, origins.len());
         assert!(0 < blocked && blocked < told, "{blocked} blocked");
     }
@@ -388,7 +386,7 @@ mod tests {
         origins.extend(alone);
         let mut packet = LightPacket::default();
         let (told, blocked) = answers(&bvh, light, &origins, &mut packet);
-        assert!(packet.split && packet.used == 2, "{} parts", packet.used);
+        assert_eq!(packet.used, 2, "parts");
         assert_eq!(told, origins.len() - alone.len());
         assert!(0 < blocked && blocked < told, "{blocked} blocked");
         for o in alone {
