@@ -28,6 +28,7 @@ mod node_avx;
 mod packet;
 
 use super::intersect::{ShearedRay, TriangleHit};
+pub use ball::BallRegion;
 pub use cone::Cone;
 pub use packet::{PrimaryPacket, ShadowPacket};
 // `UVec2` is named inside obvhs's `traverse!` macro.

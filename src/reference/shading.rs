@@ -22,6 +22,7 @@
 //! distance stays negative whatever cos θ divides both by), while at 1 m
 //! from the origin it is 1 nm: no occluder closer than that exists in a scene.
 
+use super::bvh::BallRegion;
 use super::grid::{Answer, DirectionGrid};
 use super::image::luminance;
 use super::light_packet::LightPacket;
@@ -181,8 +182,10 @@ pub struct ShadingSample {
 pub(super) struct Scratch {
     /// The light samples' terms, for the mean and the noise estimate.
     y: Vec<f64>,
-    /// Occluders near the shadow rays of one shading point.
+    /// Occluders near the shadow rays of one shading point, and near
+    /// those of the points about it.
     candidates: Vec<u32>,
+    ball_region: BallRegion,
     /// A pixel's shadow rays towards a point light.
     pub light_packet: LightPacket,
 }
@@ -321,12 +324,17 @@ impl Reference {
         // Every shadow ray of this point runs from its shadow origin to the
         // sphere: gather the occluders near that path once, then test each
         // ray against those few (or, when there are many, through the BVH).
-        let Scratch { y, candidates, .. } = scratch;
+        let Scratch {
+            y,
+            candidates,
+            ball_region,
+            ..
+        } = scratch;
         let gathered = s.shadowed
-            && self.bvh.gather_near_ball(
+            && self.bvh.gather_near_ball_in(
+                ball_region,
                 (s.shadow_origin, s.geometric_normal),
-                q,
-                radius,
+                (q, radius),
                 MAX_CANDIDATES,
                 candidates,
             );

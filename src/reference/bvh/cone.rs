@@ -112,6 +112,16 @@ impl Cone {
         (a + b).max(c + d)
     }
 
+    /// The least depth along the axis of the triangle (corners relative to
+    /// the apex), less `slack`.
+    #[inline(always)]
+    pub(super) fn least_depth(&self, relative: &[DVec3; 3], slack: f64) -> f64 {
+        relative
+            .iter()
+            .fold(f64::INFINITY, |m, p| m.min(p.dot(self.axis)))
+            - slack
+    }
+
     /// Whether the triangle (corners relative to the apex) lies wholly
     /// outside one side plane, `slack` allowed.
     #[inline(always)]
@@ -138,6 +148,15 @@ pub(super) struct FrameCone {
 }
 
 impl FrameCone {
+    /// `cone` for `bvh`'s boxes, with the rays' floor if any.
+    pub(super) fn new(cone: Cone, bvh: &TriangleBvh, floor: Option<(DVec3, f64)>) -> Self {
+        Self {
+            cone,
+            apex_size: (cone.apex - bvh.centre).abs().max_element(),
+            floor,
+        }
+    }
+
     /// Whether the triangle (corners relative to the apex) lies wholly
     /// outside a side plane or below the floor, `slack` allowed.
     #[inline(always)]

@@ -136,11 +136,7 @@ impl TriangleBvh {
         let Some(bvh) = self.bvh.as_ref() else {
             return;
         };
-        let frame = FrameCone {
-            cone: *cone,
-            apex_size: (cone.apex - self.centre).abs().max_element(),
-            floor: rays.floor(),
-        };
+        let frame = FrameCone::new(*cone, self, rays.floor());
         let mut farthest = deepest(rays.limits());
         if R::NEAREST_FIRST {
             self.walk_nearest_first(bvh, &frame, rays, &mut farthest);
@@ -217,7 +213,7 @@ impl TriangleBvh {
     /// The corners of the triangle in leaf slot `slot` relative to `apex`,
     /// and the allowance for the rounding of the tests on them.
     #[inline(always)]
-    fn relative_to(&self, slot: usize, apex: DVec3) -> ([DVec3; 3], f64) {
+    pub(super) fn relative_to(&self, slot: usize, apex: DVec3) -> ([DVec3; 3], f64) {
         let relative = self.corners[slot].map(|p| p - apex);
         (relative, ROUNDING * extent(&relative))
     }
@@ -238,10 +234,7 @@ impl TriangleBvh {
         if frame.misses(&relative, slack) {
             return false;
         }
-        let nearest = relative
-            .iter()
-            .fold(f64::INFINITY, |m, p| m.min(p.dot(cone.axis)))
-            - slack;
+        let nearest = cone.least_depth(&relative, slack);
         // The deepest limit is found again only when one fell.
         if nearest <= *farthest && rays.test(self, slot, &relative, nearest) {
             *farthest = rays.deepest();
