@@ -11,12 +11,16 @@ use crate::reference::intersect::{ShearedRay, extent};
 use glam::DVec3;
 
 /// A region's cross-section at the point it was made for, as a share of
-/// the ball's radius: its apex then lies a third of the way back from the
-/// point to the ball's centre.
-const REGION_SHARE: f64 = 0.25;
+/// the ball's radius: its apex then lies three times the point's distance
+/// from the ball's centre behind it. Callgrind, 1 thread, against 1/4 (and
+/// 1/2): the default scene under R = 0.3 m, 64 light samples, −1.9 %
+/// (−1.5 %), the sphere race's scene −6.8 % (−5.1 %), the 110 k-triangle
+/// engine +0.5 % (+0.4 %).
+const REGION_SHARE: f64 = 0.75;
 /// A region gathers no more occluders than this (a crowded one is left to
-/// the points' own walks).
-const REGION_LIMIT: usize = 64;
+/// the points' own walks): against 64, the engine −0.3 %, the default
+/// scene the same.
+const REGION_LIMIT: usize = 32;
 /// Backing off after failed regions: at most 2^this − 1 points.
 const MAX_FAILURES: u32 = 6;
 
