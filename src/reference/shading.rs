@@ -182,9 +182,9 @@ pub struct ShadingSample {
 pub(super) struct Scratch {
     /// The light samples' terms, for the mean and the noise estimate.
     y: Vec<f64>,
-    /// Occluders near the shadow rays of one shading point, and near
-    /// those of the points about it.
+    /// Occluders near the shadow rays of one shading point.
     candidates: Vec<u32>,
+    /// Those of the region of points about it, gathered once.
     ball_region: BallRegion,
     /// A pixel's shadow rays towards a point light.
     pub light_packet: LightPacket,
@@ -322,8 +322,9 @@ impl Reference {
     fn sphere(&self, setup: &Setup, s: &Surface, rng: &mut Rng, scratch: &mut Scratch) -> LightEstimate {
         let (q, radius) = (setup.light_position, setup.radius_m);
         // Every shadow ray of this point runs from its shadow origin to the
-        // sphere: gather the occluders near that path once, then test each
-        // ray against those few (or, when there are many, through the BVH).
+        // sphere: gather the occluders near that path once (from those of
+        // a region shared with the points about it), then test each ray
+        // against those few (or, when there are many, through the BVH).
         let Scratch {
             y,
             candidates,
