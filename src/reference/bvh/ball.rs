@@ -1,6 +1,7 @@
 //! A sphere light's shadow rays from one shading point: every segment from
 //! the point to the ball lies in the cone the ball subtends. The occluders
-//! that may meet that cone are gathered once, by the packets' cone walk;
+//! that may meet that cone are gathered once, by the packets' cone walk, or
+//! taken from those of a region of neighbouring points ([`BallRegion`]);
 //! each ray is then tested against those few, and when there is none, no
 //! ray needs a test.
 
@@ -13,9 +14,9 @@ use glam::DVec3;
 /// A region's cross-section at the point it was made for, as a share of
 /// the ball's radius: its apex then lies three times the point's distance
 /// from the ball's centre behind it. Callgrind, 1 thread, against 1/4 (and
-/// 1/2): the default scene under R = 0.3 m, 64 light samples, −1.9 %
-/// (−1.5 %), the sphere race's scene −6.8 % (−5.1 %), the 110 k-triangle
-/// engine +0.5 % (+0.4 %).
+/// 1/2), 64 occluders at most: the default scene under R = 0.3 m, 64 light
+/// samples, −1.9 % (−1.5 %), the sphere race's scene −6.8 % (−5.1 %), the
+/// 110 k-triangle engine +0.9 % (+0.7 %).
 const REGION_SHARE: f64 = 0.75;
 /// A region gathers no more occluders than this (a crowded one is left to
 /// the points' own walks): against 64, the engine −0.3 %, the default
