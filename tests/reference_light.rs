@@ -476,3 +476,39 @@ fn the_penumbra_converges_as_the_light_samples_grow() {
         100.0 * last / mean
     );
 }
+
+/// Under a sphere light the pixel probe shows exactly what the render
+/// computed at every pixel of the default scene, whose spheres, box, wall
+/// and board give the shared gathering of occluders (a region for each block
+/// of pixels) points at its edges, points outside it and crowded regions.
+#[test]
+fn the_probe_shows_the_render_under_a_sphere_light() {
+    let scene = lumlab::scene::default_scene();
+    let reference = Reference::new(&scene);
+    let mut settings = Settings::default();
+    (settings.image.width, settings.image.height) = (96, 54);
+    settings.light.radius_m = 0.3;
+    let options = ReferenceOptions {
+        spp: 1,
+        light_samples: 8,
+        seed: 11,
+        ..ReferenceOptions::DEFAULT
+    };
+    let image = reference
+        .render(&settings, &options, &RenderControl::default())
+        .unwrap();
+    let mut shaded = 0;
+    for j in 0..54 {
+        for i in 0..96 {
+            let at = image.index(i, j);
+            let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
+            let Some(sample) = reference.trace_pixel(&settings, &options, x, y) else {
+                continue;
+            };
+            assert_eq!(sample.radiance.to_array(), image.radiance[at], "pixel ({i}, {j})");
+            assert_eq!(sample.visibility as f32, image.visibility[at], "pixel ({i}, {j})");
+            shaded += 1;
+        }
+    }
+    assert!(shaded > 3000, "{shaded} pixels shaded");
+}

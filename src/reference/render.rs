@@ -5,7 +5,7 @@ use super::bvh::{Cone, PrimaryPacket};
 use super::grid::DirectionGrid;
 use super::image::{ReferenceImage, RenderStats};
 use super::sampling::{PixelStreams, Rng, Strata};
-use super::shading::{Scratch, Setup};
+use super::shading::{REGION_BLOCK, Scratch, Setup};
 use super::surface::{ShadingCache, Surface};
 use super::{Reference, ReferenceError, ReferenceOptions, RenderControl, pixel_index};
 use crate::settings::Settings;
@@ -204,6 +204,7 @@ impl Reference {
             for i in (x0..x1).step_by(cols as usize) {
                 let width = cols.min(x1 - i);
                 if width * band == 1 {
+                    buffers.scratch.block = Some(region_block(i, j));
                     let block = match (&setup.eye_grid, &mut blocks) {
                         (Some(grid), Some(blocks)) => blocks.of(self, setup, grid, (i, j)),
                         _ => None,
@@ -233,6 +234,8 @@ impl Reference {
                 self.run_samples(setup, &mut buffers, &mut shading);
                 self.aim_light_packet(setup, &mut buffers);
                 for k in 0..(width * band) as usize {
+                    let (c, r) = (k as u32 % width, k as u32 / width);
+                    buffers.scratch.block = Some(region_block(i + c, j + r));
                     let pixel = self.shade_pixel(setup, k * n as usize, n, false, &mut buffers);
                     if k < width as usize {
                         tile.add(pixel);
@@ -411,6 +414,11 @@ impl Reference {
         }
         sums.pixel(n)
     }
+}
+
+/// The block of pixel (i, j) for the sphere light's shared gatherings.
+fn region_block(i: u32, j: u32) -> (u32, u32) {
+    (i / REGION_BLOCK, j / REGION_BLOCK)
 }
 
 /// What tracing a pixel's primary samples gave.

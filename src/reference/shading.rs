@@ -184,14 +184,25 @@ pub(super) struct Scratch {
     y: Vec<f64>,
     /// Occluders near the shadow rays of one shading point.
     candidates: Vec<u32>,
-    /// Those of the region of points about it, gathered once.
+    /// Those of a region about the block of pixels being shaded (see
+    /// [`REGION_BLOCK`]), gathered once.
     ball_region: BallRegion,
+    /// That block, when a render or the probe says which it is.
+    pub block: Option<(u32, u32)>,
     /// A pixel's shadow rays towards a point light.
     pub light_packet: LightPacket,
 }
 
 /// Gathered occluders beyond this many: each shadow ray goes through the BVH.
 const MAX_CANDIDATES: usize = 24;
+
+/// Pixels along each side of the blocks whose shading points share one
+/// gathering of a sphere light's occluders, made for the centre of the
+/// block's first pixel whichever point asks first: the same in every render
+/// and in the probe. Callgrind, 1 thread, against 8 (4): the default scene
+/// under R = 0.3 m, 64 light samples +2.5 % (+2.5 %), the 110 k-triangle
+/// engine −3.1 % (−6.3 %), the sphere race's scene +3.4 % (+7.5 %).
+pub(super) const REGION_BLOCK: u32 = 16;
 
 /// The light's contribution at a shading point: L / (c · colour) and V.
 pub(super) struct LightEstimate {
@@ -207,7 +218,18 @@ impl Reference {
     /// Everything about the primary sample through (x, y): the pixel probe.
     pub(super) fn probe(&self, setup: &Setup, x: f64, y: f64, rng: &mut Rng) -> Option<ShadingSample> {
         let (s, (distance_m, uv, color)) = self.probed_surface(setup, setup.rays.towards(x, y))?;
-        let estimate = self.light(setup, &s, rng, false, &mut Scratch::default());
+        // The pixel's block, for the region its render gathered from.
+        let block = Some((x as u32 / REGION_BLOCK, y as u32 / REGION_BLOCK));
+        let estimate = self.light(
+            setup,
+            &s,
+            rng,
+            false,
+            &mut Scratch {
+                block,
+                ..Scratch::default()
+            },
+        );
         let tri = &self.triangles[s.triangle];
         let inc = incidence(s.p, s.n, setup.light_position);
         Some(ShadingSample {
@@ -317,6 +339,15 @@ impl Reference {
         }
     }
 
+    /// The shadow origin and surface normal at the centre of the first
+    /// pixel of `block`, where a shadowed surface lies: what its region of
+    /// a sphere light's occluders is made for.
+    fn region_anchor(&self, setup: &Setup, (bx, by): (u32, u32)) -> Option<(DVec3, DVec3)> {
+        let (x, y) = ((bx * REGION_BLOCK) as f64 + 0.5, (by * REGION_BLOCK) as f64 + 0.5);
+        let (s, _) = self.probed_surface(setup, setup.rays.towards(x, y))?;
+        s.shadowed.then_some((s.shadow_origin, s.geometric_normal))
+    }
+
     /// The sphere light's contribution at the surface, estimated with the
     /// light-sample stream `rng` (see the module).
     fn sphere(&self, setup: &Setup, s: &Surface, rng: &mut Rng, scratch: &mut Scratch) -> LightEstimate {
@@ -329,16 +360,34 @@ impl Reference {
             y,
             candidates,
             ball_region,
+            block,
             ..
         } = scratch;
+        if s.shadowed
+            && let Some(block) = *block
+            && ball_region.block() != Some(block)
+        {
+            let anchor = self.region_anchor(setup, block);
+            ball_region.make(&self.bvh, block, anchor, (q, radius));
+        }
         let gathered = s.shadowed
-            && self.bvh.gather_near_ball_in(
-                ball_region,
-                (s.shadow_origin, s.geometric_normal),
-                (q, radius),
-                MAX_CANDIDATES,
-                candidates,
-            );
+            && if block.is_some() {
+                self.bvh.gather_near_ball_in(
+                    ball_region,
+                    (s.shadow_origin, s.geometric_normal),
+                    (q, radius),
+                    MAX_CANDIDATES,
+                    candidates,
+                )
+            } else {
+                self.bvh.gather_near_ball(
+                    (s.shadow_origin, s.geometric_normal),
+                    q,
+                    radius,
+                    MAX_CANDIDATES,
+                    candidates,
+                )
+            };
         let le = sphere_radiance(setup.power_w, radius);
         let to_centre = q - s.p;
         let d2 = to_centre.length_squared();

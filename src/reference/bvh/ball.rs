@@ -13,17 +13,12 @@ use glam::DVec3;
 
 /// A region's cross-section at the point it was made for, as a share of
 /// the ball's radius: its apex then lies three times the point's distance
-/// from the ball's centre behind it. Callgrind, 1 thread, against 1/4 (and
-/// 1/2), 64 occluders at most: the default scene under R = 0.3 m, 64 light
-/// samples, −1.9 % (−1.5 %), the sphere race's scene −6.8 % (−5.1 %), the
-/// 110 k-triangle engine +0.9 % (+0.7 %).
+/// from the ball's centre behind it (measured against 1/4 and 1/2: see
+/// docs/journal/reference.md).
 const REGION_SHARE: f64 = 0.75;
 /// A region gathers no more occluders than this (a crowded one is left to
-/// the points' own walks): against 64, the engine −0.3 %, the default
-/// scene the same.
+/// the points' own walks).
 const REGION_LIMIT: usize = 32;
-/// Backing off after failed regions: at most 2^this − 1 points.
-const MAX_FAILURES: u32 = 6;
 
 /// The occluders near every segment from a point of a region to the ball,
 /// gathered once for the many shading points that lie in it (see
@@ -45,12 +40,8 @@ pub struct BallRegion {
     /// Every occluder the region's walk kept, or None when it kept more
     /// than [`REGION_LIMIT`].
     slots: Option<Vec<u32>>,
-    /// The points the region served from `slots`.
-    served: u32,
-    /// Regions that failed in a row (crowded, or serving one point), and
-    /// the points left to their own walks before the next region.
-    failures: u32,
-    backoff: u32,
+    /// The block of pixels it was made for (see [`Self::make`]).
+    block: Option<(u32, u32)>,
 }
 
 impl BallRegion {
@@ -69,33 +60,38 @@ impl BallRegion {
             && cone.axis.dot(w) < self.deepest
     }
 
-    /// Ends the region (a point lies outside it) and makes a new one for
-    /// `from`, unless regions failed lately: after n failures in a row
-    /// the next 2ⁿ − 1 points go to their own walks (on a 110 k-triangle
-    /// engine, most regions fill up or serve one point, and their walks
-    /// only added to the points' own).
-    fn renew(&mut self, bvh: &TriangleBvh, from: DVec3, n: DVec3, ball: (DVec3, f64)) -> bool {
-        if self.cone.take().is_some() {
-            let failed = self.slots.is_none() || self.served < 2;
-            self.failures = if failed {
-                (self.failures + 1).min(MAX_FAILURES)
-            } else {
-                0
-            };
-            self.backoff = (1 << self.failures) - 1;
+    /// The block of pixels the region was made for, if any.
+    pub fn block(&self) -> Option<(u32, u32)> {
+        self.block
+    }
+
+    /// The region for a block of pixels, made for its `anchor` (the shadow
+    /// origin and surface normal of one point of it: the same whichever of
+    /// its points asks first, so each point's list, and the pixel, are the
+    /// same in every render and in the probe). None where the anchor sees
+    /// no region (background, the ball not above its surface): each point
+    /// of the block then walks on its own.
+    pub fn make(
+        &mut self,
+        bvh: &TriangleBvh,
+        block: (u32, u32),
+        anchor: Option<(DVec3, DVec3)>,
+        (centre, radius): (DVec3, f64),
+    ) {
+        self.block = Some(block);
+        self.cone = None;
+        let Some((from, surface)) = anchor else {
+            return;
+        };
+        if let Some((n, _)) = BallCone::new(from, centre, radius).and_then(|ball| ball.floor(surface)) {
+            self.aim(bvh, from, n, (centre, radius));
         }
-        if self.backoff > 0 {
-            self.backoff -= 1;
-            return false;
-        }
-        self.served = 0;
-        self.aim(bvh, from, n, ball)
     }
 
     /// A new region for the points near `from`, whose surface's plane
     /// (normal `n`, towards the ball) is `from`'s own walk's floor, and
-    /// its occluders gathered; false when none can be made.
-    fn aim(&mut self, bvh: &TriangleBvh, from: DVec3, n: DVec3, (centre, radius): (DVec3, f64)) -> bool {
+    /// its occluders gathered; none where the ball is not above the floor.
+    fn aim(&mut self, bvh: &TriangleBvh, from: DVec3, n: DVec3, (centre, radius): (DVec3, f64)) {
         let to_centre = centre - from;
         let distance = to_centre.length();
         let axis = to_centre / distance;
@@ -112,7 +108,7 @@ impl BallRegion {
         let level = n.dot(w) - 1e-10 * from.abs().max_element();
         let margin = radius * (1.0 + ROUNDING) + ROUNDING * (to_centre.abs().max_element() + length);
         if !(slope.is_finite() && n.dot(centre - apex) - level > margin) {
-            return false;
+            return;
         }
         let cone = Cone::square(apex, axis, slope);
         self.ball = (centre, radius);
@@ -136,7 +132,6 @@ impl BallRegion {
             &mut Visitor::new(self.deepest, keep).with_floor(Some(self.floor)),
         );
         self.slots = fits.then_some(slots);
-        self.holds(from, (centre, radius))
     }
 }
 
@@ -183,14 +178,13 @@ impl TriangleBvh {
     }
 
     /// [`Self::gather_near_ball`], from the occluders `region` holds where
-    /// `from` lies in it (a new region is made around `from` when it does
-    /// not): the region's occluders that `from`'s own walk would keep. So
-    /// the list holds every occluder that may block one of `from`'s
-    /// segments, and no more than its own walk gives (fewer where that
-    /// walk's square pyramid reaches past the region).
+    /// `from` lies in it: the region's occluders that `from`'s own walk
+    /// would keep. So the list holds every occluder that may block one of
+    /// `from`'s segments, and no more than its own walk gives (fewer where
+    /// that walk's square pyramid reaches past the region).
     pub fn gather_near_ball_in(
         &self,
-        region: &mut BallRegion,
+        region: &BallRegion,
         (from, surface): (DVec3, DVec3),
         (centre, radius): (DVec3, f64),
         limit: usize,
@@ -198,16 +192,12 @@ impl TriangleBvh {
     ) -> bool {
         let ball = BallCone::new(from, centre, radius);
         let floor = ball.as_ref().and_then(|ball| ball.floor(surface));
-        let (Some(ball), Some((n, _))) = (ball, floor) else {
+        let (Some(ball), Some(_), Some(slots)) = (ball, floor, &region.slots) else {
             return self.gather_near_ball((from, surface), centre, radius, limit, out);
         };
-        if !(region.holds(from, (centre, radius)) || region.renew(self, from, n, (centre, radius))) {
+        if !region.holds(from, (centre, radius)) {
             return self.gather_near_ball((from, surface), centre, radius, limit, out);
         }
-        let Some(slots) = &region.slots else {
-            return self.gather_near_ball((from, surface), centre, radius, limit, out);
-        };
-        region.served += 1;
         out.clear();
         let frame = FrameCone::new(ball.pyramid, self, floor);
         for &slot in slots {
@@ -433,11 +423,12 @@ mod tests {
         assert!(clear > 100 && blocked > 100, "{clear} clear, {blocked} blocked");
     }
 
-    /// Shading points met as a renderer meets them, a row of neighbours at
-    /// a time on the ground and on a sphere, each run under one ball: the
-    /// occluders a region gives a point block exactly what brute force
-    /// blocks, each is one the point's own walk keeps, and most points are
-    /// served by a region made for an earlier one.
+    /// Rows of neighbouring shading points on a ground and on a sphere,
+    /// each row under one ball with its region made for its first point:
+    /// the occluders the region gives a point block exactly what brute force
+    /// blocks, and each is one the point's own walk keeps; a quarter of the
+    /// points at least lie in their region (rows on the ground leave it,
+    /// regions among the small occluders fill up).
     #[test]
     fn a_region_gives_each_point_what_blocks_its_segments() {
         let rng = &mut Rng::new(9, 0, 0);
@@ -445,7 +436,7 @@ mod tests {
         let bvh = TriangleBvh::new(&tris);
         let mut region = BallRegion::default();
         let (mut own, mut shared) = (Vec::new(), Vec::new());
-        let (mut points, mut regions, mut blocked) = (0, 0, 0);
+        let (mut points, mut held, mut blocked) = (0, 0, 0);
         for run in 0..60 {
             let index = if run % 3 == 0 {
                 run % 2
@@ -454,17 +445,17 @@ mod tests {
             };
             let radius = 0.05 + 0.6 * rng.next_f64();
             let (start, t) = (rng.next_f64() * 0.5, rng.next_f64() * 0.5);
-            let aim = lifted(&tris[index], (start, t)).0;
-            let centre = aim + DVec3::new(3.0 * rng.next_f64() - 1.5, 1.0 + 2.0 * rng.next_f64(), 1.0);
+            let anchor = lifted(&tris[index], (start, t));
+            let centre = anchor.0 + DVec3::new(3.0 * rng.next_f64() - 1.5, 1.0 + 2.0 * rng.next_f64(), 1.0);
+            region.make(&bvh, (run as u32, 0), Some(anchor), (centre, radius));
+            assert_eq!(region.block(), Some((run as u32, 0)));
             for step in 0..40 {
                 let (from, n) = lifted(&tris[index], (start + step as f64 * 0.004, t));
-                let before = region.cone.map(|cone| cone.apex);
-                if !bvh.gather_near_ball_in(&mut region, (from, n), (centre, radius), usize::MAX, &mut shared)
-                {
+                if !bvh.gather_near_ball_in(&region, (from, n), (centre, radius), usize::MAX, &mut shared) {
                     continue;
                 }
                 points += 1;
-                regions += usize::from(region.cone.map(|cone| cone.apex) != before);
+                held += usize::from(region.slots.is_some() && region.holds(from, (centre, radius)));
                 assert!(bvh.gather_near_ball((from, n), centre, radius, usize::MAX, &mut own));
                 for slot in &shared {
                     assert!(
@@ -488,6 +479,6 @@ mod tests {
             points > 2000 && blocked > 2000,
             "{points} points, {blocked} blocked"
         );
-        assert!(regions * 4 < points, "{regions} regions for {points} points");
+        assert!(held * 4 > points, "{held} of {points} points in their region");
     }
 }
