@@ -486,7 +486,7 @@ fn the_probe_shows_the_render_under_a_sphere_light() {
     let scene = lumlab::scene::default_scene();
     let reference = Reference::new(&scene);
     let mut settings = Settings::default();
-    (settings.image.width, settings.image.height) = (96, 54);
+    (settings.image.width, settings.image.height) = (320, 180);
     settings.light.radius_m = 0.3;
     let options = ReferenceOptions {
         spp: 1,
@@ -498,8 +498,8 @@ fn the_probe_shows_the_render_under_a_sphere_light() {
         .render(&settings, &options, &RenderControl::default())
         .unwrap();
     let mut shaded = 0;
-    for j in 0..54 {
-        for i in 0..96 {
+    for j in 0..180 {
+        for i in 0..320 {
             let at = image.index(i, j);
             let (x, y) = (i as f64 + 0.5, j as f64 + 0.5);
             let Some(sample) = reference.trace_pixel(&settings, &options, x, y) else {
