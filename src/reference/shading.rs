@@ -201,7 +201,7 @@ const MAX_CANDIDATES: usize = 24;
 /// block's first pixel whichever point asks first: the same in every render
 /// and in the probe. Callgrind, 1 thread, against 8 (4): the default scene
 /// under R = 0.3 m, 64 light samples +2.5 % (+2.5 %), the 110 k-triangle
-/// engine −3.1 % (−6.3 %), the sphere race's scene +3.4 % (+7.5 %).
+/// engine −3.1 % (−6.3 %), the sphere race's scene +3.4 % (−3.8 %).
 pub(super) const REGION_BLOCK: u32 = 16;
 
 /// The light's contribution at a shading point: L / (c · colour) and V.

@@ -371,6 +371,32 @@ mod tests {
         (p + n * 1e-9 * p.abs().max_element().max(1.0), n)
     }
 
+    /// Segments from `from` to `rays` points of the ball (inside, on it,
+    /// on its rim): those the `gathered` occluders block are those brute
+    /// force finds blocked, `case` naming the failure; how many are.
+    fn blocks_as_brute_force(
+        (bvh, tris): (&TriangleBvh, &[BvhTriangle]),
+        gathered: &[u32],
+        from: DVec3,
+        (centre, radius): (DVec3, f64),
+        rays: usize,
+        rng: &mut Rng,
+        case: &dyn std::fmt::Debug,
+    ) -> usize {
+        let mut blocked = 0;
+        for _ in 0..rays {
+            let d = in_ball(rng, from, centre, radius) - from;
+            let expected = occluded_brute_force(tris, from, d, 0.0, 1.0 - 1e-9);
+            assert_eq!(
+                bvh.blocked_by(gathered, from, d, 1.0 - 1e-9),
+                expected,
+                "{case:?}"
+            );
+            blocked += usize::from(expected);
+        }
+        blocked
+    }
+
     /// The gathered occluders block exactly the segments that brute force
     /// finds blocked (none is left out that blocks one), to points of the
     /// ball, its surface and its rim; from points lifted off the ground and
@@ -405,20 +431,10 @@ mod tests {
                 assert!((centre - from).length() <= radius * (1.0 + 1e-9), "case {case}");
                 continue;
             }
-            let says_clear = candidates.is_empty();
-            let mut any_blocked = false;
-            for _ in 0..300 {
-                let d = in_ball(rng, from, centre, radius) - from;
-                let expected = occluded_brute_force(&tris, from, d, 0.0, 1.0 - 1e-9);
-                assert_eq!(
-                    bvh.blocked_by(&candidates, from, d, 1.0 - 1e-9),
-                    expected,
-                    "case {case}"
-                );
-                any_blocked |= expected;
-            }
-            clear += usize::from(says_clear);
-            blocked += usize::from(any_blocked);
+            let ball = (centre, radius);
+            let blocks = blocks_as_brute_force((&bvh, &tris), &candidates, from, ball, 300, rng, &case);
+            clear += usize::from(candidates.is_empty());
+            blocked += usize::from(blocks > 0);
         }
         assert!(clear > 100 && blocked > 100, "{clear} clear, {blocked} blocked");
     }
@@ -463,16 +479,8 @@ mod tests {
                         "run {run}, step {step}: {slot} not in the point's own list"
                     );
                 }
-                for _ in 0..60 {
-                    let d = in_ball(rng, from, centre, radius) - from;
-                    let expected = occluded_brute_force(&tris, from, d, 0.0, 1.0 - 1e-9);
-                    assert_eq!(
-                        bvh.blocked_by(&shared, from, d, 1.0 - 1e-9),
-                        expected,
-                        "run {run}, step {step}"
-                    );
-                    blocked += usize::from(expected);
-                }
+                let ball = (centre, radius);
+                blocked += blocks_as_brute_force((&bvh, &tris), &shared, from, ball, 60, rng, &(run, step));
             }
         }
         assert!(
