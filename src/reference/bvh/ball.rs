@@ -95,8 +95,8 @@ impl BallRegion {
         let to_centre = centre - from;
         let distance = to_centre.length();
         let axis = to_centre / distance;
-        // The pyramid's cross-section at `from` is then at least
-        // REGION_SHARE · radius across (its slope is above R / (d + back)).
+        // At `from` the pyramid then reaches REGION_SHARE · radius or more
+        // from its axis (its slope is above R / (d + back)).
         let back = distance * REGION_SHARE / (1.0 - REGION_SHARE);
         let apex = from - axis * back;
         let length = distance + back;
