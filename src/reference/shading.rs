@@ -370,24 +370,16 @@ impl Reference {
             let anchor = self.region_anchor(setup, block);
             ball_region.make(&self.bvh, block, anchor, (q, radius));
         }
+        // Without a block (no render or probe said which) the region is
+        // never made, and each point walks on its own.
         let gathered = s.shadowed
-            && if block.is_some() {
-                self.bvh.gather_near_ball_in(
-                    ball_region,
-                    (s.shadow_origin, s.geometric_normal),
-                    (q, radius),
-                    MAX_CANDIDATES,
-                    candidates,
-                )
-            } else {
-                self.bvh.gather_near_ball(
-                    (s.shadow_origin, s.geometric_normal),
-                    q,
-                    radius,
-                    MAX_CANDIDATES,
-                    candidates,
-                )
-            };
+            && self.bvh.gather_near_ball_in(
+                ball_region,
+                (s.shadow_origin, s.geometric_normal),
+                (q, radius),
+                MAX_CANDIDATES,
+                candidates,
+            );
         let le = sphere_radiance(setup.power_w, radius);
         let to_centre = q - s.p;
         let d2 = to_centre.length_squared();

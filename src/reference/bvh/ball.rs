@@ -158,7 +158,19 @@ impl TriangleBvh {
         let Some(ball) = BallCone::new(from, centre, radius) else {
             return false;
         };
-        let floor = ball.floor(surface);
+        self.walk_near_ball(&ball, ball.floor(surface), limit, out)
+    }
+
+    /// [`Self::gather_near_ball`]'s walk, through `ball`'s pyramid above
+    /// `floor`, into `out` (cleared).
+    fn walk_near_ball(
+        &self,
+        ball: &BallCone,
+        floor: Option<(DVec3, f64)>,
+        limit: usize,
+        out: &mut Vec<u32>,
+    ) -> bool {
+        out.clear();
         let mut fits = true;
         let keep = |slot: usize, relative: &[DVec3; 3]| {
             if !self.occludes[slot] || ball.apart_by_plane(relative) {
@@ -190,15 +202,17 @@ impl TriangleBvh {
         limit: usize,
         out: &mut Vec<u32>,
     ) -> bool {
-        let ball = BallCone::new(from, centre, radius);
-        let floor = ball.as_ref().and_then(|ball| ball.floor(surface));
-        let (Some(ball), Some(_), Some(slots)) = (ball, floor, &region.slots) else {
-            return self.gather_near_ball((from, surface), centre, radius, limit, out);
+        out.clear();
+        let Some(ball) = BallCone::new(from, centre, radius) else {
+            return false;
+        };
+        let floor = ball.floor(surface);
+        let (Some(_), Some(slots)) = (floor, &region.slots) else {
+            return self.walk_near_ball(&ball, floor, limit, out);
         };
         if !region.holds(from, (centre, radius)) {
-            return self.gather_near_ball((from, surface), centre, radius, limit, out);
+            return self.walk_near_ball(&ball, floor, limit, out);
         }
-        out.clear();
         let frame = FrameCone::new(ball.pyramid, self, floor);
         for &slot in slots {
             let slot = slot as usize;
