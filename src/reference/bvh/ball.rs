@@ -154,15 +154,13 @@ impl TriangleBvh {
         limit: usize,
         out: &mut Vec<u32>,
     ) -> bool {
-        out.clear();
-        let Some(ball) = BallCone::new(from, centre, radius) else {
-            return false;
-        };
-        self.walk_near_ball(&ball, ball.floor(surface), limit, out)
+        // No region: the point's own walk.
+        let region = BallRegion::default();
+        self.gather_near_ball_in(&region, (from, surface), (centre, radius), limit, out)
     }
 
-    /// [`Self::gather_near_ball`]'s walk, through `ball`'s pyramid above
-    /// `floor`, into `out` (cleared).
+    /// A point's own walk through `ball`'s pyramid above `floor`, into
+    /// `out` (cleared).
     fn walk_near_ball(
         &self,
         ball: &BallCone,
