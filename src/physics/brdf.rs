@@ -83,8 +83,10 @@ impl<S: Real> BrdfTerms<S> {
 /// ln(1 − d) would lose the digits of d in the subtraction. With x = d/(2 − d),
 /// 1 − d = (1 − x)/(1 + x), so ln(1 − d) = −2 atanh x = −2 (x + x³/3 + x⁵/5 + …),
 /// a series that stands in for log1p (which WGSL lacks) up to d = 0.1; the
-/// shader uses the same code. Beyond, ln(1 − d) is exact enough: the lobe
-/// m ln cos θ only stays visible there for m < 70, so its error stays below 70 ε.
+/// shader uses the same code, and so does `f32` here (`f64` takes
+/// [`super::power::ln_one_minus`], which runs in lanes). Beyond, ln(1 − d)
+/// is exact enough: the lobe m ln cos θ only stays visible there for m < 70,
+/// so its error stays below 70 ε.
 pub fn ln_cos_from_gap<S: Real>(gap: S) -> S {
     if gap < S::lit(0.1) {
         // x ≤ 0.053: the terms up to x¹³/13 leave an error below x¹⁵/15 ≈ 5e-16 x.
@@ -100,13 +102,14 @@ pub fn ln_cos_from_gap<S: Real>(gap: S) -> S {
 
 /// cos^m θ with the lab's conventions: 1 when m = 0 (0^0 = 1), 0 when
 /// cos θ ≤ 0 and m > 0; `gap` is 1 − cos θ computed accurately by the caller.
+#[inline(always)]
 pub fn lobe<S: Real>(cos_theta: S, gap: S, m: S) -> S {
     if m <= S::zero() {
         S::one()
     } else if cos_theta <= S::zero() {
         S::zero()
     } else {
-        (m * ln_cos_from_gap(gap)).exp()
+        S::power_from_gap(gap, m)
     }
 }
 
@@ -131,6 +134,68 @@ pub fn blinn_phong<V: Vector3>(n: V, l: V, o: V, params: &BrdfParams<V::S>) -> B
     BrdfTerms {
         diffuse,
         specular: specular(n, l, o, params),
+    }
+}
+
+/// [`blinn_phong`] for loops over many samples of one material that run in
+/// SIMD lanes: what does not depend on the directions is worked out once,
+/// and [`Self::terms`] has no branch: every part is computed, then the one
+/// `blinn_phong` returns is chosen, so the bits are the same. (The lobe is
+/// computed even for k ≥ 1, where it is dropped: Lambert alone is better
+/// served by `blinn_phong`.)
+#[derive(Clone, Copy, Debug)]
+pub struct LaneBrdf<S> {
+    m: S,
+    /// k / π, and (1 − k) N(m), as `specular` multiplies them.
+    diffuse: S,
+    scale: S,
+    /// Whether k ≥ 1: no lobe.
+    lambert: bool,
+}
+
+impl<S: Real> LaneBrdf<S> {
+    pub fn new(params: &BrdfParams<S>) -> Self {
+        Self {
+            m: params.m,
+            diffuse: params.k / S::PI(),
+            scale: (S::one() - params.k) * params.norm.factor(params.m),
+            lambert: params.k >= S::one(),
+        }
+    }
+
+    /// `blinn_phong(n, l, o, params)`.
+    #[inline(always)]
+    pub fn terms<V: Vector3<S = S>>(&self, n: V, l: V, o: V) -> BrdfTerms<S> {
+        let (zero, one) = (S::zero(), S::one());
+        let sum = l + o;
+        let len2 = sum.length_squared();
+        let h = sum * (one / len2.sqrt());
+        let cos_h = n.dot(h);
+        let gap = ((n - h).length_squared() * S::lit(0.5)).min(one);
+        let power = S::power_from_gap(gap, self.m);
+        // lobe()'s cases.
+        let lobe = if self.m <= zero {
+            one
+        } else if cos_h <= zero {
+            zero
+        } else {
+            power
+        };
+        // specular()'s and blinn_phong's.
+        let no_half = len2.is_nan() || len2 <= zero;
+        let specular = if no_half || self.lambert {
+            zero
+        } else {
+            self.scale * lobe
+        };
+        if n.dot(l) > zero && n.dot(o) > zero {
+            BrdfTerms {
+                diffuse: self.diffuse,
+                specular,
+            }
+        } else {
+            BrdfTerms::default()
+        }
     }
 }
 

@@ -11,6 +11,7 @@ pub mod brdf;
 pub mod colour;
 pub mod display;
 pub mod energy;
+pub mod power;
 pub mod radiometry;
 pub mod real;
 

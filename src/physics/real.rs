@@ -1,5 +1,7 @@
 //! The two small traits that let one formula serve both precisions.
 
+use super::brdf::ln_cos_from_gap;
+use super::power;
 pub use num_traits::{Float, FloatConst, One, Zero};
 use std::ops::{Add, Mul, Neg, Sub};
 
@@ -10,17 +12,31 @@ pub trait Real:
 {
     /// Converts a constant written in `f64`.
     fn lit(x: f64) -> Self;
+
+    /// cos^m θ = e^(m ln cos θ) from the gap d = 1 − cos θ, m > 0.
+    fn power_from_gap(gap: Self, m: Self) -> Self;
 }
 
 impl Real for f32 {
     fn lit(x: f64) -> Self {
         x as f32
     }
+
+    /// As the shaders compute it: their series for small gaps, then `exp`.
+    fn power_from_gap(gap: Self, m: Self) -> Self {
+        (m * ln_cos_from_gap(gap)).exp()
+    }
 }
 
 impl Real for f64 {
     fn lit(x: f64) -> Self {
         x
+    }
+
+    /// In plain arithmetic that runs in SIMD lanes ([`super::power`]).
+    #[inline(always)]
+    fn power_from_gap(gap: Self, m: Self) -> Self {
+        power::exp(m * power::ln_one_minus(gap))
     }
 }
 
