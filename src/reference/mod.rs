@@ -32,6 +32,7 @@ pub mod sampling;
 mod shading;
 mod simd;
 mod spectral;
+mod sphere;
 mod surface;
 mod texture;
 

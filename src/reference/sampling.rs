@@ -134,7 +134,9 @@ impl Cone {
         TAU * self.one_minus_cos
     }
 
-    /// The direction for (u, v) ∈ [0, 1)².
+    /// The direction for (u, v) ∈ [0, 1)² (inlined: the sphere light's
+    /// samples take it in lanes).
+    #[inline(always)]
     pub fn direction(&self, (u, v): (f64, f64)) -> ConeSample {
         let gap = u * self.one_minus_cos;
         let cos_theta = 1.0 - gap;
@@ -155,6 +157,7 @@ impl Cone {
 /// 4v − q are exact), leaving an angle |a| ≤ π/4 whose sine and cosine are
 /// their Taylor series up to a¹⁷ and a¹⁶: the first terms left out,
 /// a¹⁹/19! and a¹⁸/18!, stay below 2e-18.
+#[inline(always)]
 fn sin_cos_turns(v: f64) -> (f64, f64) {
     let x = 4.0 * v;
     // Rounded to the nearest integer by adding 1.5 · 2⁵²: its low bits are

@@ -26,22 +26,20 @@ use super::bvh::BallRegion;
 use super::grid::{Answer, DirectionGrid};
 use super::image::luminance;
 use super::light_packet::LightPacket;
-use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
+use super::sampling::{Rng, Strata};
 use super::spectral::SpectralLight;
+use super::sphere::SphereSamples;
 use super::surface::Surface;
 use super::{Reference, ReferenceOptions, lift_clears};
 use crate::colour::ColourModel;
 use crate::colour::chart::illuminant_linear_srgb;
 use crate::physics::brdf::blinn_phong;
-use crate::physics::radiometry::{
-    MIN_LIGHT_DISTANCE_M, incidence, intensity, point_irradiance, sphere_irradiance, sphere_radiance,
-};
+use crate::physics::radiometry::{incidence, intensity, point_irradiance, sphere_irradiance};
 use crate::physics::{BrdfParams, BrdfTerms, Normalization};
 use crate::scene::Material;
 use crate::scene::camera::PixelRays;
 use crate::settings::Settings;
 use glam::{DVec2, DVec3};
-use std::f64::consts::PI;
 
 /// Shadow-ray origin offset, relative to the hit triangle's coordinates.
 pub const SHADOW_OFFSET_REL: f64 = 1e-9;
@@ -180,21 +178,18 @@ pub struct ShadingSample {
 /// Buffers reused from sample to sample by one thread.
 #[derive(Debug, Default)]
 pub(super) struct Scratch {
-    /// The light samples' terms, for the mean and the noise estimate.
-    y: Vec<f64>,
+    /// A sphere light's samples at one shading point.
+    pub(super) sphere_samples: SphereSamples,
     /// Occluders near the shadow rays of one shading point.
-    candidates: Vec<u32>,
+    pub(super) candidates: Vec<u32>,
     /// Those of a region about the block of pixels being shaded (see
     /// [`REGION_BLOCK`]), gathered once.
-    ball_region: BallRegion,
+    pub(super) ball_region: BallRegion,
     /// That block, when a render or the probe says which it is.
     pub block: Option<(u32, u32)>,
     /// A pixel's shadow rays towards a point light.
     pub light_packet: LightPacket,
 }
-
-/// Gathered occluders beyond this many: each shadow ray goes through the BVH.
-const MAX_CANDIDATES: usize = 24;
 
 /// Pixels along each side of the blocks whose shading points share one
 /// gathering of a sphere light's occluders, made for the centre of the
@@ -299,7 +294,7 @@ impl Reference {
 
     /// Whether the segment from `origin` to `target` is blocked,
     /// stopping short of the target.
-    fn blocked(&self, origin: DVec3, target: DVec3) -> bool {
+    pub(super) fn blocked(&self, origin: DVec3, target: DVec3) -> bool {
         self.bvh
             .occluded(origin, target - origin, 0.0, 1.0 - STOP_SHORT_REL)
     }
@@ -336,141 +331,6 @@ impl Reference {
             self.sphere(setup, s, rng, scratch)
         } else {
             self.point_light(setup, s, shadows_clear, &mut scratch.light_packet)
-        }
-    }
-
-    /// The shadow origin and surface normal at the centre of the first
-    /// pixel of `block`, where a shadowed surface lies: what its region of
-    /// a sphere light's occluders is made for.
-    fn region_anchor(&self, setup: &Setup, (bx, by): (u32, u32)) -> Option<(DVec3, DVec3)> {
-        let (x, y) = ((bx * REGION_BLOCK) as f64 + 0.5, (by * REGION_BLOCK) as f64 + 0.5);
-        let (s, _) = self.probed_surface(setup, setup.rays.towards(x, y))?;
-        s.shadowed.then_some((s.shadow_origin, s.geometric_normal))
-    }
-
-    /// The sphere light's contribution at the surface, estimated with the
-    /// light-sample stream `rng` (see the module).
-    fn sphere(&self, setup: &Setup, s: &Surface, rng: &mut Rng, scratch: &mut Scratch) -> LightEstimate {
-        let (q, radius) = (setup.light_position, setup.radius_m);
-        // Every shadow ray of this point runs from its shadow origin to the
-        // sphere: gather the occluders near that path once (from those of
-        // a region shared with the points about it), then test each ray
-        // against those few (or, when there are many, through the BVH).
-        let Scratch {
-            y,
-            candidates,
-            ball_region,
-            block,
-            ..
-        } = scratch;
-        if s.shadowed
-            && let Some(block) = *block
-            && ball_region.block() != Some(block)
-        {
-            let anchor = self.region_anchor(setup, block);
-            ball_region.make(&self.bvh, block, anchor, (q, radius));
-        }
-        // Without a block (no render or probe said which) the region is
-        // never made, and each point walks on its own.
-        let gathered = s.shadowed
-            && self.bvh.gather_near_ball_in(
-                ball_region,
-                (s.shadow_origin, s.geometric_normal),
-                (q, radius),
-                MAX_CANDIDATES,
-                candidates,
-            );
-        let le = sphere_radiance(setup.power_w, radius);
-        let to_centre = q - s.p;
-        let d2 = to_centre.length_squared();
-        let d = d2.sqrt();
-        let inside = d <= radius;
-        // No shadow ray can be blocked: the diffuse part in closed form, and
-        // only a specular lobe left to sample.
-        let clear = !s.shadowed || gathered && candidates.is_empty();
-        let closed = if clear && !setup.sample_everywhere {
-            closed_form_diffuse(setup, s, to_centre, d)
-        } else {
-            None
-        };
-        if let Some(diffuse) = closed
-            && s.brdf.k >= 1.0
-        {
-            return LightEstimate {
-                scaled_radiance: diffuse,
-                visibility: 1.0,
-                std_error: Some(0.0),
-                shadow_rays: 0,
-            };
-        }
-        let cone = if inside {
-            // Inside the light: emission from every direction of the hemisphere.
-            Cone::hemisphere(s.n)
-        } else {
-            Cone::new(to_centre / d, radius * radius / d2)
-        };
-        let strata = setup.light_strata;
-        let weight = cone.solid_angle() * le;
-        let (mut cos_sum, mut visible_cos_sum) = (0.0, 0.0);
-        let mut shadow_rays = 0;
-        y.clear();
-        for stratum in strata.cells() {
-            let sample = cone.direction(strata.jittered(stratum, rng));
-            let l = sample.direction;
-            let cos = s.n.dot(l).max(0.0);
-            let mut v = 1.0;
-            if cos > 0.0 && s.shadowed && closed.is_none() {
-                // Distance along l to the sphere: the near root outside it,
-                // the far one inside; R² − d² sin²θ is the half-chord squared.
-                let b = if inside {
-                    l.dot(to_centre)
-                } else {
-                    d * sample.cos_theta
-                };
-                let half_chord = if inside {
-                    (radius * radius - d2 + b * b).max(0.0).sqrt()
-                } else {
-                    (radius * radius - d2 * sample.sin2_theta).max(0.0).sqrt()
-                };
-                let t = if inside { b + half_chord } else { b - half_chord };
-                shadow_rays += 1;
-                let target = s.p + l * t;
-                let blocked = if gathered {
-                    let d = target - s.shadow_origin;
-                    self.bvh
-                        .blocked_by(candidates, s.shadow_origin, d, 1.0 - STOP_SHORT_REL)
-                } else {
-                    self.blocked(s.shadow_origin, target)
-                };
-                if blocked {
-                    v = 0.0;
-                }
-            }
-            cos_sum += cos;
-            visible_cos_sum += v * cos;
-            let f = if v * cos > 0.0 {
-                blinn_phong(s.n, l, s.o, &s.brdf)
-            } else {
-                BrdfTerms::default()
-            };
-            y.push(match closed {
-                Some(diffuse) => diffuse + weight * f.specular * cos,
-                None => weight * f.total() * v * cos,
-            });
-        }
-        let n = y.len() as f64;
-        let visibility = if !s.shadowed || closed.is_some() {
-            1.0
-        } else if cos_sum > 0.0 {
-            visible_cos_sum / cos_sum
-        } else {
-            0.0
-        };
-        LightEstimate {
-            scaled_radiance: y.iter().sum::<f64>() / n,
-            visibility,
-            std_error: collapsed_strata_variance(y).map(f64::sqrt),
-            shadow_rays,
         }
     }
 }
@@ -510,25 +370,4 @@ pub(super) fn point_light_at(
         std_error: Some(0.0),
         shadow_rays,
     }
-}
-
-/// k/π · E of the sphere light where no shadow ray can be blocked (V = 1
-/// over the whole cone): E is the closed form `sphere_irradiance` (Snyder's,
-/// the horizon included), exact and without noise. None inside the light or
-/// nearer than [`MIN_LIGHT_DISTANCE_M`], where the light is sampled. The
-/// sampled estimator's expectation with every V = 1 is the same integral;
-/// only its variance changes. `to_centre`: from the surface point to the
-/// light's centre, `d` its length.
-fn closed_form_diffuse(setup: &Setup, s: &Surface, to_centre: DVec3, d: f64) -> Option<f64> {
-    // False for NaN too.
-    let outside = d > setup.radius_m && d >= MIN_LIGHT_DISTANCE_M;
-    if !outside {
-        return None;
-    }
-    // blinn_phong is zero for a viewer below the shading normal's horizon.
-    Some(if s.n.dot(s.o) > 0.0 {
-        s.brdf.k / PI * sphere_irradiance(setup.power_w, setup.radius_m, s.n.dot(to_centre) / d, d)
-    } else {
-        0.0
-    })
 }
