@@ -2,14 +2,15 @@
 //! lane by lane: each step a loop without branches over all of the
 //! pixel's samples, which the compiler turns into SIMD instructions: 8
 //! samples at once with AVX-512, 4 with AVX2 (chosen at run time), 2 with
-//! the SSE2 every x86-64 has. A specular lobe (a power) and the shadow rays
-//! that the pixel's test did not clear are then taken sample by sample.
+//! the SSE2 every x86-64 has. A specular lobe then takes a lane step of its
+//! own (`LaneBrdf`, its power in plain arithmetic), and the shadow rays that
+//! the pixel's test did not clear are taken sample by sample.
 //! Each lane does the very operations the sample-by-sample path does, in
 //! the same order: the same bits (`tests` holds them to it).
 
 use super::PixelSums;
 use super::pixel::Pixel;
-use crate::physics::brdf::blinn_phong;
+use crate::physics::brdf::LaneBrdf;
 use crate::physics::radiometry::{incidence, point_irradiance};
 use crate::reference::grid::Cover;
 use crate::reference::sampling::Strata;
@@ -134,7 +135,7 @@ impl Lanes {
 
     /// Each sample's point and light ([`sample_light`]): on a flat,
     /// Lambertian facet, the side the eye is on without normalizing the
-    /// direction; elsewhere with it, and the specular lobe sample by sample.
+    /// direction; elsewhere with it, and then the specular lobe.
     #[inline(always)]
     fn lights(&mut self, pixel: &CoveredPixel) {
         let n = pixel.spp.count() as usize;
@@ -225,17 +226,20 @@ impl Lanes {
         }
     }
 
-    /// The specular lobe's samples, one by one where the light is above the
-    /// horizon: `point_light_at`'s (f_d + f_s) · E.
+    /// The specular lobe's samples where the light is above the horizon:
+    /// `point_light_at`'s (f_d + f_s) · E, in lanes.
+    #[inline(always)]
     fn specular(&mut self, surface: &Facet) {
-        let [nx, ny, nz, lx, ly, lz, ox, oy, oz] = &self.vectors;
-        for s in 0..self.scaled.len() {
-            if self.cos[s] > 0.0 {
-                let n = DVec3::new(nx[s], ny[s], nz[s]);
-                let l = DVec3::new(lx[s], ly[s], lz[s]);
-                let o = DVec3::new(ox[s], oy[s], oz[s]);
-                self.scaled[s] = blinn_phong(n, l, o, &surface.brdf).total() * self.e[s];
-            }
+        let count = self.scaled.len();
+        let [nx, ny, nz, lx, ly, lz, ox, oy, oz] = self.vectors.each_ref().map(|v| &v[..count]);
+        let (cos, e, scaled) = (&self.cos[..count], &self.e[..count], &mut self.scaled[..count]);
+        let brdf = LaneBrdf::new(&surface.brdf);
+        for s in 0..count {
+            let n = DVec3::new(nx[s], ny[s], nz[s]);
+            let l = DVec3::new(lx[s], ly[s], lz[s]);
+            let o = DVec3::new(ox[s], oy[s], oz[s]);
+            let lit = brdf.terms(n, l, o).total() * e[s];
+            scaled[s] = if cos[s] > 0.0 { lit } else { scaled[s] };
         }
     }
 
