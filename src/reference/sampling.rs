@@ -19,17 +19,37 @@ impl Rng {
     }
 
     pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
+        self.0 = self.0.wrapping_add(GAMMA);
+        mix(self.0)
     }
 
     /// Uniform in [0, 1): the top 53 bits as the mantissa.
     pub fn next_f64(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
     }
+}
+
+/// SplitMix64's step: its state after n steps is the first plus n · GAMMA.
+const GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// SplitMix64's output for a state.
+#[inline(always)]
+fn mix(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// [`Rng::next_f64`] of an output, without the conversion from u64 that
+/// AVX2 lacks (it would leave the lanes): the top 53 bits t are t/2 placed
+/// under 2⁵², doubled, plus t's last bit: the same exact integer.
+#[inline(always)]
+fn unit(x: u64) -> f64 {
+    const TWO_52: f64 = 4_503_599_627_370_496.0;
+    let t = x >> 11;
+    let half = f64::from_bits(TWO_52.to_bits() | (t >> 1)) - TWO_52;
+    let last = f64::from_bits(TWO_52.to_bits() | (t & 1)) - TWO_52;
+    (half * 2.0 + last) * (1.0 / (1u64 << 53) as f64)
 }
 
 /// The streams of one pixel's samples, [`Rng::new`] for each: the hashing
@@ -79,6 +99,24 @@ impl Strata {
     /// 2j + 1 are neighbours whenever nx is even.
     pub fn cells(self) -> impl Iterator<Item = (u32, u32)> {
         (0..self.ny).flat_map(move |iy| (0..self.nx).map(move |ix| (ix, iy)))
+    }
+
+    /// [`Self::jittered`] for the first `u.len()` cells in order, as that
+    /// many calls draw them from `rng` (which moves on as far), into `u`
+    /// and `v`; `(cx, cy)`: each cell's (ix, iy) as f64. A loop without
+    /// branches, for lanes: SplitMix64's n-th output is a function of n.
+    #[inline(always)]
+    pub fn jittered_all(self, rng: &mut Rng, (cx, cy): (&[f64], &[f64]), (u, v): (&mut [f64], &mut [f64])) {
+        let n = u.len();
+        let (cx, cy, v) = (&cx[..n], &cy[..n], &mut v[..n]);
+        let (per_x, per_y) = (1.0 / self.nx as f64, 1.0 / self.ny as f64);
+        let first = rng.0;
+        for k in 0..n {
+            let a = first.wrapping_add(GAMMA.wrapping_mul(2 * k as u64 + 1));
+            u[k] = (cx[k] + unit(mix(a))) * per_x;
+            v[k] = (cy[k] + unit(mix(a.wrapping_add(GAMMA)))) * per_y;
+        }
+        rng.0 = first.wrapping_add(GAMMA.wrapping_mul(2 * n as u64));
     }
 
     /// A point jittered uniformly inside cell (ix, iy).
@@ -261,6 +299,32 @@ mod tests {
         assert_eq!(Strata::new(7), Strata { nx: 1, ny: 7 });
         assert_eq!(Strata::new(1), Strata { nx: 1, ny: 1 });
         assert_eq!(Strata::new(0).count(), 1);
+    }
+
+    #[test]
+    fn all_cells_jittered_at_once_take_the_bits_of_one_by_one() {
+        for n in [1, 7, 12, 64] {
+            let strata = Strata::new(n);
+            let cells: Vec<_> = strata.cells().collect();
+            let cx: Vec<f64> = cells.iter().map(|c| c.0 as f64).collect();
+            let cy: Vec<f64> = cells.iter().map(|c| c.1 as f64).collect();
+            for isa in crate::reference::simd::Isa::available() {
+                let (mut one, mut all) = (Rng::new(5, n as u64, 6), Rng::new(5, n as u64, 6));
+                let (mut u, mut v) = (vec![0.0; n as usize], vec![0.0; n as usize]);
+                crate::reference::simd::with(isa, || {
+                    strata.jittered_all(&mut all, (&cx, &cy), (&mut u, &mut v))
+                });
+                for (k, &cell) in cells.iter().enumerate() {
+                    let (a, b) = strata.jittered(cell, &mut one);
+                    assert_eq!(
+                        (a.to_bits(), b.to_bits()),
+                        (u[k].to_bits(), v[k].to_bits()),
+                        "{isa:?} {n} {k}"
+                    );
+                }
+                assert_eq!(one.next_u64(), all.next_u64());
+            }
+        }
     }
 
     #[test]

@@ -26,6 +26,9 @@ const MAX_CANDIDATES: usize = 24;
 /// point by one thread).
 #[derive(Debug, Default)]
 pub(super) struct SphereSamples {
+    /// Each stratum's cell (ix, iy), as f64.
+    cx: Vec<f64>,
+    cy: Vec<f64>,
     /// Each stratum's jittered point of the unit square.
     u: Vec<f64>,
     v: Vec<f64>,
@@ -45,18 +48,19 @@ pub(super) struct SphereSamples {
 
 impl SphereSamples {
     /// Each of the `strata`'s cells jittered with the point's stream.
+    #[inline(always)]
     fn draw(&mut self, strata: Strata, rng: &mut Rng) {
         let count = strata.count() as usize;
         // Every point of a render takes as many: sized once.
         if self.u.len() != count {
-            self.resize(count);
+            self.resize(strata);
         }
-        for (cell, (u, v)) in strata.cells().zip(self.u.iter_mut().zip(&mut self.v)) {
-            (*u, *v) = strata.jittered(cell, rng);
-        }
+        strata.jittered_all(rng, (&self.cx, &self.cy), (&mut self.u, &mut self.v));
     }
 
-    fn resize(&mut self, count: usize) {
+    fn resize(&mut self, strata: Strata) {
+        let count = strata.count() as usize;
+        (self.cx, self.cy) = strata.cells().map(|(ix, iy)| (ix as f64, iy as f64)).unzip();
         for values in [
             &mut self.u,
             &mut self.v,
@@ -206,11 +210,13 @@ impl Reference {
         };
         let strata = setup.light_strata;
         let weight = cone.solid_angle() * le;
-        samples.draw(strata, rng);
         simd::with(
             Isa::widest(),
             #[inline(always)]
-            || samples.directions(&cone, s.n),
+            || {
+                samples.draw(strata, rng);
+                samples.directions(&cone, s.n);
+            },
         );
         let (mut cos_sum, mut visible_cos_sum) = (0.0, 0.0);
         let mut shadow_rays = 0;
