@@ -4,8 +4,8 @@
 //! Point light (R = 0): L = c · colour · (f_d + f_s)(l) · E · V with
 //! E = I cos⁺θ / r², I = Φ / 4π, and V ∈ {0, 1} from one shadow ray.
 //!
-//! Sphere light (R > 0): the cone the sphere subtends from p (sin α = R / d) is
-//! sampled uniformly in solid angle over N strata; with Ω = 2π (1 − cos α) and
+//! Sphere light (R > 0, `sphere.rs`): the cone the sphere subtends from p
+//! (sin α = R / d) is sampled uniformly in solid angle over N strata; with Ω = 2π (1 − cos α) and
 //! L_e = Φ / (4π² R²), L = c · colour · (Ω / N) Σ (f_d + f_s)(l_i) L_e V_i cos⁺θ_i.
 //! It converges to the penumbra as N grows; unoccluded and above the horizon
 //! its E-part equals `sphere_irradiance` (the point light's E). Where no

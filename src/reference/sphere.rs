@@ -1,12 +1,13 @@
 //! The sphere light at one shading point: N strata of the cone the sphere
 //! subtends, one direction each (see `shading`'s module note for the
 //! estimator). The samples are taken step by step over all N at once: their
-//! (u, v) from the point's stream, then their directions (lanes), their
+//! jittered points (from the point's stream) and directions (lanes), their
 //! shadow rays (one by one), then the BRDF and each sample's term (lanes).
 //! A lane step is a loop without branches that the compiler turns into SIMD
-//! instructions (`simd::with`: 4 samples at once with AVX2); each lane does
-//! the operations the sample-by-sample loop did, in the same order, so the
-//! bits are the same (the lobe's power in plain arithmetic: `physics::power`).
+//! instructions (`simd::with`: 4 samples at once with AVX2, 8 with
+//! AVX-512); each lane does the operations the sample-by-sample loop did,
+//! in the same order, so the bits are the same (the lobe's power in plain
+//! arithmetic: `physics::power`).
 
 use super::Reference;
 use super::sampling::{Cone, Rng, Strata, collapsed_strata_variance};
