@@ -52,9 +52,9 @@ pub fn ln_one_minus(d: f64) -> f64 {
     };
     let s = top / bottom;
     let w = s * s;
-    // 1/3 + w/5 + w²/7 + … + w¹⁰/23.
-    const TAIL: [f64; 11] = {
-        let mut c = [0.0; 11];
+    // 1/3 + w/5 + w²/7 + … + w¹⁰/23, and three zeros.
+    const TAIL: [f64; 14] = {
+        let mut c = [0.0; 14];
         let mut i = 0;
         while i < 11 {
             c[i] = 1.0 / (2 * i + 3) as f64;
@@ -62,7 +62,7 @@ pub fn ln_one_minus(d: f64) -> f64 {
         }
         c
     };
-    let tail = estrin11(&TAIL, w);
+    let tail = estrin(&TAIL, w);
     let two_s = 2.0 * s;
     let ln = e * LN2_HI + (e * LN2_LO + (two_s + two_s * (w * tail)));
     if y == 0.0 { f64::NEG_INFINITY } else { ln }
@@ -87,7 +87,7 @@ pub fn exp(z: f64) -> f64 {
         }
         c
     };
-    let p = estrin14(&INVERSE_FACTORIALS, r);
+    let p = estrin(&INVERSE_FACTORIALS, r);
     // 2^k = 2^a · 2^b, a ≈ k/2: both normal for −1077 ≤ k ≤ 1024.
     let a = (k * 0.5 + ROUNDER) - ROUNDER;
     let b = k - a;
@@ -96,25 +96,15 @@ pub fn exp(z: f64) -> f64 {
 
 /// c₀ + c₁x + … + c₁₃x¹³ by Estrin's scheme: pairs c₂ᵢ + c₂ᵢ₊₁x, then
 /// pairs of those with x², x⁴ and x⁸: a chain of four steps where Horner's
-/// has thirteen, so that a lone call (outside the lanes) waits less.
+/// has thirteen, so that a lone call (outside the lanes) waits less. Zeros
+/// at the end leave the others' sums unchanged (finite x).
 #[inline(always)]
-fn estrin14(c: &[f64; 14], x: f64) -> f64 {
+fn estrin(c: &[f64; 14], x: f64) -> f64 {
     let (x2, pair) = (x * x, |i: usize| c[i] + c[i + 1] * x);
     let (x4, quad) = (x2 * x2, |i: usize| pair(i) + pair(i + 2) * x2);
     let x8 = x4 * x4;
     let low = quad(0) + quad(4) * x4;
     let high = quad(8) + pair(12) * x4;
-    low + high * x8
-}
-
-/// c₀ + c₁x + … + c₁₀x¹⁰ as [`estrin14`] does it.
-#[inline(always)]
-fn estrin11(c: &[f64; 11], x: f64) -> f64 {
-    let (x2, pair) = (x * x, |i: usize| c[i] + c[i + 1] * x);
-    let (x4, quad) = (x2 * x2, |i: usize| pair(i) + pair(i + 2) * x2);
-    let x8 = x4 * x4;
-    let low = quad(0) + quad(4) * x4;
-    let high = pair(8) + c[10] * x2;
     low + high * x8
 }
 
