@@ -4,8 +4,11 @@
 //! jittered points (from the point's stream) and directions (lanes), their
 //! shadow rays (one by one), then the BRDF and each sample's term (lanes).
 //! A lane step is a loop without branches that the compiler turns into SIMD
-//! instructions (`simd::with`: 4 samples at once with AVX2, 8 with
-//! AVX-512); each lane does the operations the sample-by-sample loop did,
+//! instructions (`simd::with`): 4 samples at once with AVX2, kept where the
+//! CPU has AVX-512, whose eight lanes ran the default scene at 64 samples
+//! 7 % slower on the 2-core host (0.47–0.48 s against 0.45 s, medians of 6
+//! alternated runs; such CPUs may lower their clock for long runs of 512-bit
+//! arithmetic). Each lane does the operations the sample-by-sample loop did,
 //! in the same order, so the bits are the same (the lobe's power in plain
 //! arithmetic: `physics::power`).
 
@@ -212,7 +215,7 @@ impl Reference {
         let strata = setup.light_strata;
         let weight = cone.solid_angle() * le;
         simd::with(
-            Isa::widest(),
+            Isa::Avx2,
             #[inline(always)]
             || {
                 samples.draw(strata, rng);
@@ -257,7 +260,7 @@ impl Reference {
             visible_cos_sum += v * cos;
         }
         simd::with(
-            Isa::widest(),
+            Isa::Avx2,
             #[inline(always)]
             || samples.terms(s, weight, closed),
         );
