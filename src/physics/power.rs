@@ -2,9 +2,9 @@
 //! exponential, each in plain arithmetic with selects instead of branches,
 //! so that a loop over many samples (the sphere light's) runs in SIMD lanes.
 //! Each call does the same operations in the same order whether it runs in
-//! a lane or alone: the same bits either way. Both stay within 2 ulp of the
-//! correctly rounded value (`tests`); libm's `ln` and `exp`, which took 14 %
-//! of a sphere light's reference at 64 samples, cannot run in lanes.
+//! a lane or alone: the same bits either way. Both stay within 2 ulp of
+//! libm's (`tests`); libm's `ln` and `exp`, which took 14 % of a sphere
+//! light's reference at 64 samples, cannot run in lanes.
 
 /// ln 2 in two parts: the high part's last 21 bits are zero, so k · LN2_HI
 /// is exact for |k| < 2¹¹ (fdlibm's split).

@@ -3,8 +3,8 @@
 //! pixel's samples, which the compiler turns into SIMD instructions: 8
 //! samples at once with AVX-512, 4 with AVX2 (chosen at run time), 2 with
 //! the SSE2 every x86-64 has. A specular lobe then takes a lane step of its
-//! own (`LaneBrdf`, its power in plain arithmetic), and the shadow rays that
-//! the pixel's test did not clear are taken sample by sample.
+//! own (`LaneBrdf`, its power in plain arithmetic; AVX2 at most), and the
+//! shadow rays that the pixel's test did not clear are taken sample by sample.
 //! Each lane does the very operations the sample-by-sample path does, in
 //! the same order: the same bits (`tests` holds them to it).
 
