@@ -205,12 +205,14 @@ impl TriangleBvh {
             return false;
         };
         let floor = ball.floor(surface);
-        let (Some(_), Some(slots)) = (floor, &region.slots) else {
+        // A region's list serves only a point with a floor inside it.
+        let Some(slots) = region
+            .slots
+            .as_ref()
+            .filter(|_| floor.is_some() && region.holds(from, (centre, radius)))
+        else {
             return self.walk_near_ball(&ball, floor, limit, out);
         };
-        if !region.holds(from, (centre, radius)) {
-            return self.walk_near_ball(&ball, floor, limit, out);
-        }
         let frame = FrameCone::new(ball.pyramid, self, floor);
         for &slot in slots {
             let slot = slot as usize;
