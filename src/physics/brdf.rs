@@ -163,6 +163,19 @@ impl<S: Real> LaneBrdf<S> {
         }
     }
 
+    /// Whether k ≥ 1: [`Self::lambert_terms`] then gives the same terms
+    /// without computing a lobe.
+    pub fn is_lambert(&self) -> bool {
+        self.lambert
+    }
+
+    /// `blinn_phong(n, l, o, params)` where k ≥ 1: k / π above both
+    /// horizons, no lobe.
+    #[inline(always)]
+    pub fn lambert_terms<V: Vector3<S = S>>(&self, n: V, l: V, o: V) -> BrdfTerms<S> {
+        self.above_horizons(n, l, o, S::zero())
+    }
+
     /// `blinn_phong(n, l, o, params)`.
     #[inline(always)]
     pub fn terms<V: Vector3<S = S>>(&self, n: V, l: V, o: V) -> BrdfTerms<S> {
@@ -188,7 +201,13 @@ impl<S: Real> LaneBrdf<S> {
         } else {
             self.scale * lobe
         };
-        if n.dot(l) > zero && n.dot(o) > zero {
+        self.above_horizons(n, l, o, specular)
+    }
+
+    /// k / π and `specular` where n · l > 0 and n · o > 0, else nothing.
+    #[inline(always)]
+    fn above_horizons<V: Vector3<S = S>>(&self, n: V, l: V, o: V, specular: S) -> BrdfTerms<S> {
+        if n.dot(l) > S::zero() && n.dot(o) > S::zero() {
             BrdfTerms {
                 diffuse: self.diffuse,
                 specular,

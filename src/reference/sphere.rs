@@ -103,33 +103,33 @@ impl SphereSamples {
     /// diffuse part in closed form, `diffuse` + weight · f_s · cos⁺.
     #[inline(always)]
     fn terms(&mut self, s: &Surface, weight: f64, closed: Option<f64>) {
+        let brdf = LaneBrdf::new(&s.brdf);
         // Lambert alone: no lobe to compute in the lanes.
-        if s.brdf.k >= 1.0 {
-            self.terms_with::<true>(s, weight, closed);
+        if brdf.is_lambert() {
+            self.terms_with::<true>(s, &brdf, weight, closed);
         } else {
-            self.terms_with::<false>(s, weight, closed);
+            self.terms_with::<false>(s, &brdf, weight, closed);
         }
     }
 
     #[inline(always)]
-    fn terms_with<const LAMBERT: bool>(&mut self, s: &Surface, weight: f64, closed: Option<f64>) {
+    fn terms_with<const LAMBERT: bool>(
+        &mut self,
+        s: &Surface,
+        brdf: &LaneBrdf<f64>,
+        weight: f64,
+        closed: Option<f64>,
+    ) {
         let count = self.u.len();
         let (x, y, z) = (&self.x[..count], &self.y[..count], &self.z[..count]);
         let (visible, cos) = (&self.visible[..count], &self.cos[..count]);
         let terms = &mut self.terms[..count];
         let (closed_form, closed) = (closed.is_some(), closed.unwrap_or(0.0));
-        let brdf = LaneBrdf::new(&s.brdf);
         for i in 0..count {
             let (v, cos) = (visible[i], cos[i]);
             let l = DVec3::new(x[i], y[i], z[i]);
             let BrdfTerms { diffuse, specular } = if LAMBERT {
-                // blinn_phong's: k / π above both horizons, no lobe.
-                let above = s.n.dot(l) > 0.0 && s.n.dot(s.o) > 0.0;
-                let diffuse = if above { s.brdf.k / PI } else { 0.0 };
-                BrdfTerms {
-                    diffuse,
-                    specular: 0.0,
-                }
+                brdf.lambert_terms(s.n, l, s.o)
             } else {
                 brdf.terms(s.n, l, s.o)
             };
