@@ -35,10 +35,8 @@ const NEAR_ONE: f64 = 1.0 - std::f64::consts::FRAC_1_SQRT_2;
 pub fn ln_one_minus(d: f64) -> f64 {
     let y = 1.0 - d;
     let bits = y.to_bits();
-    // The exponent and the mantissa of y (normal: y ≥ 2⁻⁵³ or 0); the
-    // exponent's bits made an f64 by placing them under 2⁵² (a conversion
-    // from u64, which AVX2 lacks, would leave the lanes).
-    let exponent = f64::from_bits(TWO_52.to_bits() | (bits >> 52)) - (TWO_52 + 1023.0);
+    // The exponent and the mantissa of y (normal: y ≥ 2⁻⁵³ or 0).
+    let exponent = below_2_52(bits >> 52) - 1023.0;
     let mantissa = f64::from_bits((bits & ((1 << 52) - 1)) | 1.0_f64.to_bits());
     let high = mantissa > SQRT_2;
     let f = if high { mantissa * 0.5 } else { mantissa };
@@ -106,6 +104,14 @@ fn estrin(c: &[f64; 14], x: f64) -> f64 {
     let low = quad(0) + quad(4) * x4;
     let high = quad(8) + pair(12) * x4;
     low + high * x8
+}
+
+/// n as an f64, for n < 2⁵², in lanes: n's bits placed under 2⁵² (whose
+/// ulp is 1), less 2⁵². A conversion from u64, which AVX2 lacks, would
+/// leave the lanes.
+#[inline(always)]
+pub fn below_2_52(n: u64) -> f64 {
+    f64::from_bits(TWO_52.to_bits() | n) - TWO_52
 }
 
 /// 2^n for an integer n in [−1022, 1023] held as an f64.

@@ -4,6 +4,7 @@
 //! is the same whatever the number of threads or the order of the tiles, and
 //! one pixel traced alone (the probe) gives the value the full render gave it.
 
+use crate::physics::power::below_2_52;
 use glam::DVec3;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
@@ -40,16 +41,13 @@ fn mix(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-/// [`Rng::next_f64`] of an output, without the conversion from u64 that
-/// AVX2 lacks (it would leave the lanes): the top 53 bits t are t/2 placed
-/// under 2⁵², doubled, plus t's last bit: the same exact integer.
+/// [`Rng::next_f64`] of an output, in lanes: its top 53 bits t are twice
+/// t/2 plus t's last bit, each below 2⁵² (`below_2_52`): the same exact
+/// integer.
 #[inline(always)]
 fn unit(x: u64) -> f64 {
-    const TWO_52: f64 = 4_503_599_627_370_496.0;
     let t = x >> 11;
-    let half = f64::from_bits(TWO_52.to_bits() | (t >> 1)) - TWO_52;
-    let last = f64::from_bits(TWO_52.to_bits() | (t & 1)) - TWO_52;
-    (half * 2.0 + last) * (1.0 / (1u64 << 53) as f64)
+    (below_2_52(t >> 1) * 2.0 + below_2_52(t & 1)) * (1.0 / (1u64 << 53) as f64)
 }
 
 /// The streams of one pixel's samples, [`Rng::new`] for each: the hashing
