@@ -5,7 +5,7 @@ use super::bvh::{Cone, PrimaryPacket};
 use super::grid::DirectionGrid;
 use super::image::{ReferenceImage, RenderStats};
 use super::sampling::{PixelStreams, Rng, Strata};
-use super::shading::{REGION_BLOCK, Scratch, Setup};
+use super::shading::{Scratch, Setup, region_block};
 use super::surface::{ShadingCache, Surface};
 use super::{Reference, ReferenceError, ReferenceOptions, RenderControl, pixel_index};
 use crate::settings::Settings;
@@ -414,11 +414,6 @@ impl Reference {
         }
         sums.pixel(n)
     }
-}
-
-/// The block of pixel (i, j) for the sphere light's shared gatherings.
-fn region_block(i: u32, j: u32) -> (u32, u32) {
-    (i / REGION_BLOCK, j / REGION_BLOCK)
 }
 
 /// What tracing a pixel's primary samples gave.

@@ -199,6 +199,12 @@ pub(super) struct Scratch {
 /// engine −3.1 % (−6.3 %), the sphere race's scene +3.4 % (−3.8 %).
 pub(super) const REGION_BLOCK: u32 = 16;
 
+/// The block of pixel (i, j) for the sphere light's shared gatherings: the
+/// render's and the probe's alike.
+pub(super) fn region_block(i: u32, j: u32) -> (u32, u32) {
+    (i / REGION_BLOCK, j / REGION_BLOCK)
+}
+
 /// The light's contribution at a shading point: L / (c · colour) and V.
 pub(super) struct LightEstimate {
     /// ∫ (f_d + f_s) L_e V cos⁺θ dω, or its estimate (W/m²/sr per unit c).
@@ -214,7 +220,7 @@ impl Reference {
     pub(super) fn probe(&self, setup: &Setup, x: f64, y: f64, rng: &mut Rng) -> Option<ShadingSample> {
         let (s, (distance_m, uv, color)) = self.probed_surface(setup, setup.rays.towards(x, y))?;
         // The pixel's block, for the region its render gathered from.
-        let block = Some((x as u32 / REGION_BLOCK, y as u32 / REGION_BLOCK));
+        let block = Some(region_block(x as u32, y as u32));
         let estimate = self.light(
             setup,
             &s,
