@@ -19,6 +19,7 @@ use std::time::Instant;
 mod cover;
 mod lanes;
 mod pixel;
+mod primary;
 
 /// Edge length of the square tiles the image is split into for the threads.
 const TILE: u32 = 16;
@@ -267,24 +268,16 @@ impl Reference {
         (width, height): (u32, u32),
         buffers: &mut PixelBuffers,
     ) {
-        let PixelBuffers {
-            run_samples,
-            directions,
-            packet,
-            ..
-        } = buffers;
-        run_samples.clear();
-        directions.clear();
+        buffers.run_samples.clear();
+        buffers.directions.clear();
         for r in 0..height {
             for c in 0..width {
-                for (sx, sy, rng) in sample_points(setup, spp, i + c, j + r) {
-                    directions.push(setup.rays.towards(sx, sy));
-                    run_samples.push(rng);
-                }
+                push_directions(setup, spp, (i + c, j + r), buffers);
             }
         }
         let cone = block_cone(setup, (i, j), (width, height));
-        self.bvh.closest_hits_in_cone(&cone, directions, packet);
+        self.bvh
+            .closest_hits_in_cone(&cone, &buffers.directions, &mut buffers.packet);
     }
 
     /// Every sample of a traced block, pixel by pixel (row by row), into
@@ -462,6 +455,8 @@ struct PixelBuffers {
     run_samples: Vec<Rng>,
     /// A covered pixel's samples, in lanes.
     lanes: lanes::Lanes,
+    /// A pixel's primary samples, in lanes.
+    primary: primary::PrimaryDirections,
 }
 
 /// The cone from the eye of the block of width × height pixels from (x, y),
@@ -507,24 +502,19 @@ fn directions_first(setup: &Setup, spp: Strata, (i, j): (u32, u32), buffers: &mu
         buffers.run_samples.push(rng);
         return;
     }
-    for (sx, sy, rng) in sample_points(setup, spp, i, j) {
-        buffers.directions.push(setup.rays.towards(sx, sy));
-        buffers.run_samples.push(rng);
-    }
+    push_directions(setup, spp, (i, j), buffers);
 }
 
-/// Pixel (i, j)'s primary sample points (image coordinates) and their
-/// random streams, stratum by stratum, for several samples a pixel (one
-/// is the pixel's centre: [`centre_sample`]).
-fn sample_points(setup: &Setup, spp: Strata, i: u32, j: u32) -> impl Iterator<Item = (f64, f64, Rng)> + '_ {
-    debug_assert!(spp.count() > 1, "one sample a pixel is its centre, not jittered");
-    let streams = pixel_streams(setup, i, j);
-    let (x, y) = (i as f64, j as f64);
-    spp.cells().enumerate().map(move |(s, stratum)| {
-        let mut rng = streams.sample(s as u64);
-        let (dx, dy) = spp.jittered(stratum, &mut rng);
-        (x + dx, y + dy, rng)
-    })
+/// Pixel (i, j)'s primary rays' directions and random streams, stratum by
+/// stratum, for several samples a pixel (one is the pixel's centre:
+/// [`centre_sample`]), pushed onto `buffers.directions` and
+/// `buffers.run_samples`.
+fn push_directions(setup: &Setup, spp: Strata, pixel: (u32, u32), buffers: &mut PixelBuffers) {
+    let primary = &mut buffers.primary;
+    primary.of(setup, spp, pixel);
+    let n = spp.count() as usize;
+    buffers.directions.extend((0..n).map(|s| primary.direction(s)));
+    buffers.run_samples.extend_from_slice(&primary.streams);
 }
 
 /// Pixel (i, j)'s one sample: DESIGN.md makes it the pixel centre.

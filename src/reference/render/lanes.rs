@@ -10,6 +10,7 @@
 
 use super::PixelSums;
 use super::pixel::Pixel;
+use super::primary::PrimaryDirections;
 use crate::physics::brdf::LaneBrdf;
 use crate::physics::radiometry::{incidence, point_irradiance};
 use crate::reference::grid::Cover;
@@ -23,12 +24,8 @@ use std::f64::consts::PI;
 /// The per-sample values of one pixel, in lanes.
 #[derive(Default)]
 pub(super) struct Lanes {
-    /// Each stratum's cell, (ix, iy), for the current sample count.
-    cells: Vec<(u32, u32)>,
-    /// Each sample's direction from the eye (not normalized), by coordinate.
-    x: Vec<f64>,
-    y: Vec<f64>,
-    z: Vec<f64>,
+    /// Each sample's direction from the eye (not normalized).
+    primary: PrimaryDirections,
     /// Each sample's point on the triangle, by coordinate.
     px: Vec<f64>,
     py: Vec<f64>,
@@ -85,7 +82,7 @@ impl Lanes {
     #[inline(always)]
     fn shade_lanes(&mut self, pixel: &CoveredPixel, luminance: &mut Vec<f64>, blocked: Blocked) -> Pixel {
         let n = pixel.spp.count();
-        self.directions(pixel);
+        self.primary.of_here(pixel.setup, pixel.spp, pixel.pixel);
         self.lights(pixel);
         if pixel.shadowed && !pixel.shadows_clear {
             self.shadows(blocked);
@@ -105,32 +102,6 @@ impl Lanes {
             sums.add(pixel.tint, &light, n);
         }
         sums.pixel(n)
-    }
-
-    /// Each sample's direction: `render::sample_points` and
-    /// `PixelRays::towards`, for several samples (covers take no other).
-    #[inline(always)]
-    fn directions(&mut self, pixel: &CoveredPixel) {
-        let spp = pixel.spp;
-        let n = spp.count() as usize;
-        debug_assert!(n > 1, "one sample a pixel is its centre, not jittered");
-        if self.cells.len() != n {
-            self.cells = spp.cells().collect();
-        }
-        for v in [&mut self.x, &mut self.y, &mut self.z] {
-            v.resize(n, 0.0);
-        }
-        let setup = pixel.setup;
-        let (i, j) = pixel.pixel;
-        let streams = super::pixel_streams(setup, i, j);
-        let (x0, y0) = (i as f64, j as f64);
-        let (xs, ys, zs) = (&mut self.x[..n], &mut self.y[..n], &mut self.z[..n]);
-        let cells = &self.cells[..n];
-        for s in 0..n {
-            let (dx, dy) = spp.jittered(cells[s], &mut streams.sample(s as u64));
-            let d = setup.rays.towards(x0 + dx, y0 + dy);
-            (xs[s], ys[s], zs[s]) = (d.x, d.y, d.z);
-        }
     }
 
     /// Each sample's point and light ([`sample_light`]): on a flat,
@@ -186,7 +157,7 @@ impl Lanes {
         pixel: &CoveredPixel,
     ) {
         let n = pixel.spp.count() as usize;
-        let (xs, ys, zs) = (&self.x[..n], &self.y[..n], &self.z[..n]);
+        let (xs, ys, zs) = (&self.primary.x[..n], &self.primary.y[..n], &self.primary.z[..n]);
         let (px, py, pz) = (&mut self.px[..n], &mut self.py[..n], &mut self.pz[..n]);
         let (scaled, visibility, rays) = (
             &mut self.scaled[..n],
@@ -257,7 +228,7 @@ impl Lanes {
             if self.shadow_rays[s] == 0 {
                 continue;
             }
-            let d = DVec3::new(self.x[s], self.y[s], self.z[s]);
+            let d = self.primary.direction(s);
             // As `TriangleShading::point` has it.
             let o = -d / d.length();
             if blocked(DVec3::new(self.px[s], self.py[s], self.pz[s]), o) {
