@@ -69,3 +69,45 @@ impl PrimaryDirections {
         DVec3::new(self.x[s], self.y[s], self.z[s])
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::ReferenceOptions;
+    use crate::settings::Settings;
+    use glam::Vec3;
+
+    /// Each sample's direction and stream, on every ISA the CPU runs, have
+    /// the bits of `Strata::jittered` from the sample's own stream and
+    /// `PixelRays::towards` at the pixel's corner plus the jitter.
+    #[test]
+    fn each_lane_takes_the_bits_of_its_own_sample() {
+        let mut settings = Settings::default();
+        settings.camera.eye = Vec3::new(1.3, 2.9, -4.1);
+        settings.camera.fovy_deg = 63.0;
+        (settings.image.width, settings.image.height) = (97, 41);
+        for spp in [2, 7, 16, 64] {
+            let options = ReferenceOptions {
+                spp,
+                ..ReferenceOptions::default()
+            };
+            let setup = Setup::new(&settings, &options, &[]);
+            let strata = Strata::new(spp);
+            for isa in Isa::available() {
+                let mut lanes = PrimaryDirections::default();
+                for (i, j) in [(0, 0), (96, 40), (13, 29), (50, 7)] {
+                    simd::with(isa, || lanes.of_here(&setup, strata, (i, j)));
+                    let streams = pixel_streams(&setup, i, j);
+                    for (s, cell) in strata.cells().enumerate() {
+                        let mut one = streams.sample(s as u64);
+                        let (dx, dy) = strata.jittered(cell, &mut one);
+                        let d = setup.rays.towards(i as f64 + dx, j as f64 + dy);
+                        let lane = lanes.direction(s);
+                        assert_eq!(d.to_array().map(f64::to_bits), lane.to_array().map(f64::to_bits));
+                        assert_eq!(one.next_u64(), lanes.streams[s].clone().next_u64(), "{isa:?} {s}");
+                    }
+                }
+            }
+        }
+    }
+}
