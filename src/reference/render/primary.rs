@@ -1,7 +1,9 @@
 //! A pixel's primary rays, several samples, side by side: each sample's
 //! jittered point (from its own stream) and its direction from the eye,
 //! each step a loop without branches over the pixel's samples, compiled
-//! for AVX2 where the CPU has it. Each lane does the operations of
+//! for AVX2 where the CPU has it (inside the covered pixels' lanes, for
+//! their set: AVX2 nested there cost the small race's scene 0.033 →
+//! 0.0355 s). Each lane does the operations of
 //! `Strata::jittered` and `PixelRays::towards`, in the same order: the same
 //! bits as sample by sample.
 
@@ -50,6 +52,7 @@ impl PrimaryDirections {
             for v in [&mut self.u, &mut self.v, &mut self.x, &mut self.y, &mut self.z] {
                 v.resize(n, 0.0);
             }
+            // Placeholders: every pixel's step writes each one.
             self.streams = vec![Rng::new(0, 0, 0); n];
         }
         let streams = pixel_streams(setup, i, j);
