@@ -50,6 +50,18 @@ fn unit(x: u64) -> f64 {
     (below_2_52(t >> 1) * 2.0 + below_2_52(t & 1)) * (1.0 / (1u64 << 53) as f64)
 }
 
+/// Cell (cx, cy) (as f64) jittered by the two draws of a stream at
+/// `state`, as [`Strata::jittered`] makes it (`per`: the cell's size); in
+/// lanes, each draw's output a function of the state.
+#[inline(always)]
+fn jittered_after(state: u64, (cx, cy): (f64, f64), (per_x, per_y): (f64, f64)) -> (f64, f64) {
+    let first = state.wrapping_add(GAMMA);
+    (
+        (cx + unit(mix(first))) * per_x,
+        (cy + unit(mix(first.wrapping_add(GAMMA)))) * per_y,
+    )
+}
+
 /// The streams of one pixel's samples, [`Rng::new`] for each: the hashing
 /// of the seed and the pixel done once for all of them.
 #[derive(Clone, Copy, Debug)]
@@ -82,13 +94,11 @@ impl PixelStreams {
     ) {
         let n = u.len();
         let (cx, cy, v, streams) = (&cx[..n], &cy[..n], &mut v[..n], &mut streams[..n]);
-        let (per_x, per_y) = (1.0 / strata.nx as f64, 1.0 / strata.ny as f64);
+        let per = strata.per_cell();
         for s in 0..n {
-            let first = self.sample(s as u64).0.wrapping_add(GAMMA);
-            let second = first.wrapping_add(GAMMA);
-            u[s] = (cx[s] + unit(mix(first))) * per_x;
-            v[s] = (cy[s] + unit(mix(second))) * per_y;
-            streams[s] = Rng(second);
+            let state = self.sample(s as u64).0;
+            (u[s], v[s]) = jittered_after(state, (cx[s], cy[s]), per);
+            streams[s] = Rng(state.wrapping_add(GAMMA.wrapping_mul(2)));
         }
     }
 }
@@ -131,21 +141,33 @@ impl Strata {
     pub fn jittered_all(self, rng: &mut Rng, (cx, cy): (&[f64], &[f64]), (u, v): (&mut [f64], &mut [f64])) {
         let n = u.len();
         let (cx, cy, v) = (&cx[..n], &cy[..n], &mut v[..n]);
-        let (per_x, per_y) = (1.0 / self.nx as f64, 1.0 / self.ny as f64);
+        let per = self.per_cell();
         let first = rng.0;
         for k in 0..n {
-            let a = first.wrapping_add(GAMMA.wrapping_mul(2 * k as u64 + 1));
-            u[k] = (cx[k] + unit(mix(a))) * per_x;
-            v[k] = (cy[k] + unit(mix(a.wrapping_add(GAMMA)))) * per_y;
+            let state = first.wrapping_add(GAMMA.wrapping_mul(2 * k as u64));
+            (u[k], v[k]) = jittered_after(state, (cx[k], cy[k]), per);
         }
         rng.0 = first.wrapping_add(GAMMA.wrapping_mul(2 * n as u64));
+    }
+
+    /// Each cell's (ix, iy) as f64, in the order of [`Self::cells`]: what
+    /// the lane steps ([`Self::jittered_all`], [`PixelStreams::jittered_all`])
+    /// take.
+    pub fn cell_coordinates(self) -> (Vec<f64>, Vec<f64>) {
+        self.cells().map(|(ix, iy)| (ix as f64, iy as f64)).unzip()
+    }
+
+    /// A cell's width and height, 1/nx and 1/ny.
+    #[inline(always)]
+    fn per_cell(self) -> (f64, f64) {
+        (1.0 / self.nx as f64, 1.0 / self.ny as f64)
     }
 
     /// A point jittered uniformly inside cell (ix, iy).
     #[inline]
     pub fn jittered(self, (ix, iy): (u32, u32), rng: &mut Rng) -> (f64, f64) {
         // Reciprocals that a loop over the cells computes once.
-        let (per_x, per_y) = (1.0 / self.nx as f64, 1.0 / self.ny as f64);
+        let (per_x, per_y) = self.per_cell();
         (
             (ix as f64 + rng.next_f64()) * per_x,
             (iy as f64 + rng.next_f64()) * per_y,
@@ -328,8 +350,7 @@ mod tests {
         for n in [1, 7, 12, 64] {
             let strata = Strata::new(n);
             let cells: Vec<_> = strata.cells().collect();
-            let cx: Vec<f64> = cells.iter().map(|c| c.0 as f64).collect();
-            let cy: Vec<f64> = cells.iter().map(|c| c.1 as f64).collect();
+            let (cx, cy) = strata.cell_coordinates();
             for isa in crate::reference::simd::Isa::available() {
                 let (mut one, mut all) = (Rng::new(5, n as u64, 6), Rng::new(5, n as u64, 6));
                 let (mut u, mut v) = (vec![0.0; n as usize], vec![0.0; n as usize]);
@@ -354,7 +375,7 @@ mod tests {
         for n in [2, 7, 12, 64] {
             let strata = Strata::new(n);
             let cells: Vec<_> = strata.cells().collect();
-            let (cx, cy): (Vec<f64>, Vec<f64>) = cells.iter().map(|c| (c.0 as f64, c.1 as f64)).unzip();
+            let (cx, cy) = strata.cell_coordinates();
             let streams = PixelStreams::new(9, 1000 + n as u64);
             for isa in crate::reference::simd::Isa::available() {
                 let (mut u, mut v) = (vec![0.0; n as usize], vec![0.0; n as usize]);

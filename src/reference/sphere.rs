@@ -64,7 +64,7 @@ impl SphereSamples {
 
     fn resize(&mut self, strata: Strata) {
         let count = strata.count() as usize;
-        (self.cx, self.cy) = strata.cells().map(|(ix, iy)| (ix as f64, iy as f64)).unzip();
+        (self.cx, self.cy) = strata.cell_coordinates();
         for values in [
             &mut self.u,
             &mut self.v,

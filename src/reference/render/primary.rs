@@ -48,7 +48,7 @@ impl PrimaryDirections {
         let n = spp.count() as usize;
         if self.strata != Some(spp) {
             self.strata = Some(spp);
-            (self.cx, self.cy) = spp.cells().map(|(ix, iy)| (ix as f64, iy as f64)).unzip();
+            (self.cx, self.cy) = spp.cell_coordinates();
             for v in [&mut self.u, &mut self.v, &mut self.x, &mut self.y, &mut self.z] {
                 v.resize(n, 0.0);
             }
