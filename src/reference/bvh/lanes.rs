@@ -283,16 +283,30 @@ fn deepest_of<'a>(limits: impl IntoIterator<Item = &'a f32>) -> f32 {
         .fold(f32::NEG_INFINITY, |m, &l| if l > m { l } else { m })
 }
 
-/// `x` rounded up to f32.
+/// `x` rounded up to f32: the nearest f32, stepped up a unit in its bits
+/// when below x (a positive one up, a negative one down: a rounded value
+/// of −0 is never below x). Arithmetic, not a branch: whether to step is
+/// a coin toss for the rays' depths.
 fn up(x: f64) -> f32 {
     let y = x as f32;
-    if (y as f64) < x { y.next_up() } else { y }
+    let (step, negative) = (((y as f64) < x) as u32, y.to_bits() >> 31);
+    f32::from_bits(
+        y.to_bits()
+            .wrapping_add(step)
+            .wrapping_sub((step & negative) << 1),
+    )
 }
 
-/// `x` rounded down to f32.
+/// `x` rounded down to f32, as [`up`] (a rounded value of +0 is never
+/// above x).
 fn down(x: f64) -> f32 {
     let y = x as f32;
-    if (y as f64) > x { y.next_down() } else { y }
+    let (step, negative) = (((y as f64) > x) as u32, y.to_bits() >> 31);
+    f32::from_bits(
+        y.to_bits()
+            .wrapping_sub(step)
+            .wrapping_add((step & negative) << 1),
+    )
 }
 
 /// Bit l: lane l reaches `nearest` and its edge values do not take both
@@ -428,6 +442,61 @@ mod tests {
     use super::*;
     use crate::reference::intersect::ShearedRay;
     use crate::reference::sampling::Rng;
+
+    /// `up` and `down` give what stepping with `next_up` and `next_down`
+    /// gives, on special values, on values just past f32's and on random
+    /// values of every magnitude and sign.
+    #[test]
+    fn rounding_up_and_down_steps_as_next_up_and_next_down() {
+        let stepped_up = |x: f64| {
+            let y = x as f32;
+            if (y as f64) < x { y.next_up() } else { y }
+        };
+        let stepped_down = |x: f64| {
+            let y = x as f32;
+            if (y as f64) > x { y.next_down() } else { y }
+        };
+        let tiny = f64::from(f32::from_bits(1));
+        let mut values = vec![
+            0.0,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            f64::MAX,
+            -f64::MAX,
+            f64::from(f32::MAX),
+            tiny,
+            tiny / 3.0,
+            1e-300,
+            -1e-300,
+            1e300,
+            -1e300,
+        ];
+        let mut rng = Rng::new(11, 0, 0);
+        for _ in 0..100_000 {
+            let magnitude = 10f64.powf(90.0 * rng.next_f64() - 50.0);
+            let x = if rng.next_f64() < 0.5 {
+                -magnitude
+            } else {
+                magnitude
+            };
+            values.extend([
+                x,
+                f64::from(x as f32),
+                f64::from(x as f32).next_up(),
+                f64::from(x as f32).next_down(),
+            ]);
+        }
+        for x in values {
+            assert_eq!(up(x).to_bits(), stepped_up(x).to_bits(), "up({x:e})");
+            assert_eq!(down(x).to_bits(), stepped_down(x).to_bits(), "down({x:e})");
+            assert!(
+                x.is_nan() || (f64::from(up(x)) >= x && f64::from(down(x)) <= x),
+                "{x:e}"
+            );
+        }
+    }
 
     /// Rays towards the points `aims`: from the apex (primary rays), or
     /// (shadow rays) from beyond each point to the apex; and their spread
