@@ -126,16 +126,18 @@ impl Cone {
     /// outside one side plane, `slack` allowed.
     #[inline(always)]
     pub(super) fn misses(&self, relative: &[DVec3; 3], slack: f64) -> bool {
-        self.planes
-            .iter()
-            .any(|&n| wholly_below(relative, n, -slack * n.abs().element_sum()))
+        self.planes.iter().fold(false, |m, &n| {
+            m | wholly_below(relative, n, -slack * n.abs().element_sum())
+        })
     }
 }
 
-/// Whether every corner (relative to the apex) has n · p below `bound`.
+/// Whether every corner (relative to the apex) has n · p below `bound`:
+/// all three tested, without a branch between them (whether a corner is
+/// below is a coin toss near the cone's sides).
 #[inline(always)]
 fn wholly_below(relative: &[DVec3; 3], n: DVec3, bound: f64) -> bool {
-    relative.iter().all(|p| n.dot(*p) < bound)
+    relative.iter().fold(true, |all, p| all & (n.dot(*p) < bound))
 }
 
 /// The cone, for boxes of the BVH's normalized frame.
@@ -219,12 +221,18 @@ impl FrameCone {
             let bound = floor - slack * n.abs().element_sum();
             keep_above(&mut inside, corner_values(node, n, p, e, true), bound);
         }
-        let depth = corner_values(node, self.cone.axis, p, e, false);
+        let depth = corner_values(node, self.cone.axis, p, e, false).map(|d| d - slack);
+        // The kept children as bits first, then one branch a kept child:
+        // a branch a test and child was mispredicted often.
+        let mut kept = 0_u32;
         for child in 0..8 {
-            let least = depth[child] - slack;
-            if inside[child] && !node.is_child_empty(child) && least <= farthest {
-                keep(least, child);
-            }
+            let keeps = inside[child] & !node.is_child_empty(child) & (depth[child] <= farthest);
+            kept |= u32::from(keeps) << child;
+        }
+        while kept != 0 {
+            let child = kept.trailing_zeros() as usize;
+            kept &= kept - 1;
+            keep(depth[child], child);
         }
     }
 }
