@@ -49,9 +49,11 @@ pub(super) struct LightPacket {
     normal_sum: DVec3,
     /// Whether the packet was cast (None: not yet) and could be.
     cast: Option<bool>,
-    /// Where the last origin asked about was found: the samples ask in
-    /// the order of `origins`, so each search starts there (one pass per
-    /// pixel instead of one per ray).
+    /// Just past where the last origin asked about was found: the samples
+    /// ask in the order of `origins`, so each search starts there and
+    /// finds its origin at once (one pass per pixel instead of one per
+    /// ray; starting at the last one found, each search first failed on
+    /// it, a branch often mispredicted).
     cursor: usize,
     /// The packet of every origin, when they were not split.
     whole: ShadowPacket,
@@ -104,7 +106,7 @@ impl LightPacket {
         let i = (self.cursor..self.origins.len())
             .chain(0..self.cursor)
             .find(|&i| self.origins[i] == origin)?;
-        self.cursor = i;
+        self.cursor = i + 1;
         match self.cast {
             Some(true) if self.used == 0 => Some(self.whole.blocked(i)),
             Some(true) => {
