@@ -151,15 +151,14 @@ impl Lines {
         {
             self.avx = std::arch::is_x86_feature_detected!("avx");
         }
-        let mut count = 0;
+        // Unused lanes stay zero: E = 0 is never a sure sign. (The blocks
+        // made first: a new one every eighth ray was a branch the loop
+        // mispredicted.)
+        self.blocks.resize(limits.len().div_ceil(LANES), Block::default());
+        let mut count = 0_usize;
         for ((k, d), &limit) in directions.enumerate().zip(limits) {
             count += 1;
-            let l = k % LANES;
-            if l == 0 {
-                // Unused lanes stay zero: E = 0 is never a sure sign.
-                self.blocks.push(Block::default());
-            }
-            let block = self.blocks.last_mut().expect("pushed above");
+            let (block, l) = (&mut self.blocks[k / LANES], k % LANES);
             let d = d.as_vec3();
             for i in 0..3 {
                 block.d[i][l] = d[i];
@@ -167,6 +166,7 @@ impl Lines {
             block.reach[l] = d.abs().max_element();
             block.limit[l] = up(limit);
         }
+        self.blocks.truncate(count.div_ceil(LANES));
         self.bounds.clear();
         self.bounds
             .resize(self.blocks.len().div_ceil(GROUP), Bounds::default());
