@@ -179,10 +179,14 @@ impl FrameCone {
         oct_inv4: u32,
     ) -> u32 {
         let (child_bits8, bit_index8) = node.get_child_and_index_bits(oct_inv4);
+        let (kept, _) = self.kept_children(bvh, node, farthest);
+        // Every child, kept or not: no loop over the kept ones to end in a
+        // mispredicted branch.
         let mut hit_mask = 0;
-        self.children(bvh, node, farthest, |_, child| {
-            hit_mask |= extract_byte64(child_bits8, child) << extract_byte64(bit_index8, child);
-        });
+        for child in 0..8 {
+            let bits = extract_byte64(child_bits8, child) << extract_byte64(bit_index8, child);
+            hit_mask |= bits & (kept >> child & 1).wrapping_neg();
+        }
         hit_mask
     }
 
@@ -203,6 +207,19 @@ impl FrameCone {
         farthest: f64,
         mut keep: impl FnMut(f64, usize),
     ) {
+        let (mut kept, depth) = self.kept_children(bvh, node, farthest);
+        while kept != 0 {
+            let child = kept.trailing_zeros() as usize;
+            kept &= kept - 1;
+            keep(depth[child], child);
+        }
+    }
+
+    /// The children [`Self::children`] keeps, as bits (bit c: child c),
+    /// and each child's least depth: without a branch a test and child,
+    /// which was mispredicted often.
+    #[inline(always)]
+    fn kept_children(&self, bvh: &TriangleBvh, node: &CwBvhNode, farthest: f64) -> (u32, [f64; 8]) {
         let scale = 1.0 / bvh.per_scale;
         // In f64, relative to the apex, in world units.
         let e = node.compute_extent().as_dvec3() * scale;
@@ -222,18 +239,12 @@ impl FrameCone {
             keep_above(&mut inside, corner_values(node, n, p, e, true), bound);
         }
         let depth = corner_values(node, self.cone.axis, p, e, false).map(|d| d - slack);
-        // The kept children as bits first, then one branch a kept child:
-        // a branch a test and child was mispredicted often.
         let mut kept = 0_u32;
         for child in 0..8 {
             let keeps = inside[child] & !node.is_child_empty(child) & (depth[child] <= farthest);
             kept |= u32::from(keeps) << child;
         }
-        while kept != 0 {
-            let child = kept.trailing_zeros() as usize;
-            kept &= kept - 1;
-            keep(depth[child], child);
-        }
+        (kept, depth)
     }
 }
 
