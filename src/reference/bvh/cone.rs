@@ -163,8 +163,9 @@ impl FrameCone {
     /// outside a side plane or below the floor, `slack` allowed.
     #[inline(always)]
     pub(super) fn misses(&self, relative: &[DVec3; 3], slack: f64) -> bool {
+        // Both tests, without a branch between them.
         self.cone.misses(relative, slack)
-            || self
+            | self
                 .floor
                 .is_some_and(|(n, level)| wholly_below(relative, n, level - slack * n.abs().element_sum()))
     }
