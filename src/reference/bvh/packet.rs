@@ -116,8 +116,8 @@ pub trait Rays {
                 blocks &= blocks - 1;
                 let lanes = self.lines().may_hit(group * GROUP + block, &planes, nearest);
                 let packed = &LEFT_PACKED[lanes as usize];
-                for (slot, &lane) in kept[count..count + LANES].iter_mut().zip(packed) {
-                    *slot = (block * LANES) as u8 + lane;
+                for (entry, &lane) in kept[count..count + LANES].iter_mut().zip(packed) {
+                    *entry = (block * LANES) as u8 + lane;
                 }
                 count += lanes.count_ones() as usize;
             }
