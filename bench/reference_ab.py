@@ -1,0 +1,147 @@
+#!/usr/bin/env python3
+"""Two builds of lumlab's CPU reference against each other, one change at a
+time: the measurement the speed journal (docs/journal/reference*.md) reports
+for every step it kept or dropped.
+
+For one race scene of mitsuba_compare.py (the same triangles, camera, light,
+size and samples), both binaries render in alternation, A then B, then B then
+A, so that a slow spell of the host falls on both alike; the script prints
+each one's render time (the `N spp: S s` of its summary line: no loading, no
+BVH build, no file output), its BVH build and its whole process, as the median
+and [min–max] of --runs, and the ratio B / A of the render medians. It then
+says whether the two wrote the same EXR bytes: a change to the walks or the
+tests' order must keep every pixel, since each ray's answer is exact.
+
+With --branches, both also run once under valgrind's cachegrind with its
+branch simulation, on one thread: instructions and mispredicted branches, the
+counts that told which steps pay on this kind of host (wall times move by
+some ±5 % from one spell to the next; these do not move at all).
+
+    cargo build --release && cp target/release/lumlab /tmp/lumlab.a
+    # ...the change, then:
+    cargo build --release
+    python3 bench/reference_ab.py /tmp/lumlab.a target/release/lumlab --scene small --runs 12
+    python3 bench/reference_ab.py /tmp/lumlab.a target/release/lumlab \\
+        --scene model --model /work/models/2CylinderEngine.glb --branches
+
+Only numpy is needed (Mitsuba is not: no image is read back).
+"""
+
+import argparse
+import filecmp
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from mitsuba_compare import FOVY_DEG, POWER_W, million_scene, model_scene, small_scene, write_glb
+
+
+def command(binary, glb, scene, spp, out):
+    """The race's `lumlab reference` command line for `binary`."""
+    vec = lambda v: ",".join(repr(float(x)) for x in v)
+    width, height = scene.size
+    return [
+        str(binary), "reference", "--yes", "--ground", "off",
+        "--scene", str(glb),
+        "--camera", f"{vec(scene.eye)}:{vec(scene.target)}:{FOVY_DEG}",
+        "--size", f"{width}x{height}",
+        "--light", vec(scene.light),
+        "--power", repr(POWER_W),
+        "--light-radius", "0.0",
+        "--light-samples", "1",
+        "--color", "1,1,1",
+        "--k", "1",
+        "--spp", str(spp),
+        "--out", str(out),
+    ]  # fmt: skip
+
+
+def run(argv, threads):
+    """One run: (render s, BVH s, process s), from its summary line and the clock."""
+    env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+    start = time.perf_counter()
+    done = subprocess.run(argv, env=env, capture_output=True, text=True)
+    process_s = time.perf_counter() - start
+    if done.returncode != 0:
+        sys.exit(f"{argv[0]} failed ({done.returncode}): {done.stderr.strip()}")
+    summary = done.stderr.strip().splitlines()[-1]
+    render = re.search(r"spp: ([0-9.]+) s", summary)
+    bvh = re.search(r"BVH ([0-9.]+) s", summary)
+    if not render:
+        sys.exit(f"no render time in {argv[0]}'s summary line: {summary}")
+    return float(render.group(1)), float(bvh.group(1)) if bvh else float("nan"), process_s
+
+
+def spread(values, unit="s"):
+    v = sorted(values)
+    return f"{statistics.median(v):.4f} {unit} [{v[0]:.4f}–{v[-1]:.4f}]"
+
+
+def branches(argv):
+    """(instructions, mispredicted branches) of one run under cachegrind, one thread."""
+    with tempfile.NamedTemporaryFile(suffix=".cg") as out:
+        done = subprocess.run(
+            ["valgrind", "--tool=cachegrind", "--cache-sim=no", "--branch-sim=yes",
+             f"--cachegrind-out-file={out.name}", *argv],
+            env=dict(os.environ, RAYON_NUM_THREADS="1"), capture_output=True, text=True,
+        )  # fmt: skip
+    if done.returncode != 0:
+        sys.exit(f"valgrind failed ({done.returncode}): {done.stderr.strip()[-400:]}")
+    count = lambda label: int(re.search(rf"{label}:\s+([0-9,]+)", done.stderr).group(1).replace(",", ""))
+    return count("I\\s+refs"), count("Mispredicts")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("a", type=Path, help="the build before the change")
+    parser.add_argument("b", type=Path, help="the build after it")
+    parser.add_argument("--scene", choices=["small", "model", "million"], default="small")
+    parser.add_argument("--model", type=Path, help="the GLB of the model scene (see mitsuba_compare.py)")
+    parser.add_argument("--spp", type=int, help="samples per pixel (default: the race's)")
+    parser.add_argument("--runs", type=int, default=10, help="runs of each build, alternated")
+    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--branches", action="store_true", help="also count with cachegrind (valgrind)")
+    args = parser.parse_args()
+    for binary in (args.a, args.b):
+        if not binary.is_file():
+            sys.exit(f"no lumlab binary at {binary}")
+    if args.scene == "model" and not (args.model and args.model.is_file()):
+        sys.exit("the model scene needs --model FILE.glb")
+    if args.branches and not shutil.which("valgrind"):
+        sys.exit("--branches needs valgrind (apt-get install -y valgrind)")
+    scene = {"small": small_scene, "million": million_scene, "model": lambda: model_scene(args.model)}[args.scene]()
+    spp = args.spp or scene.spp
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        glb = folder / "scene.glb"
+        write_glb(glb, scene)
+        argv = {k: command(b, glb, scene, spp, folder / f"{k}.exr") for k, b in (("A", args.a), ("B", args.b))}
+        times = {"A": [], "B": []}
+        for i in range(args.runs):
+            for k in ("AB" if i % 2 == 0 else "BA"):
+                times[k].append(run(argv[k], args.threads))
+        same = filecmp.cmp(folder / "A.exr", folder / "B.exr", shallow=False)
+        print(f"{args.scene}: {scene.triangles()} triangles, {scene.size[0]}×{scene.size[1]}, {spp} spp, "
+              f"{args.threads} threads, {args.runs} alternated runs each")  # fmt: skip
+        for k, binary in (("A", args.a), ("B", args.b)):
+            render, bvh, process = zip(*times[k])
+            print(f"  {k} {binary}: render {spread(render)}, BVH {spread(bvh)}, process {spread(process)}")
+        ratio = statistics.median(t[0] for t in times["B"]) / statistics.median(t[0] for t in times["A"])
+        print(f"  render B / A: {ratio:.3f} (medians); EXRs {'the same bytes' if same else 'DIFFERENT'}")
+        if args.branches:
+            for k in ("A", "B"):
+                instructions, mispredicted = branches(argv[k])
+                print(f"  {k} cachegrind, 1 thread: {instructions / 1e6:,.0f} M instructions, "
+                      f"{mispredicted / 1e6:.2f} M mispredicted branches")  # fmt: skip
+    if not same:
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
