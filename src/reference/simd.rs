@@ -79,3 +79,17 @@ pub fn with<R>(isa: Isa, f: impl FnOnce() -> R) -> R {
     }
     f()
 }
+
+/// Asks for the cache line at `at` ahead of its use: a hint, which changes
+/// no result (no address faults, nothing is read).
+#[inline(always)]
+pub fn prefetch<T>(at: *const T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch reads nothing and faults on no address.
+    unsafe {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        _mm_prefetch::<_MM_HINT_T0>(at.cast());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = at;
+}

