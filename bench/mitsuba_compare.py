@@ -348,14 +348,11 @@ def render_mitsuba(mi, loaded, spp, seed=0):
     return image, time.perf_counter() - start
 
 
-def run_lumlab(lumlab, folder, scene, threads, spp, radius=0.0, light_samples=1, extra=()):
-    glb = folder / "scene.glb"
-    if not glb.exists():
-        write_glb(glb, scene)
-    exr = folder / "lumlab.exr"
+def lumlab_command(lumlab, glb, exr, scene, spp, radius=0.0, light_samples=1, extra=()):
+    """The race's `lumlab reference` command line: the scene in `glb`, the image to `exr`."""
     vec = lambda v: ",".join(repr(float(x)) for x in v)
     width, height = scene.size
-    command = [
+    return [
         str(lumlab), "reference", "--yes", "--ground", "off",
         "--scene", str(glb),
         "--camera", f"{vec(scene.eye)}:{vec(scene.target)}:{FOVY_DEG}",
@@ -370,16 +367,30 @@ def run_lumlab(lumlab, folder, scene, threads, spp, radius=0.0, light_samples=1,
         "--out", str(exr),
         *extra,
     ]  # fmt: skip
+
+
+def run_timed(command, threads):
+    """One lumlab run: (whole process s, render s, its summary line); the
+    render is the summary's `N spp: S s` (no loading, BVH or file output)."""
     env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
     start = time.perf_counter()
     run = subprocess.run(command, env=env, capture_output=True, text=True)
     wall_s = time.perf_counter() - start
     if run.returncode != 0:
-        sys.exit(f"lumlab failed ({run.returncode}): {run.stderr.strip()}")
+        sys.exit(f"{command[0]} failed ({run.returncode}): {run.stderr.strip()}")
     summary = run.stderr.strip().splitlines()[-1]
-    # "... 32 spp: 0.842 s (build 0.1 s) ...": the render alone, as lumlab timed it.
     found = re.search(r"spp: ([0-9.]+) s", summary)
     render_s = float(found.group(1)) if found else float("nan")
+    return wall_s, render_s, summary
+
+
+def run_lumlab(lumlab, folder, scene, threads, spp, radius=0.0, light_samples=1, extra=()):
+    glb = folder / "scene.glb"
+    if not glb.exists():
+        write_glb(glb, scene)
+    exr = folder / "lumlab.exr"
+    command = lumlab_command(lumlab, glb, exr, scene, spp, radius, light_samples, extra)
+    wall_s, render_s, summary = run_timed(command, threads)
     import mitsuba as mi
 
     if mi.variant() is None:

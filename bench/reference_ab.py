@@ -36,46 +36,18 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
-from mitsuba_compare import FOVY_DEG, POWER_W, million_scene, model_scene, small_scene, write_glb
-
-
-def command(binary, glb, scene, spp, out):
-    """The race's `lumlab reference` command line for `binary`."""
-    vec = lambda v: ",".join(repr(float(x)) for x in v)
-    width, height = scene.size
-    return [
-        str(binary), "reference", "--yes", "--ground", "off",
-        "--scene", str(glb),
-        "--camera", f"{vec(scene.eye)}:{vec(scene.target)}:{FOVY_DEG}",
-        "--size", f"{width}x{height}",
-        "--light", vec(scene.light),
-        "--power", repr(POWER_W),
-        "--light-radius", "0.0",
-        "--light-samples", "1",
-        "--color", "1,1,1",
-        "--k", "1",
-        "--spp", str(spp),
-        "--out", str(out),
-    ]  # fmt: skip
+from mitsuba_compare import lumlab_command, million_scene, model_scene, run_timed, small_scene, write_glb
 
 
 def run(argv, threads):
     """One run: (render s, BVH s, process s), from its summary line and the clock."""
-    env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
-    start = time.perf_counter()
-    done = subprocess.run(argv, env=env, capture_output=True, text=True)
-    process_s = time.perf_counter() - start
-    if done.returncode != 0:
-        sys.exit(f"{argv[0]} failed ({done.returncode}): {done.stderr.strip()}")
-    summary = done.stderr.strip().splitlines()[-1]
-    render = re.search(r"spp: ([0-9.]+) s", summary)
-    bvh = re.search(r"BVH ([0-9.]+) s", summary)
-    if not render:
+    process_s, render_s, summary = run_timed(argv, threads)
+    if render_s != render_s:
         sys.exit(f"no render time in {argv[0]}'s summary line: {summary}")
-    return float(render.group(1)), float(bvh.group(1)) if bvh else float("nan"), process_s
+    bvh = re.search(r"BVH ([0-9.]+) s", summary)
+    return render_s, float(bvh.group(1)) if bvh else float("nan"), process_s
 
 
 def spread(values, unit="s"):
@@ -121,7 +93,7 @@ def main():
         folder = Path(tmp)
         glb = folder / "scene.glb"
         write_glb(glb, scene)
-        argv = {k: command(b, glb, scene, spp, folder / f"{k}.exr") for k, b in (("A", args.a), ("B", args.b))}
+        argv = {k: lumlab_command(b, glb, folder / f"{k}.exr", scene, spp) for k, b in (("A", args.a), ("B", args.b))}
         times = {"A": [], "B": []}
         for i in range(args.runs):
             for k in ("AB" if i % 2 == 0 else "BA"):
