@@ -29,6 +29,7 @@ Only numpy is needed (Mitsuba is not: no image is read back).
 
 import argparse
 import filecmp
+import math
 import os
 import re
 import shutil
@@ -44,15 +45,15 @@ from mitsuba_compare import lumlab_command, million_scene, model_scene, run_time
 def run(argv, threads):
     """One run: (render s, BVH s, process s), from its summary line and the clock."""
     process_s, render_s, summary = run_timed(argv, threads)
-    if render_s != render_s:
+    if math.isnan(render_s):
         sys.exit(f"no render time in {argv[0]}'s summary line: {summary}")
     bvh = re.search(r"BVH ([0-9.]+) s", summary)
     return render_s, float(bvh.group(1)) if bvh else float("nan"), process_s
 
 
-def spread(values, unit="s"):
+def spread(values):
     v = sorted(values)
-    return f"{statistics.median(v):.4f} {unit} [{v[0]:.4f}–{v[-1]:.4f}]"
+    return f"{statistics.median(v):.4f} s [{v[0]:.4f}–{v[-1]:.4f}]"
 
 
 def branches(argv):
