@@ -28,7 +28,7 @@ fn generated_scene(rng: &mut Rng) -> Vec<BvhTriangle> {
     for (i, mesh) in meshes.iter().enumerate() {
         for t in 0..mesh.triangle_count() {
             triangles.push(BvhTriangle {
-                corners: mesh.triangle(t).map(|p| p.as_dvec3()),
+                corners: mesh.triangle(t),
                 occludes: i % 2 == 0,
             });
         }
@@ -65,7 +65,7 @@ fn point_on(triangles: &[BvhTriangle], rng: &mut Rng) -> DVec3 {
 
 /// A point on the triangle: a corner, a point on an edge, or inside.
 fn point_on_triangle(tri: &BvhTriangle, rng: &mut Rng) -> DVec3 {
-    let [a, b, c] = tri.corners;
+    let [a, b, c] = tri.corners_f64();
     match (rng.next_f64() * 3.0) as u32 {
         0 => a,
         1 => a.lerp(b, rng.next_f64()),
@@ -156,7 +156,7 @@ fn direction_grids_equal_brute_force_for_rays_through_their_centre() {
         DVec3::new(6.0, 4.0, 9.0),
         DVec3::new(0.5, 5.0, -0.3),
         DVec3::new(1.25, 0.0, -2.5),
-        triangles[2].corners[0],
+        triangles[2].corners_f64()[0],
     ];
     let (mut answered, mut deferred) = (0, 0);
     for centre in centres {
@@ -246,7 +246,7 @@ fn occluders_gathered_near_a_ball_block_exactly_what_brute_force_does() {
 /// The unit normal of the triangle on the light's side of point p, and
 /// the shadow offset of its shadow rays (as the reference lifts them).
 fn shadow_lift(tri: &BvhTriangle, p: DVec3, light: DVec3) -> (DVec3, f64) {
-    let [a, b, c] = tri.corners;
+    let [a, b, c] = tri.corners_f64();
     let face = (b - a).cross(c - a).normalize();
     let normal = if face.dot(light - p) > 0.0 { face } else { -face };
     let largest = [a, b, c]
@@ -433,7 +433,7 @@ fn shadow_rays_from_a_clear_patch_are_blocked_by_nothing() {
         let p = point_on_triangle(&triangles[own], &mut rng);
         let (normal, offset) = shadow_lift(&triangles[own], p, light);
         let lift = normal * offset;
-        let [a, b, c] = triangles[own].corners;
+        let [a, b, c] = triangles[own].corners_f64();
         let size = 1e-3 * 20f64.powf(rng.next_f64());
         let (e1, e2) = ((b - a).normalize() * size, (c - a).normalize() * size);
         let origins = [p, p + e1, p + e2, p + e1 + e2].map(|q| q + lift);

@@ -72,7 +72,7 @@ fn scene(rng: &mut Rng) -> Vec<BvhTriangle> {
         .into_iter()
         .enumerate()
         .map(|(i, corners)| BvhTriangle {
-            corners,
+            corners: corners.map(|p| p.as_vec3()),
             occludes: i % 3 != 0,
         })
         .collect()
@@ -80,7 +80,8 @@ fn scene(rng: &mut Rng) -> Vec<BvhTriangle> {
 
 /// A point of a random triangle: a corner, a point of an edge, or inside.
 fn point_on(triangles: &[BvhTriangle], rng: &mut Rng) -> DVec3 {
-    let [a, b, c] = triangles[(rng.next_f64() * triangles.len() as f64) as usize % triangles.len()].corners;
+    let [a, b, c] =
+        triangles[(rng.next_f64() * triangles.len() as f64) as usize % triangles.len()].corners_f64();
     match (rng.next_f64() * 3.0) as u32 {
         0 => a,
         1 => a.lerp(b, rng.next_f64()),
@@ -250,7 +251,7 @@ fn a_ray_passing_over_its_own_triangle_blocks_as_brute_force_does() {
             // Triangles within about a row of cells of the first one (by index).
             let near = first as f64 + (rng.next_f64() - 0.5) * 4.0 * (SIDE - 1) as f64;
             let index = (near.max(0.0) as usize).min(field - 1);
-            let [a, b, c] = triangles[index].corners;
+            let [a, b, c] = triangles[index].corners_f64();
             let p = a.lerp(b, rng.next_f64()).lerp(c, rng.next_f64());
             let face = (b - a).cross(c - a).normalize();
             let to_light = light - p;
@@ -395,7 +396,7 @@ fn a_surface_a_hair_in_front_of_a_hit_is_still_found() {
     let directions: Vec<DVec3> = (0..16)
         .map(|_| {
             let (u, v) = (0.1 + 0.4 * rng.next_f64(), 0.1 + 0.4 * rng.next_f64());
-            let [a, b, c] = triangles[2].corners;
+            let [a, b, c] = triangles[2].corners_f64();
             a + (b - a) * u + (c - a) * v - eye
         })
         .collect();
@@ -472,7 +473,7 @@ fn occluders(corners: Vec<[DVec3; 3]>) -> Vec<BvhTriangle> {
     corners
         .into_iter()
         .map(|corners| BvhTriangle {
-            corners,
+            corners: corners.map(|p| p.as_vec3()),
             occludes: true,
         })
         .collect()

@@ -32,7 +32,7 @@ pub use ball::BallRegion;
 pub use cone::Cone;
 pub use packet::{PrimaryPacket, ShadowPacket};
 // `UVec2` is named inside obvhs's `traverse!` macro.
-use glam::{DVec3, UVec2, Vec3A};
+use glam::{DVec3, UVec2, Vec3, Vec3A};
 use obvhs::cwbvh::Traversal;
 use obvhs::cwbvh::node::CwBvhNode;
 use obvhs::ray::Ray;
@@ -52,9 +52,24 @@ const PAD_S: f64 = 4.0 * PAD;
 /// A triangle to cast rays against.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BvhTriangle {
-    pub corners: [DVec3; 3],
+    /// In f32, as every scene's are: f64 holds them exactly (`widened`), and
+    /// half the bytes keep more of a large model's corners in cache.
+    pub corners: [Vec3; 3],
     /// Blocks shadow rays (the object casts shadows).
     pub occludes: bool,
+}
+
+impl BvhTriangle {
+    /// Its corners in f64, exactly.
+    pub fn corners_f64(&self) -> [DVec3; 3] {
+        widened(&self.corners)
+    }
+}
+
+/// f32 corners in f64, exactly: what every test of a ray takes.
+#[inline(always)]
+pub fn widened(corners: &[Vec3; 3]) -> [DVec3; 3] {
+    corners.map(Vec3::as_dvec3)
 }
 
 /// The closest hit of a ray.
@@ -76,7 +91,7 @@ pub struct TriangleBvh {
     /// None when there is nothing to hit.
     bvh: Option<CwBvh>,
     /// Corners, in the BVH's leaf order so that a leaf slot indexes them directly.
-    corners: Vec<[DVec3; 3]>,
+    corners: Vec<[Vec3; 3]>,
     occludes: Vec<bool>,
     /// Leaf slot → index in the caller's list.
     original: Vec<usize>,
@@ -101,13 +116,13 @@ impl TriangleBvh {
     fn in_groups(triangles: &[BvhTriangle], (min_group, very_fast_from): (usize, usize)) -> Self {
         let usable: Vec<usize> = (0..triangles.len())
             .filter(|&i| {
-                let [a, b, c] = triangles[i].corners;
+                let [a, b, c] = triangles[i].corners_f64();
                 a.is_finite() && b.is_finite() && c.is_finite() && (b - a).cross(c - a).length_squared() > 0.0
             })
             .collect();
         let (mut min, mut max) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
         for &i in &usable {
-            for p in triangles[i].corners {
+            for p in triangles[i].corners_f64() {
                 min = min.min(p);
                 max = max.max(p);
             }
@@ -131,7 +146,7 @@ impl TriangleBvh {
         let boxes: Vec<Aabb> = usable
             .iter()
             .map(|&i| {
-                let [a, b, c] = triangles[i].corners.map(to_frame);
+                let [a, b, c] = triangles[i].corners_f64().map(to_frame);
                 let lo = a.min(b).min(c) - DVec3::splat(PAD);
                 let hi = a.max(b).max(c) + DVec3::splat(PAD);
                 Aabb::new(lo.as_vec3a(), hi.as_vec3a())
@@ -234,7 +249,10 @@ impl TriangleBvh {
         let mut best: Option<Hit> = None;
         let mut limit = t_max;
         self.walk_ray(bvh, &query, |slot, far| {
-            if let Some(at) = query.sheared.intersect(&self.corners[slot], t_min, limit) {
+            if let Some(at) = query
+                .sheared
+                .intersect(&widened(&self.corners[slot]), t_min, limit)
+            {
                 let triangle = self.original[slot];
                 if best.is_none_or(|b| closer(at, triangle, b)) {
                     best = Some(Hit { triangle, at });
@@ -259,7 +277,7 @@ impl TriangleBvh {
         };
         let mut blocked = false;
         self.walk_ray(bvh, &query, |slot, _| {
-            if self.occludes[slot] && query.sheared.hits(&self.corners[slot], t_min, t_max) {
+            if self.occludes[slot] && query.sheared.hits(&widened(&self.corners[slot]), t_min, t_max) {
                 blocked = true;
             }
             blocked
@@ -353,7 +371,7 @@ pub fn closest_hit_brute_force(
     let mut best: Option<Hit> = None;
     for (i, tri) in triangles.iter().enumerate() {
         let limit = best.map_or(t_max, |b| b.at.t.next_up());
-        if let Some(at) = sheared.intersect(&tri.corners, t_min, limit)
+        if let Some(at) = sheared.intersect(&tri.corners_f64(), t_min, limit)
             && best.is_none_or(|b| closer(at, i, b))
         {
             best = Some(Hit { triangle: i, at });
@@ -373,19 +391,19 @@ pub fn occluded_brute_force(
     let sheared = ShearedRay::new(origin, direction);
     triangles
         .iter()
-        .any(|tri| tri.occludes && sheared.hits(&tri.corners, t_min, t_max))
+        .any(|tri| tri.occludes && sheared.hits(&tri.corners_f64(), t_min, t_max))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn quad(y: f64, half: f64, occludes: bool) -> [BvhTriangle; 2] {
+    fn quad(y: f32, half: f32, occludes: bool) -> [BvhTriangle; 2] {
         let c = [
-            DVec3::new(-half, y, half),
-            DVec3::new(half, y, half),
-            DVec3::new(half, y, -half),
-            DVec3::new(-half, y, -half),
+            Vec3::new(-half, y, half),
+            Vec3::new(half, y, half),
+            Vec3::new(half, y, -half),
+            Vec3::new(-half, y, -half),
         ];
         [
             BvhTriangle {
@@ -451,7 +469,7 @@ mod tests {
     #[test]
     fn nothing_to_hit_is_fine() {
         let degenerate = [BvhTriangle {
-            corners: [DVec3::ZERO, DVec3::X, DVec3::X * 2.0],
+            corners: [Vec3::ZERO, Vec3::X, Vec3::X * 2.0],
             occludes: true,
         }];
         for tris in [&degenerate[..], &[]] {
@@ -484,7 +502,7 @@ mod tests {
             let centre = DVec3::new(4.0 * x - 2.0, y, 4.0 * z - 2.0).as_vec3();
             let sphere = crate::scene::shapes::sphere(centre, 0.2 + rng.next_f64() as f32, 24, 12);
             tris.extend((0..sphere.triangle_count()).map(|t| BvhTriangle {
-                corners: sphere.triangle(t).map(|p| p.as_dvec3()),
+                corners: sphere.triangle(t),
                 occludes: s % 3 != 0,
             }));
         }
@@ -493,7 +511,7 @@ mod tests {
         assert_eq!(root.imask.count_ones(), 8, "eight groups");
         // A corner, a point on an edge or inside a random triangle.
         let aim = |rng: &mut Rng| {
-            let [a, b, c] = tris[(rng.next_f64() * tris.len() as f64) as usize].corners;
+            let [a, b, c] = tris[(rng.next_f64() * tris.len() as f64) as usize].corners_f64();
             match (rng.next_f64() * 3.0) as u32 {
                 0 => a,
                 1 => a.lerp(b, rng.next_f64()),

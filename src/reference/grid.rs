@@ -103,7 +103,7 @@ impl DirectionGrid {
             if !keep(tri) || !tri.corners.iter().all(|p| p.is_finite()) {
                 continue;
             }
-            let relative = tri.corners.map(|p| p - centre);
+            let relative = tri.corners_f64().map(|p| p - centre);
             for face in 0..6 {
                 if let Some(range) = cell_range(&relative, face) {
                     spans.push((index as u32, face, range));
@@ -152,7 +152,7 @@ impl DirectionGrid {
                     if *member == u32::MAX {
                         *member = members.len() as u32;
                         members.push(triangle);
-                        let corners = triangles[triangle as usize].corners.map(|p| p - centre);
+                        let corners = triangles[triangle as usize].corners_f64().map(|p| p - centre);
                         relative.push(corners);
                         seen.push(depth::Seen::new(corners));
                     }
@@ -311,7 +311,7 @@ impl DirectionGrid {
         }
         let ray = ShearedRay::new(origin, -w);
         let blocked = with_axes!(ray.axes(), KZ, SWAP => candidates.any(|triangle| {
-            ray.hits_in::<KZ, SWAP>(&ray.relative(&triangles[triangle].corners), 0.0, t_max)
+            ray.hits_in::<KZ, SWAP>(&ray.relative(&triangles[triangle].corners_f64()), 0.0, t_max)
         }));
         Answer::Known(blocked)
     }

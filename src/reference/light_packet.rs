@@ -300,7 +300,7 @@ mod tests {
                 let (i, j) = (k % cells, k / cells);
                 let [a, b, c, d] = [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)];
                 [[a, d, c], [a, c, b]].map(|corners| BvhTriangle {
-                    corners,
+                    corners: corners.map(|p| p.as_vec3()),
                     occludes: true,
                 })
             })
@@ -320,7 +320,7 @@ mod tests {
             [strip(1.8, -1.0), strip(1.964, 1.0), strip(1.964, -1.0)],
         ] {
             triangles.push(BvhTriangle {
-                corners,
+                corners: corners.map(|p| p.as_vec3()),
                 occludes: true,
             });
         }

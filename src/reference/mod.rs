@@ -236,7 +236,7 @@ impl Reference {
                 let bvh_triangles = gathered(
                     scene,
                     mesh_triangles(scene).map(|t| BvhTriangle {
-                        corners: t.corners.map(|p| p.as_dvec3()),
+                        corners: t.corners,
                         occludes: scene.objects[t.object].casts_shadows,
                     }),
                 );

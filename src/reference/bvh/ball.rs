@@ -8,6 +8,7 @@
 use super::TriangleBvh;
 use super::cone::{Cone, FrameCone, ROUNDING};
 use super::packet::Visitor;
+use super::widened;
 use crate::reference::intersect::{ShearedRay, extent};
 use glam::DVec3;
 
@@ -237,7 +238,7 @@ impl TriangleBvh {
         let sheared = ShearedRay::new(origin, direction);
         candidates
             .iter()
-            .any(|&slot| sheared.hits(&self.corners[slot as usize], 0.0, t_max))
+            .any(|&slot| sheared.hits(&widened(&self.corners[slot as usize]), 0.0, t_max))
     }
 }
 
@@ -312,6 +313,7 @@ mod tests {
     use super::*;
     use crate::reference::bvh::{BvhTriangle, occluded_brute_force};
     use crate::reference::sampling::Rng;
+    use glam::Vec3;
 
     /// A point of the ball: inside, on its surface, or (one time in three)
     /// on the circle where segments from `from` graze it, the cone's edge.
@@ -337,7 +339,7 @@ mod tests {
     /// over it, and 60 small triangles in the air: occluders at the cones'
     /// edges.
     fn scene(rng: &mut Rng) -> Vec<BvhTriangle> {
-        let ground = [[-4.0, 4.0], [4.0, 4.0], [4.0, -4.0], [-4.0, -4.0]].map(|[x, z]| DVec3::new(x, 0.0, z));
+        let ground = [[-4.0, 4.0], [4.0, 4.0], [4.0, -4.0], [-4.0, -4.0]].map(|[x, z]| Vec3::new(x, 0.0, z));
         let mut tris = vec![
             BvhTriangle {
                 corners: [ground[0], ground[1], ground[2]],
@@ -356,7 +358,7 @@ mod tests {
             );
             let sphere = crate::scene::shapes::sphere(centre.as_vec3(), 0.3, 16, 8);
             tris.extend((0..sphere.triangle_count()).map(|t| BvhTriangle {
-                corners: sphere.triangle(t).map(|p| p.as_dvec3()),
+                corners: sphere.triangle(t),
                 occludes: true,
             }));
         }
@@ -369,7 +371,7 @@ mod tests {
             let [b, c] =
                 [0, 1].map(|_| a + (DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) - 0.5) * 0.4);
             tris.push(BvhTriangle {
-                corners: [a, b, c],
+                corners: [a, b, c].map(|p| p.as_vec3()),
                 occludes: true,
             });
         }
@@ -379,7 +381,7 @@ mod tests {
     /// A point of triangle `tri` at barycentric-ish (s, t), lifted off its
     /// front side as the reference lifts shadow origins, and its normal.
     fn lifted(tri: &BvhTriangle, (s, t): (f64, f64)) -> (DVec3, DVec3) {
-        let [a, b, c] = tri.corners;
+        let [a, b, c] = tri.corners_f64();
         let p = a.lerp(b, s).lerp(c, t);
         let n = (b - a).cross(c - a).normalize();
         (p + n * 1e-9 * p.abs().max_element().max(1.0), n)

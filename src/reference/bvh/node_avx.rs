@@ -91,7 +91,7 @@ mod tests {
             .map(|_| {
                 let centre = point(1.0);
                 BvhTriangle {
-                    corners: [centre, centre + point(0.05), centre + point(0.05)],
+                    corners: [centre, centre + point(0.05), centre + point(0.05)].map(|p| p.as_vec3()),
                     occludes: true,
                 }
             })

@@ -33,7 +33,7 @@
 
 use super::cone::{Cone, FrameCone, ROUNDING};
 use super::lanes::{GROUP, LANES, LEFT_PACKED, Lines};
-use super::{Hit, TRAVERSAL, TriangleBvh, closer};
+use super::{Hit, TRAVERSAL, TriangleBvh, closer, widened};
 use crate::reference::intersect::{ShearedRay, extent, with_axes};
 use crate::reference::simd::{self, Isa};
 // `UVec2` is named inside obvhs's `traverse!` macro.
@@ -230,7 +230,7 @@ impl TriangleBvh {
     /// and the allowance for the rounding of the tests on them.
     #[inline(always)]
     pub(super) fn relative_to(&self, slot: usize, apex: DVec3) -> ([DVec3; 3], f64) {
-        let relative = self.corners[slot].map(|p| p - apex);
+        let relative = self.corners[slot].map(|p| p.as_dvec3() - apex);
         (relative, ROUNDING * extent(&relative))
     }
 
@@ -578,7 +578,7 @@ impl Rays for ShadowPacket {
         let o = self.origins[k];
         let apex = self.apex;
         let ray = self.rays[k].get_or_insert_with(|| ShearedRay::new(o, apex - o));
-        let blocked = ray.hits(&bvh.corners[slot], 0.0, self.t_max);
+        let blocked = ray.hits(&widened(&bvh.corners[slot]), 0.0, self.t_max);
         if blocked {
             self.limits[k] = f64::NEG_INFINITY;
             self.lines.set_limit(k, f64::NEG_INFINITY);
