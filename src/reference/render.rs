@@ -19,6 +19,7 @@ use std::time::Instant;
 mod cover;
 mod lanes;
 mod pixel;
+mod point_run;
 mod primary;
 
 /// Edge length of the square tiles the image is split into for the threads.
@@ -232,17 +233,23 @@ impl Reference {
                 // it costs more than the blocks it spares (engine: 2.7 % of
                 // the process's instructions, same bits).
                 self.trace_run(setup, spp, (i, j), (width, band), &mut buffers);
-                self.run_samples(setup, &mut buffers, &mut shading);
-                self.aim_light_packet(setup, &mut buffers);
-                for k in 0..(width * band) as usize {
-                    let (c, r) = (k as u32 % width, k as u32 / width);
-                    buffers.scratch.block = Some(region_block(i + c, j + r));
-                    let pixel = self.shade_pixel(setup, k * n as usize, n, false, &mut buffers);
+                let mut place = |k: usize, pixel: Pixel| {
                     if k < width as usize {
                         tile.add(pixel);
                     } else {
                         below.push(pixel);
                     }
+                };
+                if !setup.is_sphere_light() {
+                    self.shade_point_run(setup, n, (&mut buffers, &mut shading), place);
+                    continue;
+                }
+                self.run_samples(setup, &mut buffers, &mut shading);
+                self.aim_light_packet(setup, &mut buffers);
+                for k in 0..(width * band) as usize {
+                    let (c, r) = (k as u32 % width, k as u32 / width);
+                    buffers.scratch.block = Some(region_block(i + c, j + r));
+                    place(k, self.shade_pixel(setup, k * n as usize, n, false, &mut buffers));
                 }
             }
             for pixel in below.drain(..) {
@@ -457,6 +464,10 @@ struct PixelBuffers {
     lanes: lanes::Lanes,
     /// A pixel's primary samples, in lanes.
     primary: primary::PrimaryDirections,
+    /// A block's samples under a point light, and their shadow rays
+    /// (`point_run`).
+    lit: Vec<Option<point_run::LitSample>>,
+    shadow_rays: Vec<(DVec3, DVec3, usize)>,
 }
 
 /// The cone from the eye of the block of width × height pixels from (x, y),

@@ -285,10 +285,17 @@ impl Reference {
             grid.blocked_towards_centre(&self.grid_triangles, origin, t_max, own)
         }) {
             Some(Answer::Known(blocked)) => blocked,
-            _ => packet
-                .blocked(&self.bvh, setup.light_position, origin)
-                .unwrap_or_else(|| self.blocked(origin, setup.light_position)),
+            _ => self.blocked_in_packet(setup, origin, packet),
         }
+    }
+
+    /// Whether the segment from `origin` (one of `packet`'s, else on its
+    /// own) to the point light is blocked, through the BVH.
+    #[inline(always)]
+    pub(super) fn blocked_in_packet(&self, setup: &Setup, origin: DVec3, packet: &mut LightPacket) -> bool {
+        packet
+            .blocked(&self.bvh, setup.light_position, origin)
+            .unwrap_or_else(|| self.blocked(origin, setup.light_position))
     }
 
     /// The triangle of a point p (face normal g on the eye's side) when its
@@ -344,36 +351,80 @@ impl Reference {
 /// L / (c · colour) = (f_d + f_s)(l) · E · V at point p of shading normal n
 /// seen along o (unit, towards the eye), with V from one shadow ray where
 /// the point is `shadowed` and above the light's horizon (`blocked` casts
-/// it); the BRDF is evaluated only where light arrives.
+/// it).
 #[inline(always)]
 pub(super) fn point_light_at(
     setup: &Setup,
-    (p, n, o): (DVec3, DVec3, DVec3),
+    point: (DVec3, DVec3, DVec3),
     brdf: &BrdfParams<f64>,
     shadowed: bool,
     blocked: impl FnOnce() -> bool,
 ) -> LightEstimate {
-    let inc = incidence(p, n, setup.light_position);
-    let (visibility, shadow_rays) = if !shadowed {
-        (1.0, 0)
-    } else if inc.cos_theta <= 0.0 {
-        // Attached shadow: the light is below the surface's horizon.
-        (0.0, 0)
-    } else if blocked() {
-        (0.0, 1)
-    } else {
-        (1.0, 1)
-    };
-    let scaled_radiance = if visibility > 0.0 && inc.cos_theta > 0.0 {
-        let e = point_irradiance(setup.intensity_w_sr, inc.cos_theta, inc.r);
-        blinn_phong(n, inc.l, o, brdf).total() * e
-    } else {
-        0.0
-    };
-    LightEstimate {
-        scaled_radiance,
-        visibility,
-        std_error: Some(0.0),
-        shadow_rays,
+    let lit = PointLit::new(setup, point, brdf, shadowed);
+    lit.estimate(lit.casts() && blocked())
+}
+
+/// [`point_light_at`] before its shadow ray: what the point gets where
+/// the ray is not blocked, and whether it casts one.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct PointLit {
+    /// L / (c · colour) where the light reaches the point.
+    scaled_radiance: f64,
+    /// V before the shadow ray: 0 under the horizon of a shadowed point.
+    visibility: f64,
+    shadow_rays: u32,
+}
+
+impl PointLit {
+    #[inline(always)]
+    pub(super) fn new(
+        setup: &Setup,
+        (p, n, o): (DVec3, DVec3, DVec3),
+        brdf: &BrdfParams<f64>,
+        shadowed: bool,
+    ) -> Self {
+        let inc = incidence(p, n, setup.light_position);
+        let (visibility, shadow_rays) = if !shadowed {
+            (1.0, 0)
+        } else if inc.cos_theta <= 0.0 {
+            // Attached shadow: the light is below the surface's horizon.
+            (0.0, 0)
+        } else {
+            (1.0, 1)
+        };
+        let scaled_radiance = if inc.cos_theta > 0.0 {
+            let e = point_irradiance(setup.intensity_w_sr, inc.cos_theta, inc.r);
+            blinn_phong(n, inc.l, o, brdf).total() * e
+        } else {
+            0.0
+        };
+        Self {
+            scaled_radiance,
+            visibility,
+            shadow_rays,
+        }
+    }
+
+    /// Whether the point casts a shadow ray.
+    #[inline(always)]
+    pub(super) fn casts(&self) -> bool {
+        self.shadow_rays > 0
+    }
+
+    /// The light at the point, its shadow ray (if it casts one) `blocked`
+    /// or not.
+    #[inline(always)]
+    pub(super) fn estimate(self, blocked: bool) -> LightEstimate {
+        let visibility = if blocked { 0.0 } else { self.visibility };
+        LightEstimate {
+            scaled_radiance: if visibility > 0.0 {
+                self.scaled_radiance
+            } else {
+                0.0
+            },
+            visibility,
+            std_error: Some(0.0),
+            shadow_rays: self.shadow_rays,
+        }
     }
 }

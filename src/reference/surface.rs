@@ -41,21 +41,34 @@ impl Surface {
     /// `Reference::own_unreached`); None when it casts none (nearly
     /// certainly: a light on its horizon may go either way).
     pub(super) fn shadow_ray(&self, light: DVec3) -> Option<(DVec3, DVec3, usize)> {
-        let to_light = light - self.p;
-        (self.shadowed && self.n.dot(to_light) > 0.0).then(|| {
-            let g = self.geometric_normal;
-            let own = if lift_clears(self.shadow_offset_m, g, to_light) {
-                self.triangle
-            } else {
-                usize::MAX
-            };
-            (
-                self.shadow_origin,
-                if g.dot(to_light) < 0.0 { -g } else { g },
-                own,
-            )
-        })
+        shadow_ray(
+            light,
+            (self.triangle, self.shadowed),
+            (self.p, self.n, self.geometric_normal),
+            (self.shadow_origin, self.shadow_offset_m),
+        )
     }
+}
+
+/// [`Surface::shadow_ray`] of the point p of `triangle` (`shadowed`: it
+/// casts shadow rays) of shading normal n and face normal g on the eye's
+/// side, lifted to `origin` by `offset_m`.
+#[inline(always)]
+pub(super) fn shadow_ray(
+    light: DVec3,
+    (triangle, shadowed): (usize, bool),
+    (p, n, g): (DVec3, DVec3, DVec3),
+    (origin, offset_m): (DVec3, f64),
+) -> Option<(DVec3, DVec3, usize)> {
+    let to_light = light - p;
+    (shadowed && n.dot(to_light) > 0.0).then(|| {
+        let own = if lift_clears(offset_m, g, to_light) {
+            triangle
+        } else {
+            usize::MAX
+        };
+        (origin, if g.dot(to_light) < 0.0 { -g } else { g }, own)
+    })
 }
 
 /// A triangle's corners, normals and BRDF in f64: what a point of it needs
@@ -220,6 +233,11 @@ impl<'a> TriangleShading<'a> {
         (g, p + g * self.tri.shadow_offset_m)
     }
 
+    /// How far [`Self::lift`] lifts a point (m).
+    pub(super) fn shadow_offset_m(&self) -> f64 {
+        self.tri.shadow_offset_m
+    }
+
     /// Whether the shadow ray of the point p seen along o (unit, towards
     /// the eye) to the point light is blocked: `Surface`'s, for points
     /// that need no more of it.
@@ -239,7 +257,7 @@ impl<'a> TriangleShading<'a> {
     pub(super) fn surface(&self, reference: &Reference, towards: DVec3, hit: Hit) -> Surface {
         let (p, n, o) = self.point(towards, hit);
         let (geometric_normal, shadow_origin) = self.lift(p, o);
-        let (_, _, tint) = self.uv_colour_and_tint(reference, hit.at.barycentric);
+        let tint = self.tint_at(reference, hit.at.barycentric);
         Surface {
             triangle: self.triangle,
             p,
@@ -264,6 +282,12 @@ impl<'a> TriangleShading<'a> {
     ) -> (f64, DVec2, DVec3) {
         let (uv, colour, _) = self.uv_colour_and_tint(reference, hit.at.barycentric);
         (hit.at.t * towards.length(), uv, colour)
+    }
+
+    /// The tint at barycentrics b.
+    #[inline(always)]
+    pub(super) fn tint_at(&self, reference: &Reference, b: [f64; 3]) -> DVec3 {
+        self.uv_colour_and_tint(reference, b).2
     }
 
     /// The uv at barycentrics b, and the colour c and tint there.
@@ -337,12 +361,7 @@ impl Reference {
         hit: Hit,
         cache: &mut ShadingCache<'a>,
     ) -> Surface {
-        let slot = &mut cache.slots[hit.triangle % CACHED];
-        let shading = match slot {
-            Some(same) if same.triangle == hit.triangle => same,
-            _ => slot.insert(TriangleShading::new(self, setup, hit.triangle)),
-        };
-        shading.surface(self, towards, hit)
+        cache.get(self, setup, hit.triangle).surface(self, towards, hit)
     }
 }
 
@@ -353,6 +372,23 @@ const CACHED: usize = 8;
 /// [`CACHED`] (a pixel's edge alternates between two or three).
 pub(super) struct ShadingCache<'a> {
     slots: [Option<TriangleShading<'a>>; CACHED],
+}
+
+impl<'a> ShadingCache<'a> {
+    /// The shading of `triangle`: kept, or made anew.
+    #[inline(always)]
+    pub(super) fn get(
+        &mut self,
+        reference: &'a Reference,
+        setup: &'a Setup,
+        triangle: usize,
+    ) -> &TriangleShading<'a> {
+        let slot = &mut self.slots[triangle % CACHED];
+        if slot.as_ref().is_some_and(|kept| kept.triangle != triangle) {
+            *slot = None;
+        }
+        slot.get_or_insert_with(|| TriangleShading::new(reference, setup, triangle))
+    }
 }
 
 impl Default for ShadingCache<'_> {

@@ -6,40 +6,74 @@ use glam::Vec3;
 
 /// Above the grids' limit, blocks of pixels sharing a packet give every
 /// pixel exactly what one packet a pixel gives (partial blocks at the
-/// image's bottom row and the tiles' right edges included).
+/// image's bottom row and the tiles' right edges included), their point
+/// light shaded without a surface a sample (`point_run`) as each sample's
+/// surface is one by one: on a Lambertian ground, then under Blinn-Phong
+/// with a smooth double-sided ball and a box that receives no shadows, the
+/// light low enough for points under its horizon.
 #[test]
 fn runs_of_pixels_render_what_single_pixels_render() {
     let mut ground = shapes::ground_grid(Vec3::ZERO, 6.0, 100);
     ground.append(&shapes::ground_grid(Vec3::new(0.3, 0.7, -0.2), 1.5, 20));
-    let scene = Scene {
-        objects: vec![Object::new("ground", ground, 0)],
-        materials: vec![crate::scene::Material::default()],
+    let ball = shapes::sphere(Vec3::new(-0.8, 0.5, 0.6), 0.5, 48, 24);
+    let cube = crate::scene::Aabb {
+        min: Vec3::new(0.6, 0.0, 0.4),
+        max: Vec3::new(1.2, 0.5, 1.0),
+    };
+    let mut boxed = Object::new("box", shapes::cuboid(cube), 0);
+    boxed.receives_shadows = false;
+    let materials = vec![
+        crate::scene::Material::default(),
+        crate::scene::Material {
+            double_sided: true,
+            ..crate::scene::Material::default()
+        },
+    ];
+    let plain = Scene {
+        objects: vec![Object::new("ground", ground.clone(), 0)],
+        materials: materials.clone(),
         ..Scene::default()
     };
-    let reference = Reference::new(&scene);
-    assert!(reference.triangles.len() > GRID_MAX_TRIANGLES && reference.grid_triangles.is_empty());
-    let mut settings = Settings::default();
-    settings.camera.eye = Vec3::new(1.0, 3.0, 4.0);
-    settings.camera.target = Vec3::ZERO;
-    settings.light.position = Vec3::new(-1.0, 4.0, 1.0);
-    (settings.image.width, settings.image.height) = (23, 7);
-    let options = ReferenceOptions {
-        spp: 4,
-        ..ReferenceOptions::default()
+    let mixed = Scene {
+        objects: vec![
+            Object::new("ground", ground, 0),
+            Object::new("ball", ball, 1),
+            boxed,
+        ],
+        materials,
+        ..Scene::default()
     };
-    let control = RenderControl::default();
-    let single = reference
-        .render_in_runs(&settings, &options, &control, 1, Shortcuts::ALL)
-        .unwrap();
-    assert!(single.coverage.iter().any(|&c| c > 0.0) && single.visibility.iter().any(|&v| v < 1.0));
-    for run in [RUN, WIDE_RUN] {
-        let runs = reference
-            .render_in_runs(&settings, &options, &control, run, Shortcuts::ALL)
+    for (scene, k, light) in [
+        (plain, 1.0, Vec3::new(-1.0, 4.0, 1.0)),
+        (mixed, 0.4, Vec3::new(2.5, 0.6, -1.5)),
+    ] {
+        let reference = Reference::new(&scene);
+        assert!(reference.triangles.len() > GRID_MAX_TRIANGLES && reference.grid_triangles.is_empty());
+        let mut settings = Settings::default();
+        settings.camera.eye = Vec3::new(1.0, 3.0, 4.0);
+        settings.camera.target = Vec3::ZERO;
+        settings.light.position = light;
+        settings.material.k = k;
+        (settings.image.width, settings.image.height) = (23, 7);
+        let options = ReferenceOptions {
+            spp: 4,
+            ..ReferenceOptions::default()
+        };
+        let control = RenderControl::default();
+        let single = reference
+            .render_in_runs(&settings, &options, &control, 1, Shortcuts::ALL)
             .unwrap();
-        assert_eq!(single.radiance, runs.radiance, "run {run}");
-        assert_eq!(single.visibility, runs.visibility, "run {run}");
-        assert_eq!(single.coverage, runs.coverage, "run {run}");
-        assert_eq!(single.noise, runs.noise, "run {run}");
+        assert!(single.coverage.iter().any(|&c| c > 0.0) && single.visibility.iter().any(|&v| v < 1.0));
+        for run in [RUN, WIDE_RUN] {
+            let runs = reference
+                .render_in_runs(&settings, &options, &control, run, Shortcuts::ALL)
+                .unwrap();
+            assert_eq!(single.radiance, runs.radiance, "run {run}");
+            assert_eq!(single.visibility, runs.visibility, "run {run}");
+            assert_eq!(single.coverage, runs.coverage, "run {run}");
+            assert_eq!(single.noise, runs.noise, "run {run}");
+            assert_eq!(single.stats.shadow_rays, runs.stats.shadow_rays, "run {run}");
+        }
     }
 }
 
