@@ -81,16 +81,29 @@ impl LightPacket {
     /// exact; the surfaces' own cut the most) and the triangle it cannot
     /// reach (`usize::MAX`: none).
     pub fn reset(&mut self, origins: impl Iterator<Item = (DVec3, DVec3, usize)>) {
+        self.clear();
+        for ray in origins {
+            self.add(ray);
+        }
+    }
+
+    /// An empty packet, which [`Self::add`] then fills: [`Self::reset`]
+    /// one ray at a time.
+    #[inline(always)]
+    pub fn clear(&mut self) {
         self.origins.clear();
         self.passes.clear();
         self.normal_sum = DVec3::ZERO;
-        for (origin, normal, passes) in origins {
-            self.origins.push(origin);
-            self.passes.push(passes);
-            self.normal_sum += normal;
-        }
         self.cast = None;
         self.cursor = 0;
+    }
+
+    /// One more shadow ray, as [`Self::reset`] takes them.
+    #[inline(always)]
+    pub fn add(&mut self, (origin, normal, passes): (DVec3, DVec3, usize)) {
+        self.origins.push(origin);
+        self.passes.push(passes);
+        self.normal_sum += normal;
     }
 
     /// Whether the shadow ray from `origin` (one of the packet's) to the

@@ -464,10 +464,8 @@ struct PixelBuffers {
     lanes: lanes::Lanes,
     /// A pixel's primary samples, in lanes.
     primary: primary::PrimaryDirections,
-    /// A block's samples under a point light, and their shadow rays
-    /// (`point_run`).
+    /// A block's samples under a point light (`point_run`).
     lit: Vec<Option<point_run::LitSample>>,
-    shadow_rays: Vec<(DVec3, DVec3, usize)>,
 }
 
 /// The cone from the eye of the block of width × height pixels from (x, y),

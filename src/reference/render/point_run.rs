@@ -2,12 +2,12 @@
 //! scenes, without an eye grid) and lit by a point light, shaded without a
 //! [`Surface`](crate::reference::surface::Surface) a sample: one pass
 //! works out each hit's point, lift and light into a short record and
-//! lists the shadow rays, the light packet is aimed at them, then each
-//! pixel sums its records. The same operations in the same order as
-//! `run_samples`, `aim_light_packet` and `shade_pixel` make of the samples'
-//! surfaces, so the same bits (`tests` holds them to it), with a third of
-//! the bytes moved a sample and none of the streams, which a point light
-//! never draws from.
+//! adds its shadow ray to the light packet, then each pixel sums its
+//! records. The same operations in the same order as `run_samples`,
+//! `aim_light_packet` and `shade_pixel` make of the samples' surfaces, so
+//! the same bits (`tests` holds them to it), with a third of the bytes
+//! moved a sample and none of the streams, which a point light never
+//! draws from.
 
 use super::PixelBuffers;
 use super::pixel::{Pixel, PixelSums};
@@ -42,13 +42,13 @@ impl Reference {
             directions,
             packet,
             lit,
-            shadow_rays,
             luminance,
             scratch,
             ..
         } = buffers;
         lit.clear();
-        shadow_rays.clear();
+        let light_packet = &mut scratch.light_packet;
+        light_packet.clear();
         for (&towards, hit) in directions.iter().zip(&packet.hits) {
             lit.push(hit.map(|hit| {
                 let shading = cache.get(self, setup, hit.triangle);
@@ -56,12 +56,14 @@ impl Reference {
                 let (g, origin) = shading.lift(p, o);
                 let facet = shading.facet();
                 let shadowed = shading.shadowed();
-                shadow_rays.extend(shadow_ray(
+                if let Some(ray) = shadow_ray(
                     setup.light_position,
                     (hit.triangle, shadowed),
                     (p, normal, g),
                     (origin, shading.shadow_offset_m()),
-                ));
+                ) {
+                    light_packet.add(ray);
+                }
                 LitSample {
                     tint: shading.tint_at(self, hit.at.barycentric),
                     lit: PointLit::new(setup, (p, normal, o), &facet.brdf, shadowed),
@@ -69,14 +71,12 @@ impl Reference {
                 }
             }));
         }
-        let packet = &mut scratch.light_packet;
-        packet.reset(shadow_rays.iter().copied());
         for (k, samples) in lit.chunks(n as usize).enumerate() {
             let mut sums = PixelSums::new(luminance);
             for sample in samples {
                 match sample {
                     Some(s) => {
-                        let blocked = s.lit.casts() && self.blocked_in_packet(setup, s.origin, packet);
+                        let blocked = s.lit.casts() && self.blocked_in_packet(setup, s.origin, light_packet);
                         sums.add(s.tint, &s.lit.estimate(blocked), n);
                     }
                     None => sums.add_background(),
