@@ -244,8 +244,9 @@ impl Reference {
                     self.shade_point_run(setup, n, (&mut buffers, &mut shading), place);
                     continue;
                 }
+                // A sphere light: its shadow rays go through its own
+                // gatherings, not the light packet.
                 self.run_samples(setup, &mut buffers, &mut shading);
-                self.aim_light_packet(setup, &mut buffers);
                 for k in 0..(width * band) as usize {
                     let (c, r) = (k as u32 % width, k as u32 / width);
                     buffers.scratch.block = Some(region_block(i + c, j + r));
@@ -366,7 +367,8 @@ impl Reference {
     }
 
     /// Aims the light packet at the shadow rays of every sample in
-    /// `buffers.samples` (a pixel's, or a block's: one walk for them all),
+    /// `buffers.samples` (a pixel's: one walk for them all; a block's are
+    /// aimed at by `point_run`),
     /// unless the light's grid answers every cell: the rare ray it cannot
     /// answer (one from the light's centre) then walks the BVH on its own.
     #[inline(always)]

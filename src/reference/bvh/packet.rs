@@ -230,7 +230,7 @@ impl TriangleBvh {
     /// and the allowance for the rounding of the tests on them.
     #[inline(always)]
     pub(super) fn relative_to(&self, slot: usize, apex: DVec3) -> ([DVec3; 3], f64) {
-        let relative = self.corners[slot].map(|p| p.as_dvec3() - apex);
+        let relative = widened(&self.corners[slot]).map(|p| p - apex);
         (relative, ROUNDING * extent(&relative))
     }
 
