@@ -39,7 +39,7 @@ mod texture;
 pub use image::{NoiseSummary, ReferenceImage, RenderStats, luminance};
 pub use shading::{SHADOW_OFFSET_REL, STOP_SHORT_REL, ShadingSample};
 
-use crate::scene::{Material, Scene};
+use crate::scene::{Material, Mesh, Scene};
 use crate::settings::{Settings, SettingsError};
 use bvh::{BvhTriangle, TriangleBvh};
 use glam::{DVec3, Vec2, Vec3};
@@ -109,34 +109,21 @@ pub enum ReferenceError {
     Settings(#[from] SettingsError),
 }
 
-/// One triangle's shading data, in the scene's order: 112 bytes, what the
-/// mesh stores and the shadow offset. Its face normal and flat normal are
-/// worked out when a ray meets it (`TriangleShading::new`), not stored: on
-/// 1 M triangles that is 63 MB less to write and hold.
-#[derive(Clone, Debug)]
+/// One triangle's place in the scene, in the scene's order: its object
+/// and its index in the object's mesh, whose vertices ([`ObjectInfo`])
+/// hold its corners, normals and uvs. Its face normal, flat normal and
+/// shadow offset are worked out when a ray meets it
+/// (`TriangleShading::new`), not stored: 8 bytes a triangle, where copies
+/// of what the mesh stores took 112 (on 1 M triangles, 104 MB less to
+/// write, fault in and hold).
+#[derive(Clone, Copy, Debug)]
 struct TriangleInfo {
     object: u32,
     /// Index within the object's mesh.
     index: u32,
-    /// Corners, vertex normals and uvs as the mesh stores them (f32, exact
-    /// in f64): half the memory of f64 copies.
-    corners: [Vec3; 3],
-    /// How far shadow rays start off this triangle (m): SHADOW_OFFSET_REL ×
-    /// its largest |coordinate|.
-    shadow_offset_m: f64,
-    normals: [Vec3; 3],
-    uvs: [Vec2; 3],
 }
 
 impl TriangleInfo {
-    /// The normalized vertex normal when all three are equal (a flat
-    /// facet: interpolating and normalizing would give it again), `face`
-    /// where it vanishes.
-    fn flat_normal(&self, face: DVec3) -> Option<DVec3> {
-        let [n0, n1, n2] = self.normals;
-        (n0 == n1 && n0 == n2).then(|| n0.as_dvec3().normalize_or(face))
-    }
-
     fn object(&self) -> usize {
         self.object as usize
     }
@@ -144,17 +131,25 @@ impl TriangleInfo {
     fn index(&self) -> usize {
         self.index as usize
     }
-
-    /// How far the light must lie on the lifted side of this triangle's
-    /// plane (along its unit normal, `to_light` from a point of it) for a
-    /// shadow ray lifted off it never to reach that plane: the lift, and
-    /// the rounding of the dot product.
-    fn lift_clearance(&self, to_light: DVec3) -> f64 {
-        lift_clearance(self.shadow_offset_m, to_light)
-    }
 }
 
-/// [`TriangleInfo::lift_clearance`] for a lift of `offset_m`.
+/// The normalized vertex normal when all three are equal (a flat facet:
+/// interpolating and normalizing would give it again), `face` where it
+/// vanishes.
+fn flat_normal([n0, n1, n2]: [Vec3; 3], face: DVec3) -> Option<DVec3> {
+    (n0 == n1 && n0 == n2).then(|| n0.as_dvec3().normalize_or(face))
+}
+
+/// How far shadow rays start off a triangle of these corners (m):
+/// [`SHADOW_OFFSET_REL`] × its largest |coordinate|.
+fn shadow_offset_m(corners: &[DVec3; 3]) -> f64 {
+    SHADOW_OFFSET_REL * intersect::extent(corners)
+}
+
+/// How far the light must lie on the lifted side of a triangle's plane
+/// (along its unit normal, `to_light` from a point of it) for a shadow ray
+/// lifted `offset_m` off it never to reach that plane: the lift, and the
+/// rounding of the dot product.
 #[inline(always)]
 fn lift_clearance(offset_m: f64, to_light: DVec3) -> f64 {
     offset_m + 1e-12 * to_light.abs().element_sum()
@@ -176,19 +171,46 @@ struct ObjectInfo {
     /// The scene's material index, None when it was out of range.
     material_index: Option<usize>,
     receives_shadows: bool,
-    /// The mesh's vertex colours and its indices, only where it has
-    /// colours: kept per object, not per triangle, so that scenes without
-    /// them carry nothing more.
-    colours: Option<(Vec<Vec3>, Vec<u32>)>,
+    /// The mesh: its vertices and indices, which its triangles' shading
+    /// reads (per vertex, not copied per triangle).
+    mesh: Mesh,
 }
 
 impl ObjectInfo {
+    /// The vertex indices of the mesh's triangle `index`: inside the mesh
+    /// for every triangle the reference keeps (see [`mesh_triangles`]).
+    fn ids(&self, index: usize) -> [usize; 3] {
+        let ids = &self.mesh.indices[3 * index..3 * index + 3];
+        [ids[0] as usize, ids[1] as usize, ids[2] as usize]
+    }
+
+    /// The corners of the mesh's triangle `index`, in f64 (exact).
+    fn corners(&self, index: usize) -> [DVec3; 3] {
+        self.ids(index).map(|i| self.mesh.positions[i].as_dvec3())
+    }
+
+    /// Its vertex normals; a missing one counts as zero: where the
+    /// interpolated normal vanishes, `surface` uses the face's own (so does
+    /// the GPU, shade.wgsl's surface_at).
+    fn normals(&self, index: usize) -> [Vec3; 3] {
+        self.ids(index)
+            .map(|i| self.mesh.normals.get(i).copied().unwrap_or(Vec3::ZERO))
+    }
+
+    /// Its uvs (all zero where one is missing).
+    fn uvs(&self, index: usize) -> [Vec2; 3] {
+        corner_values(&self.mesh.uvs, self.ids(index)).unwrap_or([Vec2::ZERO; 3])
+    }
+
+    /// Whether its vertex colours vary the base colour.
+    fn has_colours(&self) -> bool {
+        !self.mesh.colours.is_empty()
+    }
+
     /// The vertex colours at the corners of the mesh's triangle `index`,
     /// None without colours (1, as the GPU uploads).
     fn corner_colours(&self, index: usize) -> Option<[Vec3; 3]> {
-        let (colours, indices) = self.colours.as_ref()?;
-        let ids = indices.get(3 * index..3 * index + 3)?;
-        corner_values(colours, [ids[0] as usize, ids[1] as usize, ids[2] as usize])
+        corner_values(&self.mesh.colours, self.ids(index))
     }
 }
 
@@ -224,8 +246,7 @@ impl Reference {
                     material: material_index.unwrap_or(fallback),
                     material_index,
                     receives_shadows: object.receives_shadows,
-                    colours: (!object.mesh.colours.is_empty())
-                        .then(|| (object.mesh.colours.clone(), object.mesh.indices.clone())),
+                    mesh: object.mesh.clone(),
                 }
             })
             .collect();
@@ -243,7 +264,7 @@ impl Reference {
                 let bvh = TriangleBvh::new(&bvh_triangles);
                 (bvh_triangles, bvh)
             },
-            || gathered(scene, mesh_triangles(scene).map(|t| t.info(scene))),
+            || gathered(scene, mesh_triangles(scene).map(|t| t.info())),
         );
         if !render::builds_grids(triangles.len()) {
             grid_triangles = Vec::new();
@@ -292,7 +313,6 @@ struct MeshTriangle {
     object: usize,
     /// Index within the object's mesh.
     index: usize,
-    ids: [usize; 3],
     corners: [Vec3; 3],
 }
 
@@ -309,7 +329,6 @@ fn mesh_triangles(scene: &Scene) -> impl Iterator<Item = MeshTriangle> + '_ {
                 Some(MeshTriangle {
                     object,
                     index,
-                    ids,
                     corners,
                 })
             })
@@ -327,25 +346,13 @@ fn gathered<T>(scene: &Scene, values: impl Iterator<Item = T>) -> Vec<T> {
 }
 
 impl MeshTriangle {
-    /// Its shading data.
-    fn info(self, scene: &Scene) -> TriangleInfo {
-        let mesh = &scene.objects[self.object].mesh;
-        let ids = self.ids;
-        // A missing vertex normal counts as zero: where the interpolated
-        // normal vanishes, `surface` uses the face's own (so does the GPU,
-        // shade.wgsl's surface_at). Missing uvs: zero.
-        let normals = ids.map(|i| mesh.normals.get(i).copied().unwrap_or(Vec3::ZERO));
-        let uvs = corner_values(&mesh.uvs, ids).unwrap_or([Vec2::ZERO; 3]);
-        let largest = intersect::extent(&self.corners.map(|p| p.as_dvec3()));
+    /// Its place in the scene.
+    fn info(&self) -> TriangleInfo {
+        // A glTF mesh's indices and the scene's objects number fewer than
+        // 2³² (its accessors count in u32).
         TriangleInfo {
-            // A glTF mesh's indices and the scene's objects number fewer
-            // than 2³² (its accessors count in u32).
             object: self.object as u32,
             index: self.index as u32,
-            corners: self.corners,
-            shadow_offset_m: SHADOW_OFFSET_REL * largest,
-            normals,
-            uvs,
         }
     }
 }
@@ -394,11 +401,11 @@ mod tests {
         reference.trace_pixel(s, &ReferenceOptions::default(), 8.0, 6.0)
     }
 
-    /// The shading data is the largest part of a large scene's memory
-    /// (110 MB on 1 M triangles): each byte added to it is 1 MB more there.
+    /// A triangle's shading data is its place in the scene, the rest read
+    /// from its mesh: each byte added to it is 1 MB more on 1 M triangles.
     #[test]
-    fn the_shading_data_takes_112_bytes_a_triangle() {
-        assert_eq!(std::mem::size_of::<TriangleInfo>(), 112);
+    fn the_shading_data_takes_8_bytes_a_triangle() {
+        assert_eq!(std::mem::size_of::<TriangleInfo>(), 8);
     }
 
     /// A triangle with an index out of range is skipped and counted; the

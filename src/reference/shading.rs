@@ -30,7 +30,7 @@ use super::sampling::{Rng, Strata};
 use super::spectral::SpectralLight;
 use super::sphere::SphereSamples;
 use super::surface::Surface;
-use super::{Reference, ReferenceOptions, lift_clears};
+use super::{Reference, ReferenceOptions, lift_clears, shadow_offset_m};
 use crate::colour::ColourModel;
 use crate::colour::chart::illuminant_linear_srgb;
 use crate::physics::brdf::blinn_phong;
@@ -301,7 +301,8 @@ impl Reference {
     /// The triangle of a point p (face normal g on the eye's side) when its
     /// lifted shadow ray cannot reach it (see [`super::lift_clears`]).
     fn own_unreached(&self, setup: &Setup, (triangle, p, g): (usize, DVec3, DVec3)) -> Option<usize> {
-        let offset_m = self.triangles[triangle].shadow_offset_m;
+        let tri = &self.triangles[triangle];
+        let offset_m = shadow_offset_m(&self.objects[tri.object()].corners(tri.index()));
         lift_clears(offset_m, g, setup.light_position - p).then_some(triangle)
     }
 

@@ -7,11 +7,11 @@ use super::bvh::Hit;
 use super::grid::{Answer, Cell};
 use super::light_packet::LightPacket;
 use super::shading::Setup;
-use super::{ObjectInfo, Reference, TriangleInfo, lift_clears};
+use super::{ObjectInfo, Reference, flat_normal, lift_clears, shadow_offset_m};
 use crate::physics::BrdfParams;
 use crate::physics::colour::tint;
 use crate::scene::Material;
-use glam::{DVec2, DVec3};
+use glam::{DVec2, DVec3, Vec2};
 
 /// Where a primary ray lands, and the surface there as the light sees it.
 pub(super) struct Surface {
@@ -111,7 +111,10 @@ impl Facet {
 pub(super) struct TriangleShading<'a> {
     setup: &'a Setup,
     triangle: usize,
-    tri: &'a TriangleInfo,
+    /// Its index within its object's mesh, its uvs and its shadow offset.
+    index: usize,
+    uvs: [Vec2; 3],
+    shadow_offset_m: f64,
     object: &'a ObjectInfo,
     material: &'a Material,
     /// The face's unit normal (counter-clockwise winding).
@@ -133,25 +136,29 @@ impl<'a> TriangleShading<'a> {
             Some(v) if setup.use_scene_materials => v as f64,
             _ => default,
         };
-        let varies = material.base_color_texture.is_some() || object.colours.is_some();
-        let corners = tri.corners.map(|p| p.as_dvec3());
+        let varies = material.base_color_texture.is_some() || object.has_colours();
+        let index = tri.index();
+        let corners = object.corners(index);
         // The face's unit normal (counter-clockwise winding); zero for a
         // degenerate one.
         let face = (corners[1] - corners[0])
             .cross(corners[2] - corners[0])
             .normalize_or_zero();
-        let flat = tri.flat_normal(face);
+        let normals = object.normals(index);
+        let flat = flat_normal(normals, face);
         let mut shading = Self {
             setup,
             triangle,
-            tri,
+            index,
+            uvs: object.uvs(index),
+            shadow_offset_m: shadow_offset_m(&corners),
             object,
             material,
             face,
             plain: None,
             facet: Facet {
                 corners,
-                normals: flat.is_none().then(|| tri.normals.map(|n| n.as_dvec3())),
+                normals: flat.is_none().then(|| normals.map(|n| n.as_dvec3())),
                 normal: flat.unwrap_or(face),
                 double_sided: material.double_sided,
                 brdf: BrdfParams {
@@ -230,12 +237,12 @@ impl<'a> TriangleShading<'a> {
     #[inline(always)]
     pub(super) fn lift(&self, p: DVec3, o: DVec3) -> (DVec3, DVec3) {
         let g = self.geometric_normal(o);
-        (g, p + g * self.tri.shadow_offset_m)
+        (g, p + g * self.shadow_offset_m)
     }
 
     /// How far [`Self::lift`] lifts a point (m).
     pub(super) fn shadow_offset_m(&self) -> f64 {
-        self.tri.shadow_offset_m
+        self.shadow_offset_m
     }
 
     /// Whether the shadow ray of the point p seen along o (unit, towards
@@ -267,7 +274,7 @@ impl<'a> TriangleShading<'a> {
             tint,
             brdf: self.facet.brdf,
             shadow_origin,
-            shadow_offset_m: self.tri.shadow_offset_m,
+            shadow_offset_m: self.shadow_offset_m,
             shadowed: self.shadowed(),
         }
     }
@@ -293,8 +300,7 @@ impl<'a> TriangleShading<'a> {
     /// The uv at barycentrics b, and the colour c and tint there.
     #[inline(always)]
     fn uv_colour_and_tint(&self, reference: &Reference, [b0, b1, b2]: [f64; 3]) -> (DVec2, DVec3, DVec3) {
-        let tri = self.tri;
-        let [t0, t1, t2] = tri.uvs.map(|t| t.as_dvec2());
+        let [t0, t1, t2] = self.uvs.map(|t| t.as_dvec2());
         let uv = t0 * b0 + t1 * b1 + t2 * b2;
         let (colour, tint) = self.plain.unwrap_or_else(|| {
             let texture = self
@@ -305,7 +311,7 @@ impl<'a> TriangleShading<'a> {
             // The texture and the vertex colours modulate the base colour.
             let vertex_colour = self
                 .object
-                .corner_colours(tri.index())
+                .corner_colours(self.index)
                 .map_or(DVec3::ONE, |[c0, c1, c2]| {
                     c0.as_dvec3() * b0 + c1.as_dvec3() * b1 + c2.as_dvec3() * b2
                 });

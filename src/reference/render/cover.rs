@@ -9,11 +9,11 @@
 
 use super::lanes::CoveredPixel;
 use super::{PixelBuffers, Traced, trace_samples};
-use crate::reference::Reference;
 use crate::reference::grid::{Cover, DirectionGrid};
 use crate::reference::sampling::Strata;
 use crate::reference::shading::Setup;
 use crate::reference::surface::TriangleShading;
+use crate::reference::{Reference, lift_clearance};
 use glam::DVec3;
 
 /// The own-triangle test of a shadow ray (`Reference::blocked_from_light`)
@@ -208,7 +208,6 @@ impl Reference {
         if !shading.shadowed() {
             return false;
         }
-        let tri = &self.triangles[cover.triangle()];
         let q = setup.light_position;
         let points = corners.map(|d| setup.rays.eye + d * cover.hit(d).at.t);
         // Every corner is seen from one side (the cover's margin): the
@@ -217,9 +216,9 @@ impl Reference {
         // g · (q − p) is linear over the pixel's part of the plane and the
         // clearance convex: both bounded by their corner values.
         let least_lift = points.iter().fold(f64::INFINITY, |m, &p| m.min(g.dot(q - p)));
-        let most_clear = points
-            .iter()
-            .fold(0.0_f64, |m, &p| m.max(tri.lift_clearance(q - p)));
+        let most_clear = points.iter().fold(0.0_f64, |m, &p| {
+            m.max(lift_clearance(shading.shadow_offset_m(), q - p))
+        });
         let own = if least_lift > OWN_SLACK * most_clear {
             cover.triangle()
         } else {
