@@ -133,7 +133,7 @@ impl TriangleBvh {
             )
             .reduce(
                 || (DVec3::INFINITY, DVec3::NEG_INFINITY),
-                |a, (min, max)| bounds(bounds(a, min), max),
+                |(a0, a1), (b0, b1)| (a0.min(b0), a1.max(b1)),
             );
         if usable.is_empty() {
             return Self {
