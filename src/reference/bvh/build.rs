@@ -33,11 +33,6 @@ const QUANTA: f64 = 255.0;
 /// obvhs's very fast build from `very_fast_from` boxes: its primitive
 /// indices index `boxes`.
 pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> CwBvh {
-    let mut order: Vec<u32> = (0..boxes.len() as u32).collect();
-    let mut groups = vec![&mut order[..]];
-    while groups.len() * 2 <= GROUPS && groups.iter().all(|g| g.len() >= 2 * min_group.max(1)) {
-        groups = groups.into_iter().flat_map(|g| halves(boxes, g)).collect();
-    }
     let very_fast = boxes.len() >= very_fast_from;
     let params = if very_fast {
         BvhBuildParams::very_fast_build()
@@ -48,15 +43,38 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
         BvhBuildParams::fast_build()
     };
     let build = |boxes: &[Aabb]| build_one(boxes, params, !very_fast);
-    if groups.len() == 1 {
+    let least = 2 * min_group.max(1);
+    if boxes.len() < least {
         return build(boxes);
     }
+    // Each box's centre beside its index, split in place: each level then
+    // reads them in order, where it read each box by index before (the 1 M
+    // scene's splits 23 → 15.5 ms, 74 M instructions fewer).
+    let mut centred: Vec<Centred> = boxes
+        .par_iter()
+        .enumerate()
+        .map(|(i, b)| (b.center().to_array(), i as u32))
+        .collect();
+    let mut parts = vec![&mut centred[..]];
+    while parts.len() * 2 <= GROUPS && parts.iter().all(|g| g.len() >= least) {
+        parts = parts.into_iter().flat_map(halves).collect();
+    }
+    let lengths: Vec<usize> = parts.iter().map(|g| g.len()).collect();
+    let order: Vec<u32> = centred.iter().map(|&(_, i)| i).collect();
+    let mut rest = &order[..];
+    let groups: Vec<&[u32]> = lengths
+        .iter()
+        .map(|&n| {
+            let (group, after) = rest.split_at(n);
+            rest = after;
+            group
+        })
+        .collect();
     let built: Vec<CwBvh> = groups
         .par_iter()
         .map(|g| build(&g.iter().map(|&i| boxes[i as usize]).collect::<Vec<_>>()))
         .collect();
-    let members: Vec<&[u32]> = groups.iter().map(|g| &**g).collect();
-    join(&built, &members)
+    join(&built, &groups)
 }
 
 /// One BVH by obvhs on this thread: its `build_cwbvh` (PLOC, reinsertion,
@@ -108,26 +126,20 @@ pub(super) fn binary(boxes: &[Aabb], params: BvhBuildParams) -> Bvh2 {
     )
 }
 
+/// A box's centre and its index among the boxes.
+type Centred = ([f32; 3], u32);
+
 /// The group split at the median of its boxes' centres along the axis
-/// where those centres spread most (the centres copied beside the indices
-/// first: the selection then reads memory in order).
-fn halves<'a>(boxes: &[Aabb], group: &'a mut [u32]) -> [&'a mut [u32]; 2] {
+/// where those centres spread most.
+fn halves(group: &mut [Centred]) -> [&mut [Centred]; 2] {
     let mut bounds = Aabb::empty();
-    for &i in group.iter() {
-        bounds.extend(boxes[i as usize].center());
+    for &(centre, _) in group.iter() {
+        bounds.extend(centre.into());
     }
     let axis = (bounds.max - bounds.min).max_position();
-    let mut keyed: Vec<(f32, u32)> = group
-        .iter()
-        .map(|&i| (boxes[i as usize].center_axis(axis), i))
-        .collect();
     let middle = group.len() / 2;
-    keyed.select_nth_unstable_by(middle, |a, b| a.0.total_cmp(&b.0));
-    for (slot, (_, i)) in group.iter_mut().zip(keyed) {
-        *slot = i;
-    }
-    let (low, high) = group.split_at_mut(middle);
-    [low, high]
+    group.select_nth_unstable_by(middle, |a, b| a.0[axis].total_cmp(&b.0[axis]));
+    group.split_at_mut(middle).into()
 }
 
 /// One CWBVH whose root has the groups' BVHs as its children:
