@@ -6,7 +6,7 @@
 //! grid cannot answer. Each ray is still decided by the same f64 test, so
 //! every answer is the one the BVH gives that ray on its own; a ray passes
 //! over the triangle it was lifted off where the lift keeps it from that
-//! triangle's plane (`Reference::own_unreached`, as the light's grid does),
+//! triangle's plane (`own_unreached`, as the light's grid does),
 //! an exact test spared for nearly every ray (engine at 32 spp: the walks'
 //! instructions 626 → 552 M).
 //!

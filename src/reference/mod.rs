@@ -164,6 +164,14 @@ fn lift_clears(offset_m: f64, g: DVec3, to_light: DVec3) -> bool {
     g.dot(to_light) > lift_clearance(offset_m, to_light)
 }
 
+/// `triangle` when a shadow ray lifted by `offset_m` along g off a point
+/// of it, `to_light` from that point, cannot reach it ([`lift_clears`]):
+/// the ray may then pass over it.
+#[inline(always)]
+fn own_unreached(triangle: usize, offset_m: f64, g: DVec3, to_light: DVec3) -> Option<usize> {
+    lift_clears(offset_m, g, to_light).then_some(triangle)
+}
+
 #[derive(Clone, Debug)]
 struct ObjectInfo {
     /// Index into `Reference::materials` (always valid).

@@ -30,7 +30,7 @@ use super::sampling::{Rng, Strata};
 use super::spectral::SpectralLight;
 use super::sphere::SphereSamples;
 use super::surface::Surface;
-use super::{Reference, ReferenceOptions, lift_clears, shadow_offset_m};
+use super::{Reference, ReferenceOptions, own_unreached};
 use crate::colour::ColourModel;
 use crate::colour::chart::illuminant_linear_srgb;
 use crate::physics::brdf::blinn_phong;
@@ -264,24 +264,24 @@ impl Reference {
         self.blocked_from_point(
             setup,
             (s.triangle, s.p, s.geometric_normal),
-            s.shadow_origin,
+            (s.shadow_origin, s.shadow_offset_m),
             packet,
         )
     }
 
     /// Whether the segment from `origin` to the point light is blocked,
-    /// `origin` lifted off the point p of the triangle whose face normal
-    /// on the eye's side is g.
+    /// `origin` lifted by `offset_m` off the point p of the triangle whose
+    /// face normal on the eye's side is g.
     pub(super) fn blocked_from_point(
         &self,
         setup: &Setup,
         (triangle, p, g): (usize, DVec3, DVec3),
-        origin: DVec3,
+        (origin, offset_m): (DVec3, f64),
         packet: &mut LightPacket,
     ) -> bool {
         let t_max = 1.0 - STOP_SHORT_REL;
         match setup.light_grid.as_ref().map(|grid| {
-            let own = self.own_unreached(setup, (triangle, p, g));
+            let own = own_unreached(triangle, offset_m, g, setup.light_position - p);
             grid.blocked_towards_centre(&self.grid_triangles, origin, t_max, own)
         }) {
             Some(Answer::Known(blocked)) => blocked,
@@ -296,14 +296,6 @@ impl Reference {
         packet
             .blocked(&self.bvh, setup.light_position, origin)
             .unwrap_or_else(|| self.blocked(origin, setup.light_position))
-    }
-
-    /// The triangle of a point p (face normal g on the eye's side) when its
-    /// lifted shadow ray cannot reach it (see [`super::lift_clears`]).
-    fn own_unreached(&self, setup: &Setup, (triangle, p, g): (usize, DVec3, DVec3)) -> Option<usize> {
-        let tri = &self.triangles[triangle];
-        let offset_m = shadow_offset_m(&self.objects[tri.object()].corners(tri.index()));
-        lift_clears(offset_m, g, setup.light_position - p).then_some(triangle)
     }
 
     /// Whether the segment from `origin` to `target` is blocked,

@@ -7,7 +7,7 @@ use super::bvh::Hit;
 use super::grid::{Answer, Cell};
 use super::light_packet::LightPacket;
 use super::shading::Setup;
-use super::{ObjectInfo, Reference, flat_normal, lift_clears, shadow_offset_m};
+use super::{ObjectInfo, Reference, flat_normal, own_unreached, shadow_offset_m};
 use crate::physics::BrdfParams;
 use crate::physics::colour::tint;
 use crate::scene::Material;
@@ -38,7 +38,7 @@ impl Surface {
     /// Where its shadow ray to a point light at `light` starts, the face's
     /// normal on the light's side, and its triangle where the ray cannot
     /// reach it (`usize::MAX` where it may: see
-    /// `Reference::own_unreached`); None when it casts none (nearly
+    /// `own_unreached`); None when it casts none (nearly
     /// certainly: a light on its horizon may go either way).
     pub(super) fn shadow_ray(&self, light: DVec3) -> Option<(DVec3, DVec3, usize)> {
         shadow_ray(
@@ -62,11 +62,7 @@ pub(super) fn shadow_ray(
 ) -> Option<(DVec3, DVec3, usize)> {
     let to_light = light - p;
     (shadowed && n.dot(to_light) > 0.0).then(|| {
-        let own = if lift_clears(offset_m, g, to_light) {
-            triangle
-        } else {
-            usize::MAX
-        };
+        let own = own_unreached(triangle, offset_m, g, to_light).unwrap_or(usize::MAX);
         (origin, if g.dot(to_light) < 0.0 { -g } else { g }, own)
     })
 }
@@ -255,7 +251,12 @@ impl<'a> TriangleShading<'a> {
         packet: &mut LightPacket,
     ) -> bool {
         let (g, origin) = self.lift(p, o);
-        reference.blocked_from_point(self.setup, (self.triangle, p, g), origin, packet)
+        reference.blocked_from_point(
+            self.setup,
+            (self.triangle, p, g),
+            (origin, self.shadow_offset_m),
+            packet,
+        )
     }
 
     /// The surface where the primary ray along `towards` (not normalized)
