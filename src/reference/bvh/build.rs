@@ -59,22 +59,16 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
     while parts.len() * 2 <= GROUPS && parts.iter().all(|g| g.len() >= least) {
         parts = parts.into_iter().flat_map(halves).collect();
     }
-    let lengths: Vec<usize> = parts.iter().map(|g| g.len()).collect();
-    let order: Vec<u32> = centred.iter().map(|&(_, i)| i).collect();
-    let mut rest = &order[..];
-    let groups: Vec<&[u32]> = lengths
+    let groups: Vec<Vec<u32>> = parts
         .iter()
-        .map(|&n| {
-            let (group, after) = rest.split_at(n);
-            rest = after;
-            group
-        })
+        .map(|part| part.iter().map(|&(_, i)| i).collect())
         .collect();
     let built: Vec<CwBvh> = groups
         .par_iter()
         .map(|g| build(&g.iter().map(|&i| boxes[i as usize]).collect::<Vec<_>>()))
         .collect();
-    join(&built, &groups)
+    let members: Vec<&[u32]> = groups.iter().map(Vec::as_slice).collect();
+    join(&built, &members)
 }
 
 /// One BVH by obvhs on this thread: its `build_cwbvh` (PLOC, reinsertion,
