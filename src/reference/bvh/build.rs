@@ -10,8 +10,10 @@
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::Bvh2;
-use obvhs::cwbvh::bvh2_to_cwbvh::Bvh2Converter;
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
+use obvhs::cwbvh::bvh2_to_cwbvh::{Bvh2Converter, Decision};
 use obvhs::cwbvh::{CwBvh, node::CwBvhNode};
+use obvhs::ploc::PlocBuilder;
 use rayon::prelude::*;
 
 use super::collapse;
@@ -42,10 +44,11 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
         // 110 k and 1 M triangles).
         BvhBuildParams::fast_build()
     };
-    let build = |boxes: &[Aabb]| build_one(boxes, params, !very_fast);
     let least = 2 * min_group.max(1);
     if boxes.len() < least {
-        return build(boxes);
+        let mut scratch = Scratch::default();
+        scratch.boxes.extend_from_slice(boxes);
+        return scratch.build(params, !very_fast);
     }
     // Each box's centre beside its index, split in place: each level then
     // reads them in order, where it read each box by index before (the 1 M
@@ -63,61 +66,105 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
         .iter()
         .map(|part| part.iter().map(|&(_, i)| i).collect())
         .collect();
+    // Each thread builds a run of groups with one scratch. On 1 M
+    // triangles a thread's first group took 28–100 ms (its ~40 MB of
+    // arrays fresh from the kernel), the next ones some 22 ms; with fresh
+    // arrays for each group, 27–55 ms.
+    let run = groups.len().div_ceil(rayon::current_num_threads());
     let built: Vec<CwBvh> = groups
-        .par_iter()
-        .map(|g| build(&g.iter().map(|&i| boxes[i as usize]).collect::<Vec<_>>()))
+        .par_chunks(run)
+        .flat_map_iter(|run| {
+            let mut scratch = Scratch::default();
+            run.iter()
+                .map(|g| {
+                    scratch.boxes.clear();
+                    scratch.boxes.extend(g.iter().map(|&i| boxes[i as usize]));
+                    scratch.build(params, !very_fast)
+                })
+                .collect::<Vec<_>>()
+        })
         .collect();
     let members: Vec<&[u32]> = groups.iter().map(Vec::as_slice).collect();
     join(&built, &members)
 }
 
-/// One BVH by obvhs on this thread: its `build_cwbvh` (PLOC, reinsertion,
-/// the collapse to CWBVH, whose cost table `collapse::fill` fills), each
-/// node's children ordered by the eight ray octants or not (`ordered`). That order
-/// only steers which child obvhs's traversal (single rays, the shadow
-/// packets) visits first; the primary packets order children by depth
-/// themselves. The very fast build leaves it out: on 1 M triangles it was
-/// 16 % of the build's instructions, and without it the process runs 7.5 %
-/// fewer and the walks 1 % more; on the 110 k-triangle engine the walks
-/// ran 2.4 % more (the shadow walk 5 %) for a build 13 % cheaper
-/// (callgrind, 4 and 16 spp); the same hits either way.
-fn build_one(boxes: &[Aabb], params: BvhBuildParams, ordered: bool) -> CwBvh {
-    let mut bvh2 = binary(boxes, params);
-    obvhs::bvh2::reinsertion::ReinsertionOptimizer::default().run(
-        &mut bvh2,
-        params.reinsertion_batch_ratio,
-        None,
-    );
-    if bvh2.nodes.is_empty() {
-        return CwBvh::default();
-    }
-    // obvhs's bvh2_to_cwbvh, with the cost table filled by collapse::fill.
-    let mut converter = Bvh2Converter::new(&bvh2, ordered, false);
-    collapse::fill(
-        &bvh2,
-        params.max_prims_per_leaf.clamp(1, 3),
-        &mut converter.decisions,
-    );
-    converter.convert_to_cwbvh();
-    CwBvh {
-        nodes: converter.nodes,
-        primitive_indices: converter.primitive_indices,
-        total_aabb: *bvh2.nodes[0].aabb(),
-        exact_node_aabbs: None,
-        uses_spatial_splits: bvh2.uses_spatial_splits,
+/// What one thread's builds reuse from one group to the next: the group's
+/// boxes, obvhs's builders and binary BVH, and the collapse's cost table.
+#[derive(Default)]
+struct Scratch {
+    boxes: Vec<Aabb>,
+    ploc: PlocBuilder,
+    bvh2: Bvh2,
+    reinsertion: ReinsertionOptimizer,
+    decisions: Vec<Decision>,
+}
+
+impl Scratch {
+    /// One BVH of `self.boxes` by obvhs on this thread: its `build_cwbvh`
+    /// (PLOC, reinsertion, the collapse to CWBVH, whose cost table
+    /// `collapse::fill` fills), each node's children ordered by the eight
+    /// ray octants or not (`ordered`). That order only steers which child
+    /// obvhs's traversal (single rays, the shadow packets) visits first;
+    /// the primary packets order children by depth themselves. The very
+    /// fast build leaves it out: on 1 M triangles it was 16 % of the
+    /// build's instructions, and without it the process runs 7.5 % fewer
+    /// and the walks 1 % more; on the 110 k-triangle engine the walks ran
+    /// 2.4 % more (the shadow walk 5 %) for a build 13 % cheaper
+    /// (callgrind, 4 and 16 spp); the same hits either way.
+    fn build(&mut self, params: BvhBuildParams, ordered: bool) -> CwBvh {
+        binary_into(&mut self.ploc, &mut self.bvh2, &self.boxes, params);
+        let bvh2 = &mut self.bvh2;
+        self.reinsertion.run(bvh2, params.reinsertion_batch_ratio, None);
+        if bvh2.nodes.is_empty() {
+            return CwBvh::default();
+        }
+        // obvhs's bvh2_to_cwbvh, with the cost table filled by
+        // collapse::fill into this scratch's table: the converter is made
+        // on an empty BVH (`new` would allocate and clear a table of its
+        // own), then given the BVH, the table and `new`'s reserves.
+        let empty = Bvh2::default();
+        let mut converter = Bvh2Converter::new(&empty, ordered, false);
+        converter.bvh2 = bvh2;
+        let primitives = bvh2.primitive_indices.len();
+        converter.nodes.reserve(primitives);
+        converter.primitive_indices.reserve(primitives);
+        // Every entry the conversion reads (those of the nodes under the
+        // root) is filled anew: the table is only grown.
+        let mut decisions = std::mem::take(&mut self.decisions);
+        decisions.resize(bvh2.nodes.len() * 7, Decision::default());
+        collapse::fill(bvh2, params.max_prims_per_leaf.clamp(1, 3), &mut decisions);
+        converter.decisions = decisions;
+        converter.convert_to_cwbvh();
+        self.decisions = std::mem::take(&mut converter.decisions);
+        CwBvh {
+            nodes: converter.nodes,
+            primitive_indices: converter.primitive_indices,
+            total_aabb: *bvh2.nodes[0].aabb(),
+            exact_node_aabbs: None,
+            uses_spatial_splits: bvh2.uses_spatial_splits,
+        }
     }
 }
 
 /// obvhs's binary BVH of `boxes` by PLOC, one box a leaf, before
 /// reinsertion.
+#[cfg(test)]
 pub(super) fn binary(boxes: &[Aabb], params: BvhBuildParams) -> Bvh2 {
-    obvhs::ploc::PlocBuilder::with_capacity(boxes.len()).build(
+    let mut bvh2 = Bvh2::default();
+    binary_into(&mut PlocBuilder::default(), &mut bvh2, boxes, params);
+    bvh2
+}
+
+/// [`binary`]'s BVH into `bvh2`, with `ploc`'s arrays.
+fn binary_into(ploc: &mut PlocBuilder, bvh2: &mut Bvh2, boxes: &[Aabb], params: BvhBuildParams) {
+    ploc.build_with_bvh(
+        bvh2,
         params.ploc_search_distance,
         boxes,
         (0..boxes.len() as u32).collect(),
         params.sort_precision,
         params.search_depth_threshold,
-    )
+    );
 }
 
 /// A box's centre and its index among the boxes.
