@@ -116,25 +116,34 @@ impl TriangleBvh {
     fn in_groups(triangles: &[BvhTriangle], (min_group, very_fast_from): (usize, usize)) -> Self {
         // On the pool, as the boxes below: the build's serial start took
         // some 32 ms of its 250 ms on 1 M triangles (the same values: each
-        // keeps the triangles' order, and min and max round nothing).
-        let usable: Vec<usize> = (0..triangles.len())
-            .into_par_iter()
-            .filter(|&i| {
-                let [a, b, c] = triangles[i].corners_f64();
-                a.is_finite() && b.is_finite() && c.is_finite() && (b - a).cross(c - a).length_squared() > 0.0
-            })
-            .collect();
-        let bounds = |(min, max): (DVec3, DVec3), p: DVec3| (min.min(p), max.max(p));
-        let (min, max) = usable
+        // keeps the triangles' order, and min and max round nothing). The
+        // scene box and whether every triangle is usable come from one
+        // pass; the usable ones are listed by a second only when some are
+        // not (the list of a filter cost 14 ms of the 1 M scene's 34).
+        let usable_corners = |t: &BvhTriangle| {
+            let [a, b, c] = t.corners_f64();
+            let usable = a.is_finite()
+                && b.is_finite()
+                && c.is_finite()
+                && (b - a).cross(c - a).length_squared() > 0.0;
+            usable.then_some([a, b, c])
+        };
+        let empty = || (DVec3::INFINITY, DVec3::NEG_INFINITY, true);
+        let (min, max, every) = triangles
             .par_iter()
-            .fold(
-                || (DVec3::INFINITY, DVec3::NEG_INFINITY),
-                |b, &i| triangles[i].corners_f64().into_iter().fold(b, bounds),
-            )
-            .reduce(
-                || (DVec3::INFINITY, DVec3::NEG_INFINITY),
-                |(a0, a1), (b0, b1)| (a0.min(b0), a1.max(b1)),
-            );
+            .fold(empty, |(min, max, every), t| match usable_corners(t) {
+                Some([a, b, c]) => (min.min(a).min(b).min(c), max.max(a).max(b).max(c), every),
+                None => (min, max, false),
+            })
+            .reduce(empty, |(a0, a1, a), (b0, b1, b)| (a0.min(b0), a1.max(b1), a && b));
+        let usable: Vec<u32> = if every {
+            (0..triangles.len() as u32).into_par_iter().collect()
+        } else {
+            (0..triangles.len() as u32)
+                .into_par_iter()
+                .filter(|&i| usable_corners(&triangles[i as usize]).is_some())
+                .collect()
+        };
         if usable.is_empty() {
             return Self {
                 bvh: None,
@@ -154,7 +163,7 @@ impl TriangleBvh {
         let boxes: Vec<Aabb> = usable
             .par_iter()
             .map(|&i| {
-                let [a, b, c] = triangles[i].corners_f64().map(to_frame);
+                let [a, b, c] = triangles[i as usize].corners_f64().map(to_frame);
                 let lo = a.min(b).min(c) - DVec3::splat(PAD);
                 let hi = a.max(b).max(c) + DVec3::splat(PAD);
                 Aabb::new(lo.as_vec3a(), hi.as_vec3a())
@@ -166,7 +175,7 @@ impl TriangleBvh {
         let original: Vec<usize> = bvh
             .primitive_indices
             .par_iter()
-            .map(|&slot| usable[slot as usize])
+            .map(|&slot| usable[slot as usize] as usize)
             .collect();
         let pad_world = DVec3::splat(PAD * scale);
         Self {
@@ -489,6 +498,40 @@ mod tests {
             );
             assert!(!bvh.occluded(DVec3::Y, DVec3::NEG_Y, 0.0, 2.0));
         }
+    }
+
+    /// A triangle with a corner not finite and a far one of zero area:
+    /// left out of the hits and of the scene's box, the others kept under
+    /// their own indices.
+    #[test]
+    fn unusable_triangles_are_left_out() {
+        let mut tris = quad(0.0, 1.0, true).to_vec();
+        tris.insert(
+            1,
+            BvhTriangle {
+                corners: [Vec3::ZERO, Vec3::NAN, Vec3::X],
+                occludes: true,
+            },
+        );
+        tris.push(BvhTriangle {
+            corners: [1e30, 2e30, 3e30].map(Vec3::splat),
+            occludes: true,
+        });
+        let bvh = TriangleBvh::new(&tris);
+        assert_eq!(bvh.len(), 2);
+        assert!(bvh.min.cmpgt(DVec3::splat(-1.1)).all() && bvh.max.cmplt(DVec3::splat(1.1)).all());
+        let mut found = Vec::new();
+        for x in [-0.9, -0.5, 0.0, 0.5, 0.9] {
+            for z in [-0.9, -0.5, 0.0, 0.5, 0.9] {
+                let o = DVec3::new(x, 1.0, z + 0.013);
+                let hit = bvh.closest_hit(o, DVec3::NEG_Y, 0.0, f64::INFINITY).unwrap();
+                assert!((hit.at.t - 1.0).abs() < 1e-12);
+                found.push(hit.triangle);
+            }
+        }
+        found.sort_unstable();
+        found.dedup();
+        assert_eq!(found, [0, 2]);
     }
 
     /// Built in groups (a new root over eight BVHs), by obvhs's fast or
