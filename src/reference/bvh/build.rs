@@ -46,9 +46,7 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
     };
     let least = 2 * min_group.max(1);
     if boxes.len() < least {
-        let mut scratch = Scratch::default();
-        scratch.boxes.extend_from_slice(boxes);
-        return scratch.build(params, !very_fast);
+        return Scratch::default().build(boxes, params, !very_fast);
     }
     // Each box's centre beside its index, split in place: each level then
     // reads them in order, where it read each box by index before (the 1 M
@@ -74,12 +72,12 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
     let built: Vec<CwBvh> = groups
         .par_chunks(run)
         .flat_map_iter(|run| {
-            let mut scratch = Scratch::default();
+            let (mut scratch, mut group) = (Scratch::default(), Vec::new());
             run.iter()
                 .map(|g| {
-                    scratch.boxes.clear();
-                    scratch.boxes.extend(g.iter().map(|&i| boxes[i as usize]));
-                    scratch.build(params, !very_fast)
+                    group.clear();
+                    group.extend(g.iter().map(|&i| boxes[i as usize]));
+                    scratch.build(&group, params, !very_fast)
                 })
                 .collect::<Vec<_>>()
         })
@@ -88,11 +86,10 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
     join(&built, &members)
 }
 
-/// What one thread's builds reuse from one group to the next: the group's
-/// boxes, obvhs's builders and binary BVH, and the collapse's cost table.
+/// What one thread's builds reuse from one group to the next: obvhs's
+/// builders and binary BVH, and the collapse's cost table.
 #[derive(Default)]
 struct Scratch {
-    boxes: Vec<Aabb>,
     ploc: PlocBuilder,
     bvh2: Bvh2,
     reinsertion: ReinsertionOptimizer,
@@ -100,7 +97,7 @@ struct Scratch {
 }
 
 impl Scratch {
-    /// One BVH of `self.boxes` by obvhs on this thread: its `build_cwbvh`
+    /// One BVH of `boxes` by obvhs on this thread: its `build_cwbvh`
     /// (PLOC, reinsertion, the collapse to CWBVH, whose cost table
     /// `collapse::fill` fills), each node's children ordered by the eight
     /// ray octants or not (`ordered`). That order only steers which child
@@ -111,8 +108,8 @@ impl Scratch {
     /// and the walks 1 % more; on the 110 k-triangle engine the walks ran
     /// 2.4 % more (the shadow walk 5 %) for a build 13 % cheaper
     /// (callgrind, 4 and 16 spp); the same hits either way.
-    fn build(&mut self, params: BvhBuildParams, ordered: bool) -> CwBvh {
-        binary_into(&mut self.ploc, &mut self.bvh2, &self.boxes, params);
+    fn build(&mut self, boxes: &[Aabb], params: BvhBuildParams, ordered: bool) -> CwBvh {
+        binary_into(&mut self.ploc, &mut self.bvh2, boxes, params);
         let bvh2 = &mut self.bvh2;
         self.reinsertion.run(bvh2, params.reinsertion_batch_ratio, None);
         if bvh2.nodes.is_empty() {
@@ -129,7 +126,7 @@ impl Scratch {
         converter.nodes.reserve(primitives);
         converter.primitive_indices.reserve(primitives);
         // Every entry the conversion reads (those of the nodes under the
-        // root) is filled anew: the table is only grown.
+        // root) is filled anew: the last group's entries need no clearing.
         let mut decisions = std::mem::take(&mut self.decisions);
         decisions.resize(bvh2.nodes.len() * 7, Decision::default());
         collapse::fill(bvh2, params.max_prims_per_leaf.clamp(1, 3), &mut decisions);
@@ -155,7 +152,8 @@ pub(super) fn binary(boxes: &[Aabb], params: BvhBuildParams) -> Bvh2 {
     bvh2
 }
 
-/// [`binary`]'s BVH into `bvh2`, with `ploc`'s arrays.
+/// obvhs's binary BVH of `boxes` into `bvh2` (PLOC, one box a leaf,
+/// before reinsertion), with `ploc`'s arrays.
 fn binary_into(ploc: &mut PlocBuilder, bvh2: &mut Bvh2, boxes: &[Aabb], params: BvhBuildParams) {
     ploc.build_with_bvh(
         bvh2,
