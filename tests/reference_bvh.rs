@@ -205,6 +205,59 @@ fn direction_grids_equal_brute_force_for_rays_through_their_centre() {
     );
 }
 
+/// A grid built for the rays towards a region (a camera's image rectangle,
+/// as the render's eye grid is) answers those rays as the whole grid does,
+/// and answers none wrongly elsewhere: beyond the region its cells defer to
+/// the BVH (where no triangle is seen, such as the sky, they stay empty).
+#[test]
+fn a_grid_built_towards_a_region_answers_its_rays_as_the_whole_grid_does() {
+    let mut rng = Rng::new(12, 0, 0);
+    let triangles = generated_scene(&mut rng);
+    let eye = DVec3::new(6.0, 4.0, 9.0);
+    let forward = (DVec3::new(0.0, 0.5, 0.0) - eye).normalize();
+    let right = forward.cross(DVec3::Y).normalize();
+    let up = right.cross(forward);
+    let (half_w, half_h) = (0.3, 0.2);
+    let at = |x: f64, y: f64| eye + forward + right * (x * half_w) + up * (y * half_h);
+    let [a, b, c, d] = [at(-1.0, -1.0), at(1.0, -1.0), at(1.0, 1.0), at(-1.0, 1.0)];
+    let whole = DirectionGrid::new(eye, &triangles, |_| true);
+    let seen = DirectionGrid::towards(eye, &triangles, |_| true, &[[a, b, c], [a, c, d]]);
+    let (mut inside, mut cut, mut beyond) = (0, 0, 0);
+    for ray in 0..6000 {
+        // Half through the rectangle, half through one three times as wide.
+        let scale = if ray % 2 == 0 { 1.0 } else { 3.0 };
+        let (x, y) = (
+            scale * (2.0 * rng.next_f64() - 1.0),
+            scale * (2.0 * rng.next_f64() - 1.0),
+        );
+        let direction = at(x, y) - eye;
+        let answer = seen.closest_from_centre(direction);
+        if let Answer::Known(hit) = answer {
+            let expected = closest_hit_brute_force(&triangles, eye, direction, 0.0, f64::INFINITY);
+            assert_eq!(hit, expected, "ray {ray} along {direction}");
+        }
+        if x.abs() <= 1.0 && y.abs() <= 1.0 {
+            assert_eq!(
+                answer,
+                whole.closest_from_centre(direction),
+                "ray {ray} through the region"
+            );
+            inside += 1;
+        } else if x.abs() > 1.5 || y.abs() > 1.5 {
+            // Well beyond it: the cells the whole grid answers from are
+            // mostly not built.
+            beyond += 1;
+            cut += usize::from(
+                answer == Answer::AskBvh && whole.closest_from_centre(direction) != Answer::AskBvh,
+            );
+        }
+    }
+    assert!(
+        inside > 3000 && cut > beyond / 10,
+        "{inside} rays through the region; of {beyond} well beyond it, {cut} deferred by this grid alone"
+    );
+}
+
 #[test]
 fn occluders_gathered_near_a_ball_block_exactly_what_brute_force_does() {
     let mut rng = Rng::new(13, 0, 0);

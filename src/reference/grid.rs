@@ -20,15 +20,21 @@
 //! light can block it). The triangles' corners relative to the centre are
 //! stored once, which is the first step of every test of a ray from it; and
 //! all rays through one pixel share their cell when its four corners do.
+//!
+//! Lists are kept only where some triangle is seen, and the eye's grid
+//! builds only the cells towards the image ([`DirectionGrid::towards`]):
+//! the others defer to the BVH (see `faces`).
 
 mod cover;
 mod depth;
+mod faces;
 
 pub use cover::Cover;
 
 use super::bvh::{BvhTriangle, Hit, closer};
 use super::intersect::{ShearedRay, extent, with_axes};
 use crate::scene::camera::PixelRays;
+use faces::{Faces, Rect, Slot};
 use glam::DVec3;
 
 /// Cells per side of each cube face (each about 0.7° wide).
@@ -58,7 +64,9 @@ pub enum Answer<T> {
 #[derive(Clone, Debug)]
 pub struct DirectionGrid {
     centre: DVec3,
-    /// Per cell, (first, count) of its members in `items`; count
+    /// Which cells of each face have lists (see [`faces`]).
+    faces: Faces,
+    /// Per listed cell, (first, count) of its members in `items`; count
     /// `CROWDED` when the cell defers to the BVH.
     cells: Vec<(u32, u32)>,
     /// The members of the cells, each cell's sorted by `Item::depth`.
@@ -68,12 +76,12 @@ pub struct DirectionGrid {
     /// first step of every ray test from the centre, done once).
     members: Vec<u32>,
     relative: Vec<[DVec3; 3]>,
-    /// Whether some cell defers to the BVH.
+    /// Whether some listed cell defers to the BVH.
     crowded: bool,
 }
 
 /// The cell range of a triangle seen on a whole face.
-const WHOLE_FACE: [usize; 4] = [0, CELLS - 1, 0, CELLS - 1];
+const WHOLE_FACE: Rect = [0, CELLS - 1, 0, CELLS - 1];
 
 /// The count of a cell listing more than [`MAX_LIST`] triangles.
 const CROWDED: u32 = u32::MAX;
@@ -96,8 +104,47 @@ pub struct Cell(usize);
 impl DirectionGrid {
     /// The grid around `centre` of the triangles `keep` accepts.
     pub fn new(centre: DVec3, triangles: &[BvhTriangle], keep: impl Fn(&BvhTriangle) -> bool) -> Self {
-        // Each triangle's rectangle of cells on each face, then the cells'
-        // lists in one array (a counting sort: lists keep the triangle order).
+        Self::build(centre, triangles, keep, None)
+    }
+
+    /// [`Self::new`] for the rays towards `region` (triangles), such as the
+    /// image's rectangle ahead of the eye: the cells of other directions
+    /// defer to the BVH, and are not built. (Cells a cell wider than the
+    /// region's are built, far more than the rounding of any ray towards it.)
+    pub fn towards(
+        centre: DVec3,
+        triangles: &[BvhTriangle],
+        keep: impl Fn(&BvhTriangle) -> bool,
+        region: &[[DVec3; 3]],
+    ) -> Self {
+        let mut rects = [None; 6];
+        for corners in region {
+            let relative = corners.map(|p| p - centre);
+            for (face, rect) in rects.iter_mut().enumerate() {
+                if let Some([i0, i1, j0, j1]) = cell_range(&relative, face) {
+                    let wider = [
+                        i0.saturating_sub(1),
+                        (i1 + 1).min(CELLS - 1),
+                        j0.saturating_sub(1),
+                        (j1 + 1).min(CELLS - 1),
+                    ];
+                    *rect = Some(faces::union(*rect, wider));
+                }
+            }
+        }
+        Self::build(centre, triangles, keep, Some(&rects))
+    }
+
+    /// The grid, its cells built inside `region`'s rectangles where given.
+    fn build(
+        centre: DVec3,
+        triangles: &[BvhTriangle],
+        keep: impl Fn(&BvhTriangle) -> bool,
+        region: Option<&[Option<Rect>; 6]>,
+    ) -> Self {
+        // Each triangle's rectangle of cells on each face, then the built
+        // cells' lists in one array (a counting sort: lists keep the
+        // triangle order).
         let mut spans = Vec::new();
         for (index, tri) in triangles.iter().enumerate() {
             if !keep(tri) || !tri.corners.iter().all(|p| p.is_finite()) {
@@ -110,10 +157,9 @@ impl DirectionGrid {
                 }
             }
         }
-        let cells_of = |&(_, face, [i0, i1, j0, j1]): &(u32, usize, [usize; 4])| {
-            (j0..=j1).flat_map(move |j| (i0..=i1).map(move |i| cell_index(face, i, j)))
-        };
-        let mut starts = vec![0usize; 6 * CELLS * CELLS + 1];
+        let faces = Faces::new(&spans, region);
+        let cells_of = |&(_, face, rect): &(u32, usize, Rect)| faces.lists_in(face, rect);
+        let mut starts = vec![0usize; faces.len() + 1];
         for span in &spans {
             for cell in cells_of(span) {
                 starts[cell + 1] += 1;
@@ -139,14 +185,14 @@ impl DirectionGrid {
         let (mut members, mut relative, mut items) = (Vec::new(), Vec::new(), Vec::new());
         let mut seen = Vec::new();
         let cells: Vec<(u32, u32)> = lists
-            .enumerate()
-            .map(|(cell, list)| {
+            .zip(faces.cells())
+            .map(|(list, (face, i, j))| {
                 let first = items.len();
                 if list.len() > MAX_LIST {
                     return (first as u32, CROWDED);
                 }
                 // A lone triangle needs no order and ends no search early.
-                let pyramid = (list.len() > 1).then(|| depth::Pyramid::new(cell));
+                let pyramid = (list.len() > 1).then(|| depth::Pyramid::new(cell_index(face, i, j)));
                 for &(triangle, whole) in list {
                     let member = &mut member_of[triangle as usize];
                     if *member == u32::MAX {
@@ -172,6 +218,7 @@ impl DirectionGrid {
         Self {
             centre,
             crowded: cells.iter().any(|&(_, count)| count == CROWDED),
+            faces,
             cells,
             items,
             members,
@@ -206,18 +253,35 @@ impl DirectionGrid {
             .then_some(cell)
     }
 
+    /// Where the cell's list is.
+    #[inline]
+    fn slot(&self, Cell(cell): Cell) -> Slot {
+        self.faces
+            .slot(cell / (CELLS * CELLS), cell % CELLS, cell / CELLS % CELLS)
+    }
+
     /// Whether the cell lists no triangle: every ray in it misses them all.
     pub fn is_empty(&self, cell: Cell) -> bool {
-        self.cells[cell.0].1 == 0
+        match self.slot(cell) {
+            Slot::Listed(k) => self.cells[k].1 == 0,
+            Slot::Empty => true,
+            Slot::Unbuilt => false,
+        }
     }
 
-    /// Whether the cell lists too many triangles and defers to the BVH.
+    /// Whether the cell defers to the BVH: it lists too many triangles, or
+    /// lies outside the region the grid was built for.
     pub fn is_crowded(&self, cell: Cell) -> bool {
-        self.cells[cell.0].1 == CROWDED
+        match self.slot(cell) {
+            Slot::Listed(k) => self.cells[k].1 == CROWDED,
+            Slot::Empty => false,
+            Slot::Unbuilt => true,
+        }
     }
 
-    /// Whether some cell defers to the BVH (else every ray but one from the
-    /// centre itself is answered here).
+    /// Whether some cell of its region defers to the BVH (else every ray
+    /// towards the region but one from the centre itself is answered here;
+    /// a grid made by [`Self::new`] serves every direction).
     pub fn is_crowded_anywhere(&self) -> bool {
         self.crowded
     }
@@ -225,8 +289,14 @@ impl DirectionGrid {
     /// The items of a cell, or None when it defers to the BVH.
     #[inline]
     fn items(&self, cell: Cell) -> Option<&[Item]> {
-        let (first, count) = self.cells[cell.0];
-        (count != CROWDED).then(|| &self.items[first as usize..(first + count) as usize])
+        match self.slot(cell) {
+            Slot::Listed(k) => {
+                let (first, count) = self.cells[k];
+                (count != CROWDED).then(|| &self.items[first as usize..(first + count) as usize])
+            }
+            Slot::Empty => Some(&[]),
+            Slot::Unbuilt => None,
+        }
     }
 
     /// The closest hit of the ray from the centre along `direction`, t > 0,

@@ -87,7 +87,10 @@ impl Reference {
         let grids = builds_grids(self.triangles.len());
         let light_grid = grids && setup.shadows && !setup.is_sphere_light();
         let (eye_grid, light_grid) = rayon::join(
-            || grids.then(|| DirectionGrid::new(setup.rays.eye, &self.grid_triangles, |_| true)),
+            || {
+                let image = image_region(&setup);
+                grids.then(|| DirectionGrid::towards(setup.rays.eye, &self.grid_triangles, |_| true, &image))
+            },
             || {
                 light_grid
                     .then(|| DirectionGrid::new(setup.light_position, &self.grid_triangles, |t| t.occludes))
@@ -472,6 +475,20 @@ struct PixelBuffers {
 
 /// The cone from the eye of the block of width × height pixels from (x, y),
 /// spanned by its corner rays: every primary ray of the block lies inside.
+/// The image's rectangle on the plane a metre ahead of the eye, a pixel
+/// wider on each side, as two triangles: every primary ray goes through it.
+fn image_region(setup: &Setup) -> [[DVec3; 3]; 2] {
+    let (right, bottom) = (setup.width as f64 + 1.0, setup.height as f64 + 1.0);
+    let at = |x, y| setup.rays.eye + setup.rays.towards(x, y);
+    let [a, b, c, d] = [
+        at(-1.0, -1.0),
+        at(right, -1.0),
+        at(right, bottom),
+        at(-1.0, bottom),
+    ];
+    [[a, b, c], [a, c, d]]
+}
+
 fn block_cone(setup: &Setup, (x, y): (u32, u32), (width, height): (u32, u32)) -> Cone {
     let (x, y) = (x as f64, y as f64);
     let (far_x, far_y) = (x + width as f64, y + height as f64);
