@@ -96,6 +96,7 @@ impl Pyramid {
     /// when nothing of it is inside.
     pub fn depth_of(&self, seen: &Seen) -> f64 {
         self.unclipped(seen)
+            .or_else(|| self.plane_only(seen))
             .unwrap_or_else(|| self.clipped(&seen.relative))
     }
 
@@ -120,6 +121,18 @@ impl Pyramid {
         let corners = depths.iter().fold(f64::INFINITY, |m, &d| m.min(d));
         let least = corners.max(self.plane_depth(seen));
         Some((least * (1.0 - ROUNDING) - ROUNDING * seen.size).max(0.0))
+    }
+
+    /// The bound of the triangle's plane alone, for a triangle not wholly
+    /// in front of the face (a ground plane around the eye): its part inside
+    /// the pyramid lies on the plane's, whose least depth is at an edge
+    /// ray's hit. Less the rounding of the plane's offset, worked out from a
+    /// corner that may lie far from both the apex and the cell (10⁻⁸ of its
+    /// distance, far above it). None where the plane gives no bound.
+    fn plane_only(&self, seen: &Seen) -> Option<f64> {
+        let least = self.plane_depth(seen);
+        let slack = ROUNDING * (seen.size + norm(seen.relative[0]));
+        (least > 0.0).then(|| (least * (1.0 - ROUNDING) - slack).max(0.0))
     }
 
     /// The least depth where the edge rays meet the triangle's plane, when
@@ -213,5 +226,49 @@ mod tests {
             covered > 1000 && empty > 1000 && answered > covered + empty,
             "{covered} {empty} {answered}"
         );
+    }
+
+    /// Triangles across the +X face's plane (one corner behind the apex, as
+    /// a ground is around an eye above it): wherever the plane's bound
+    /// answers, it lies at or below the clipped one, and equals it within
+    /// 10⁻⁶ where the triangle covers the cell. Taking the edge rays'
+    /// farthest hit instead of their nearest fails it.
+    #[test]
+    fn the_planes_bound_never_exceeds_the_clipped_one() {
+        let mut rng = Rng::new(43, 0, 0);
+        let mut unit = || 2.0 * rng.next_f64() - 1.0;
+        let (mut covered, mut answered) = (0, 0);
+        for _ in 0..60 {
+            // x: one corner behind the apex, two ahead of it.
+            let mut corners = [-1.0, 1.0, 1.0].map(|side: f64| {
+                let x = side * (0.2 + 2.0 * unit().abs());
+                DVec3::new(x, 3.0 * unit(), 3.0 * unit())
+            });
+            corners.rotate_left(1);
+            let seen = Seen::new(corners);
+            for cell in (0..CELLS * CELLS).step_by(3) {
+                let pyramid = Pyramid::new(cell);
+                let Some(bound) = pyramid.plane_only(&seen) else {
+                    continue;
+                };
+                let least = pyramid.clipped(&seen.relative) + 1e-9 * seen.size;
+                if least == f64::INFINITY {
+                    continue;
+                }
+                answered += 1;
+                assert!(bound <= least, "{bound} above {least}");
+                let inside = seen.sides.is_some_and(|sides| {
+                    pyramid
+                        .rays
+                        .iter()
+                        .all(|&r| sides.iter().all(|&(n, _)| n.dot(r) > 0.0))
+                });
+                if inside {
+                    covered += 1;
+                    assert!(bound >= least - 1e-6 * (1.0 + least), "{bound} far below {least}");
+                }
+            }
+        }
+        assert!(covered > 1000 && answered > covered, "{covered} {answered}");
     }
 }
