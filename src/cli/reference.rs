@@ -179,7 +179,7 @@ fn summary(settings: &Settings, reference: &Reference, image: &ReferenceImage, b
         )
     };
     format!(
-        "reference {}×{}, {} triangles, {light}, {} spp: {:.3} s (BVH {:.3} s), {:.2} M rays ({:.2} M rays/s); {noise_text}",
+        "reference {}×{}, {} triangles, {light}, {} spp: {:.4} s (BVH {:.4} s), {:.2} M rays ({:.2} M rays/s); {noise_text}",
         image.width,
         image.height,
         reference.triangle_count(),
