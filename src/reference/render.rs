@@ -473,8 +473,6 @@ struct PixelBuffers {
     lit: Vec<Option<point_run::LitSample>>,
 }
 
-/// The cone from the eye of the block of width × height pixels from (x, y),
-/// spanned by its corner rays: every primary ray of the block lies inside.
 /// The image's rectangle on the plane a metre ahead of the eye, a pixel
 /// wider on each side, as two triangles: every primary ray goes through it.
 fn image_region(setup: &Setup) -> [[DVec3; 3]; 2] {
@@ -489,6 +487,8 @@ fn image_region(setup: &Setup) -> [[DVec3; 3]; 2] {
     [[a, b, c], [a, c, d]]
 }
 
+/// The cone from the eye of the block of width × height pixels from (x, y),
+/// spanned by its corner rays: every primary ray of the block lies inside.
 fn block_cone(setup: &Setup, (x, y): (u32, u32), (width, height): (u32, u32)) -> Cone {
     let (x, y) = (x as f64, y as f64);
     let (far_x, far_y) = (x + width as f64, y + height as f64);
