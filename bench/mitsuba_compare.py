@@ -73,6 +73,8 @@ PLANE_COLOR = (0.7, 0.7, 0.7)
 BOX_COLOR = (0.8, 0.2, 0.1)
 MODEL_COLOR = (0.6, 0.6, 0.65)
 VARIANTS = ("scalar_rgb", "llvm_ad_rgb")
+# Seconds of rest before each timed run (see `settle`).
+SETTLE_S = 0.05
 # Rec. 709 luminance, as lumlab's noise estimate uses.
 LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
 
@@ -341,7 +343,16 @@ def load_mitsuba(mi, folder, scene, radius, sampler):
     return mi.load_dict(d)
 
 
+def settle():
+    """A pause before each timed run, lumlab's or Mitsuba's: Dr.Jit's worker
+    threads spin on for some milliseconds after a render, and a lumlab process
+    started at once shared the two cores with them (the sphere race's 7 ms
+    render read 10-12 ms; 20 ms of pause was enough)."""
+    time.sleep(SETTLE_S)
+
+
 def render_mitsuba(mi, loaded, spp, seed=0):
+    settle()
     start = time.perf_counter()
     image = mi.render(loaded, spp=spp, seed=seed)
     image = np.array(image)[:, :, :3]  # waits for llvm's kernels to finish
@@ -373,6 +384,7 @@ def run_timed(command, threads):
     """One lumlab run: (whole process s, render s, its summary line); the
     render is the summary's `N spp: S s` (no loading, BVH or file output)."""
     env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+    settle()
     start = time.perf_counter()
     run = subprocess.run(command, env=env, capture_output=True, text=True)
     wall_s = time.perf_counter() - start

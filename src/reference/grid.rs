@@ -157,7 +157,7 @@ impl DirectionGrid {
                 }
             }
         }
-        let faces = Faces::new(&spans, region);
+        let faces = Faces::new(spans.iter().map(|&(_, face, rect)| (face, rect)), region);
         let cells_of = |&(_, face, rect): &(u32, usize, Rect)| faces.lists_in(face, rect);
         let mut starts = vec![0usize; faces.len() + 1];
         for span in &spans {

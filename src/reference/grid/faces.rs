@@ -53,11 +53,14 @@ fn area(r: &Rect) -> usize {
 }
 
 impl Faces {
-    /// The rectangles of the spans (triangle, face, cells), the built ones
-    /// cut to `region`'s where there is one (per face; None: nothing there).
-    pub(super) fn new<T>(spans: &[(T, usize, Rect)], region: Option<&[Option<Rect>; 6]>) -> Self {
+    /// The rectangles of the spans (face, cells), the built ones cut to
+    /// `region`'s where there is one (per face; None: nothing there).
+    pub(super) fn new(
+        spans: impl IntoIterator<Item = (usize, Rect)>,
+        region: Option<&[Option<Rect>; 6]>,
+    ) -> Self {
         let mut bounds = [None; 6];
-        for &(_, face, rect) in spans {
+        for (face, rect) in spans {
             bounds[face] = Some(union(bounds[face], rect));
         }
         let mut built = [None; 6];
@@ -123,14 +126,10 @@ mod tests {
     /// and the built lists numbered in the order `cells` gives.
     #[test]
     fn slots_follow_the_spans_and_the_region() {
-        let spans = [
-            ((), 0, [2, 4, 10, 12]),
-            ((), 0, [8, 9, 1, 3]),
-            ((), 3, [0, 5, 0, 5]),
-        ];
+        let spans = [(0, [2, 4, 10, 12]), (0, [8, 9, 1, 3]), (3, [0, 5, 0, 5])];
         let mut region = [None; 6];
         region[0] = Some([3, 20, 0, 11]);
-        let faces = Faces::new(&spans, Some(&region));
+        let faces = Faces::new(spans, Some(&region));
         // Face 0's bounds [2, 9] × [1, 12], cut to [3, 9] × [1, 11].
         assert_eq!(faces.len(), 7 * 11);
         let listed: Vec<_> = faces.cells().collect();
@@ -153,7 +152,7 @@ mod tests {
             .collect();
         assert_eq!(in_span, expected);
         // Without a region every spanned cell is built.
-        let all = Faces::new(&spans, None);
+        let all = Faces::new(spans, None);
         assert_eq!(all.len(), 8 * 12 + 36);
         assert_eq!(all.slot(0, 2, 5), Slot::Listed(4 * 8));
         assert_eq!(all.slot(3, 1, 1), Slot::Listed(8 * 12 + 7));
