@@ -88,8 +88,10 @@ impl Reference {
         let light_grid = grids && setup.shadows && !setup.is_sphere_light();
         let (eye_grid, light_grid) = rayon::join(
             || {
-                let image = image_region(&setup);
-                grids.then(|| DirectionGrid::towards(setup.rays.eye, &self.grid_triangles, |_| true, &image))
+                grids.then(|| {
+                    let image = image_region(&setup);
+                    DirectionGrid::towards(setup.rays.eye, &self.grid_triangles, |_| true, &image)
+                })
             },
             || {
                 light_grid

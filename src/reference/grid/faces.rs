@@ -21,7 +21,7 @@ pub(super) enum Slot {
 }
 
 /// The face rectangles of a grid, and where its lists of each begin.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub(super) struct Faces {
     /// Per face, the cells some triangle's span meets.
     bounds: [Option<Rect>; 6],
@@ -50,6 +50,12 @@ fn width([i0, i1, _, _]: &Rect) -> usize {
 
 fn area(r: &Rect) -> usize {
     width(r) * (r[3] - r[2] + 1)
+}
+
+/// The index of cell (i, j)'s list in a built rectangle whose first list
+/// is `first` (row by row).
+fn list_of((rect, first): (Rect, usize), i: usize, j: usize) -> usize {
+    first + (j - rect[2]) * width(&rect) + i - rect[0]
 }
 
 impl Faces {
@@ -88,9 +94,7 @@ impl Faces {
     pub(super) fn slot(&self, face: usize, i: usize, j: usize) -> Slot {
         let inside = |&[i0, i1, j0, j1]: &Rect| (i0..=i1).contains(&i) && (j0..=j1).contains(&j);
         match self.built[face] {
-            Some((rect, first)) if inside(&rect) => {
-                Slot::Listed(first + (j - rect[2]) * width(&rect) + i - rect[0])
-            }
+            Some(built) if inside(&built.0) => Slot::Listed(list_of(built, i, j)),
             _ if self.bounds[face].as_ref().is_some_and(inside) => Slot::Unbuilt,
             _ => Slot::Empty,
         }
@@ -98,12 +102,9 @@ impl Faces {
 
     /// The built lists among the cells `rect` of `face`.
     pub(super) fn lists_in(&self, face: usize, rect: Rect) -> impl Iterator<Item = usize> {
-        let cut =
-            self.built[face].and_then(|(built, first)| Some((intersection(built, rect)?, built, first)));
-        cut.into_iter().flat_map(|([i0, i1, j0, j1], built, first)| {
-            (j0..=j1).flat_map(move |j| {
-                (i0..=i1).map(move |i| first + (j - built[2]) * width(&built) + i - built[0])
-            })
+        let cut = self.built[face].and_then(|built| Some((intersection(built.0, rect)?, built)));
+        cut.into_iter().flat_map(|([i0, i1, j0, j1], built)| {
+            (j0..=j1).flat_map(move |j| (i0..=i1).map(move |i| list_of(built, i, j)))
         })
     }
 
