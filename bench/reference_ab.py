@@ -21,6 +21,7 @@ some ±5 % from one spell to the next; these do not move at all).
     # ...the change, then:
     cargo build --release
     python3 bench/reference_ab.py /tmp/lumlab.a target/release/lumlab --scene small --runs 12
+    python3 bench/reference_ab.py /tmp/lumlab.a target/release/lumlab --scene sphere --runs 20
     python3 bench/reference_ab.py /tmp/lumlab.a target/release/lumlab \\
         --scene model --model /work/models/2CylinderEngine.glb --branches
 
@@ -39,7 +40,15 @@ import sys
 import tempfile
 from pathlib import Path
 
-from mitsuba_compare import lumlab_command, million_scene, model_scene, run_timed, small_scene, write_glb
+from mitsuba_compare import (
+    SPHERE_RADIUS_M,
+    lumlab_command,
+    million_scene,
+    model_scene,
+    run_timed,
+    small_scene,
+    write_glb,
+)
 
 
 def run(argv, threads):
@@ -74,9 +83,15 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("a", type=Path, help="the build before the change")
     parser.add_argument("b", type=Path, help="the build after it")
-    parser.add_argument("--scene", choices=["small", "model", "million"], default="small")
+    parser.add_argument(
+        "--scene",
+        choices=["small", "model", "million", "sphere"],
+        default="small",
+        help="a race's scene; sphere: the small one under the sphere-light race's light, at 1 spp",
+    )
     parser.add_argument("--model", type=Path, help="the GLB of the model scene (see mitsuba_compare.py)")
     parser.add_argument("--spp", type=int, help="samples per pixel (default: the race's)")
+    parser.add_argument("--light-samples", type=int, default=10, help="the sphere scene's (the race found 10)")
     parser.add_argument("--runs", type=int, default=10, help="runs of each build, alternated")
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--branches", action="store_true", help="also count with cachegrind (valgrind)")
@@ -88,19 +103,29 @@ def main():
         sys.exit("the model scene needs --model FILE.glb")
     if args.branches and not shutil.which("valgrind"):
         sys.exit("--branches needs valgrind (apt-get install -y valgrind)")
-    scene = {"small": small_scene, "million": million_scene, "model": lambda: model_scene(args.model)}[args.scene]()
-    spp = args.spp or scene.spp
+    sphere = args.scene == "sphere"
+    scene = {
+        "small": small_scene,
+        "sphere": small_scene,
+        "million": million_scene,
+        "model": lambda: model_scene(args.model),
+    }[args.scene]()
+    spp = args.spp or (1 if sphere else scene.spp)
+    light = (SPHERE_RADIUS_M, args.light_samples) if sphere else (0.0, 1)
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         glb = folder / "scene.glb"
         write_glb(glb, scene)
-        argv = {k: lumlab_command(b, glb, folder / f"{k}.exr", scene, spp) for k, b in (("A", args.a), ("B", args.b))}
+        argv = {
+            k: lumlab_command(b, glb, folder / f"{k}.exr", scene, spp, *light) for k, b in (("A", args.a), ("B", args.b))
+        }
         times = {"A": [], "B": []}
         for i in range(args.runs):
             for k in ("AB" if i % 2 == 0 else "BA"):
                 times[k].append(run(argv[k], args.threads))
         same = filecmp.cmp(folder / "A.exr", folder / "B.exr", shallow=False)
-        print(f"{args.scene}: {scene.triangles()} triangles, {scene.size[0]}×{scene.size[1]}, {spp} spp, "
+        lit = f", sphere light R = {light[0]} m, {light[1]} light samples" if sphere else ""
+        print(f"{args.scene}: {scene.triangles()} triangles, {scene.size[0]}×{scene.size[1]}, {spp} spp{lit}, "
               f"{args.threads} threads, {args.runs} alternated runs each")  # fmt: skip
         for k, binary in (("A", args.a), ("B", args.b)):
             render, bvh, process = zip(*times[k])
