@@ -35,7 +35,7 @@ pub use cover::Cover;
 use super::bvh::{BvhTriangle, Hit, closer};
 use super::intersect::{ShearedRay, extent, with_axes};
 use crate::scene::camera::PixelRays;
-use cube::{cell_index, cell_range, clip_to_pyramid, face_axes, face_coordinates, to_cell};
+use cube::{cell_index, cell_parts, cell_range, clip_to_pyramid, face_axes, face_coordinates, to_cell};
 use faces::{Faces, Rect, Slot};
 use glam::DVec3;
 
@@ -258,8 +258,8 @@ impl DirectionGrid {
     /// Where the cell's list is.
     #[inline]
     fn slot(&self, Cell(cell): Cell) -> Slot {
-        self.faces
-            .slot(cell / (CELLS * CELLS), cell % CELLS, cell / CELLS % CELLS)
+        let (face, i, j) = cell_parts(cell);
+        self.faces.slot(face, i, j)
     }
 
     /// Whether the cell lists no triangle: every ray in it misses them all.

@@ -478,24 +478,23 @@ struct PixelBuffers {
 /// The image's rectangle on the plane a metre ahead of the eye, a pixel
 /// wider on each side, as two triangles: every primary ray goes through it.
 fn image_region(setup: &Setup) -> [[DVec3; 3]; 2] {
-    let (right, bottom) = (setup.width as f64 + 1.0, setup.height as f64 + 1.0);
-    let at = |x, y| setup.rays.eye + setup.rays.towards(x, y);
-    let [a, b, c, d] = [
-        at(-1.0, -1.0),
-        at(right, -1.0),
-        at(right, bottom),
-        at(-1.0, bottom),
-    ];
+    let far = (setup.width as f64 + 1.0, setup.height as f64 + 1.0);
+    let [a, b, c, d] = corner_rays(setup, (-1.0, -1.0), far).map(|w| setup.rays.eye + w);
     [[a, b, c], [a, c, d]]
+}
+
+/// The rays from the eye through the corners of the image's rectangle
+/// from (x, y) to (far_x, far_y) (pixels), in order around it.
+fn corner_rays(setup: &Setup, (x, y): (f64, f64), (far_x, far_y): (f64, f64)) -> [DVec3; 4] {
+    [(x, y), (far_x, y), (far_x, far_y), (x, far_y)].map(|(cx, cy)| setup.rays.towards(cx, cy))
 }
 
 /// The cone from the eye of the block of width × height pixels from (x, y),
 /// spanned by its corner rays: every primary ray of the block lies inside.
 fn block_cone(setup: &Setup, (x, y): (u32, u32), (width, height): (u32, u32)) -> Cone {
     let (x, y) = (x as f64, y as f64);
-    let (far_x, far_y) = (x + width as f64, y + height as f64);
-    let corners = [(x, y), (far_x, y), (far_x, far_y), (x, far_y)];
-    Cone::spanned(setup.rays.eye, corners.map(|(cx, cy)| setup.rays.towards(cx, cy)))
+    let far = (x + width as f64, y + height as f64);
+    Cone::spanned(setup.rays.eye, corner_rays(setup, (x, y), far))
 }
 
 /// Pixel (i, j)'s samples into `buffers.samples`: its directions first

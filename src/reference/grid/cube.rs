@@ -10,6 +10,11 @@ pub(super) fn cell_index(face: usize, i: usize, j: usize) -> usize {
     (face * CELLS + j) * CELLS + i
 }
 
+/// The face and cell (i, j) of [`cell_index`]'s index.
+pub(super) fn cell_parts(cell: usize) -> (usize, usize, usize) {
+    (cell / (CELLS * CELLS), cell % CELLS, cell / CELLS % CELLS)
+}
+
 /// The cell of a face coordinate in [−1, 1] (clamped; the cast truncates,
 /// which is the floor for the non-negative values it gets).
 pub(super) fn to_cell(u: f64) -> usize {

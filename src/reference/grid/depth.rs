@@ -11,7 +11,7 @@
 //! the apex, the pyramid's or the triangle's, surely separates them.
 //! Otherwise the triangle is clipped to the pyramid.
 
-use super::{APEX, CELLS, MARGIN, clip_to_pyramid, extent, face_axes};
+use super::{APEX, CELLS, MARGIN, cell_parts, clip_to_pyramid, extent, face_axes};
 use glam::DVec3;
 
 /// Triangles thinner than this (|n| against |e₁||e₂|, the sine of their
@@ -71,7 +71,7 @@ pub(super) struct Pyramid {
 
 impl Pyramid {
     pub fn new(cell: usize) -> Self {
-        let (face, j, i) = (cell / (CELLS * CELLS), cell / CELLS % CELLS, cell % CELLS);
+        let (face, i, j) = cell_parts(cell);
         let edge = |n: usize| -1.0 + 2.0 * n as f64 / CELLS as f64;
         let u = (edge(i) - MARGIN, edge(i + 1) + MARGIN);
         let v = (edge(j) - MARGIN, edge(j + 1) + MARGIN);
