@@ -224,3 +224,72 @@ fn every_set_of_lanes_packs_to_its_lanes_in_order() {
         assert_eq!(&LEFT_PACKED[set as usize][..lanes.len()], &lanes[..], "{set:08b}");
     }
 }
+
+/// A block's bound holds every used lane, in f64 from the f32 values
+/// stored: |d − c|₂ and the allowance for the lane test's rounding within
+/// the spread, |d|∞ within the reach, each lane's own |d|∞ exact; and it
+/// stays tight (within 10⁻⁴ of that, or the floor); the AVX bound is the
+/// lane-by-lane one; a lane that is not finite leaves the block unbounded.
+#[test]
+fn a_blocks_bound_holds_its_lanes() {
+    let mut rng = Rng::new(41, 0, 0);
+    let mut unit = || rng.next_f64();
+    for case in 0..20_000 {
+        let scale = 10f64.powf(12.0 * unit() - 6.0);
+        let width = [0.0, 1e-7, 1e-3, 0.5, 3.0][case % 5];
+        let lanes = 1 + case % LANES;
+        let centre = DVec3::new(unit() - 0.5, unit() - 0.5, unit() - 0.5);
+        let mut block = Block::default();
+        for l in 0..lanes {
+            let d = (centre + DVec3::new(unit() - 0.5, unit() - 0.5, unit() - 0.5) * width) * scale;
+            for i in 0..3 {
+                block.d[i][l] = d[i] as f32;
+            }
+        }
+        if case % 97 == 0 {
+            block.d[case % 3][case % lanes] = [f32::NAN, f32::INFINITY][case % 2];
+        }
+        let mut plain = block;
+        let bound = block_bound(&mut plain, lanes);
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx") {
+            let mut wide = block;
+            // SAFETY: the CPU has AVX.
+            let avx = unsafe { block_bound_avx(&mut wide, lanes) };
+            assert_eq!(avx, bound, "case {case}: AVX");
+            // (A lane that is not finite may take either reach: its tests
+            // compare a NaN, which keeps it, either way.)
+            if bound != UNBOUNDED {
+                assert_eq!(wide.reach, plain.reach, "case {case}: AVX reach");
+            }
+        }
+        let d: Vec<DVec3> = (0..lanes)
+            .map(|l| DVec3::new(block.d[0][l] as f64, block.d[1][l] as f64, block.d[2][l] as f64))
+            .collect();
+        if !d.iter().all(|d| d.is_finite()) {
+            assert_eq!(bound, UNBOUNDED, "case {case}");
+            continue;
+        }
+        let c = DVec3::from(bound.c.map(f64::from));
+        let r = d.iter().map(|&dl| (dl - c).length()).fold(0.0, f64::max);
+        let needed = (r + 16.0 * f32::EPSILON as f64 * (c.abs().max_element() + r)) * (1.0 + BOUND_ROUNDING);
+        let spread = f64::from(bound.spread);
+        assert!(spread >= needed, "case {case}: spread {spread:e} < {needed:e}");
+        assert!(
+            spread <= needed * 1.0001 + 1e-17,
+            "case {case}: spread {spread:e} ≫ {needed:e}"
+        );
+        let reach = d.iter().map(|d| d.abs().max_element()).fold(0.0, f64::max);
+        assert!(
+            f64::from(bound.reach) >= reach * (1.0 + BOUND_ROUNDING),
+            "case {case}: reach"
+        );
+        for (l, dl) in d.iter().enumerate() {
+            assert_eq!(
+                f64::from(plain.reach[l]),
+                dl.abs().max_element(),
+                "case {case}, lane {l}"
+            );
+        }
+    }
+}
