@@ -230,7 +230,7 @@ impl Reference {
 
 #[cfg(test)]
 mod tests {
-    use super::super::{RUN, Shortcuts};
+    use super::super::{BLOCK, Shortcuts};
     use crate::reference::grid::DirectionGrid;
     use crate::reference::{Reference, ReferenceOptions, RenderControl};
     use crate::scene::{Aabb, Material, Object, Scene, shapes};
@@ -295,7 +295,7 @@ mod tests {
                     ..Shortcuts::ALL
                 };
                 reference
-                    .render_in_runs(&settings, &options, &control, RUN, shortcuts)
+                    .render_in_blocks(&settings, &options, &control, BLOCK, shortcuts)
                     .unwrap()
             };
             let (searched, covered) = (render(false), render(true));

@@ -61,18 +61,21 @@ fn runs_of_pixels_render_what_single_pixels_render() {
         };
         let control = RenderControl::default();
         let single = reference
-            .render_in_runs(&settings, &options, &control, 1, Shortcuts::ALL)
+            .render_in_blocks(&settings, &options, &control, (1, 1), Shortcuts::ALL)
             .unwrap();
         assert!(single.coverage.iter().any(|&c| c > 0.0) && single.visibility.iter().any(|&v| v < 1.0));
-        for run in [RUN, WIDE_RUN] {
+        for block in [BLOCK, WIDE_BLOCK] {
             let runs = reference
-                .render_in_runs(&settings, &options, &control, run, Shortcuts::ALL)
+                .render_in_blocks(&settings, &options, &control, block, Shortcuts::ALL)
                 .unwrap();
-            assert_eq!(single.radiance, runs.radiance, "run {run}");
-            assert_eq!(single.visibility, runs.visibility, "run {run}");
-            assert_eq!(single.coverage, runs.coverage, "run {run}");
-            assert_eq!(single.noise, runs.noise, "run {run}");
-            assert_eq!(single.stats.shadow_rays, runs.stats.shadow_rays, "run {run}");
+            assert_eq!(single.radiance, runs.radiance, "block {block:?}");
+            assert_eq!(single.visibility, runs.visibility, "block {block:?}");
+            assert_eq!(single.coverage, runs.coverage, "block {block:?}");
+            assert_eq!(single.noise, runs.noise, "block {block:?}");
+            assert_eq!(
+                single.stats.shadow_rays, runs.stats.shadow_rays,
+                "block {block:?}"
+            );
         }
     }
 }
@@ -106,11 +109,11 @@ fn skipping_background_tiles_changes_no_pixel() {
         assert!(reference.bvh.meets_cone(&block_cone(&setup, (0, 20), (16, 16))));
         let control = RenderControl::default();
         let cast = reference
-            .render_in_runs(
+            .render_in_blocks(
                 &settings,
                 &options,
                 &control,
-                RUN,
+                BLOCK,
                 Shortcuts {
                     background: false,
                     ..Shortcuts::ALL
@@ -118,7 +121,7 @@ fn skipping_background_tiles_changes_no_pixel() {
             )
             .unwrap();
         let skipped = reference
-            .render_in_runs(&settings, &options, &control, RUN, Shortcuts::ALL)
+            .render_in_blocks(&settings, &options, &control, BLOCK, Shortcuts::ALL)
             .unwrap();
         assert!(cast.coverage.contains(&0.0) && cast.coverage.contains(&1.0));
         assert_eq!(cast.radiance, skipped.radiance);
