@@ -98,12 +98,14 @@ impl LightPacket {
         self.cursor = 0;
     }
 
-    /// One more shadow ray, as [`Self::reset`] takes them.
+    /// One more shadow ray, as [`Self::reset`] takes them; its index, for
+    /// [`Self::blocked_ray`].
     #[inline(always)]
-    pub fn add(&mut self, (origin, normal, passes): (DVec3, DVec3, usize)) {
+    pub fn add(&mut self, (origin, normal, passes): (DVec3, DVec3, usize)) -> usize {
         self.origins.push(origin);
         self.passes.push(passes);
         self.normal_sum += normal;
+        self.origins.len() - 1
     }
 
     /// Whether the shadow ray from `origin` (one of the packet's) to the
@@ -112,14 +114,24 @@ impl LightPacket {
         if self.origins.len() < MIN_RAYS {
             return None;
         }
-        if self.cast.is_none() {
-            self.cast = Some(self.cast_once(bvh, light));
-        }
         // An equal origin elsewhere is the same ray, with the same answer.
         let i = (self.cursor..self.origins.len())
             .chain(0..self.cursor)
             .find(|&i| self.origins[i] == origin)?;
         self.cursor = i + 1;
+        self.blocked_ray(bvh, light, i)
+    }
+
+    /// Whether ray `i` of the packet (as [`Self::add`] numbered it) is
+    /// blocked: [`Self::blocked`] without the search for its origin (the
+    /// engine's render: 1.4 % of its instructions).
+    pub fn blocked_ray(&mut self, bvh: &TriangleBvh, light: DVec3, i: usize) -> Option<bool> {
+        if self.origins.len() < MIN_RAYS {
+            return None;
+        }
+        if self.cast.is_none() {
+            self.cast = Some(self.cast_once(bvh, light));
+        }
         match self.cast {
             Some(true) if self.used == 0 => Some(self.whole.blocked(i)),
             Some(true) => {

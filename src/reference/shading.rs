@@ -298,6 +298,19 @@ impl Reference {
             .unwrap_or_else(|| self.blocked(origin, setup.light_position))
     }
 
+    /// [`Self::blocked_in_packet`] for a ray the packet numbered `ray`
+    /// (None: not one of its).
+    #[inline(always)]
+    pub(super) fn ray_blocked_in_packet(
+        &self,
+        setup: &Setup,
+        (origin, ray): (DVec3, Option<usize>),
+        packet: &mut LightPacket,
+    ) -> bool {
+        ray.and_then(|i| packet.blocked_ray(&self.bvh, setup.light_position, i))
+            .unwrap_or_else(|| self.blocked(origin, setup.light_position))
+    }
+
     /// Whether the segment from `origin` to `target` is blocked,
     /// stopping short of the target.
     pub(super) fn blocked(&self, origin: DVec3, target: DVec3) -> bool {

@@ -21,8 +21,10 @@ use glam::DVec3;
 pub(super) struct LitSample {
     tint: DVec3,
     lit: PointLit,
-    /// Where its shadow ray starts.
+    /// Where its shadow ray starts, and its index in the light packet
+    /// (None: not in it).
     origin: DVec3,
+    ray: Option<usize>,
 }
 
 impl Reference {
@@ -56,18 +58,18 @@ impl Reference {
                 let (g, origin) = shading.lift(p, o);
                 let facet = shading.facet();
                 let shadowed = shading.shadowed();
-                if let Some(ray) = shadow_ray(
+                let ray = shadow_ray(
                     setup.light_position,
                     (hit.triangle, shadowed),
                     (p, normal, g),
                     (origin, shading.shadow_offset_m()),
-                ) {
-                    light_packet.add(ray);
-                }
+                )
+                .map(|ray| light_packet.add(ray));
                 LitSample {
                     tint: shading.tint_at(self, hit.at.barycentric),
                     lit: PointLit::new(setup, (p, normal, o), &facet.brdf, shadowed),
                     origin,
+                    ray,
                 }
             }));
         }
@@ -76,7 +78,8 @@ impl Reference {
             for sample in samples {
                 match sample {
                     Some(s) => {
-                        let blocked = s.lit.casts() && self.blocked_in_packet(setup, s.origin, light_packet);
+                        let blocked = s.lit.casts()
+                            && self.ray_blocked_in_packet(setup, (s.origin, s.ray), light_packet);
                         sums.add(s.tint, &s.lit.estimate(blocked), n);
                     }
                     None => sums.add_background(),
