@@ -158,7 +158,7 @@ impl LightPacket {
     /// from the light; false when no cone holds them.
     #[inline(always)]
     fn cast_packets(&mut self, bvh: &TriangleBvh, light: DVec3) -> bool {
-        let Some((cone, [near, far])) = Cone::around_reaching(light, self.origins.iter().copied()) else {
+        let Some((cone, [near, far])) = Cone::around_reaching(light, &self.origins) else {
             return false;
         };
         let n = self.origins.len();

@@ -39,51 +39,32 @@ impl Cone {
     /// the 110 k-triangle engine's process, a shadow packet holding 128.)
     #[inline(always)]
     pub fn around(apex: DVec3, points: impl Iterator<Item = DVec3> + Clone) -> Option<Self> {
-        Self::around_reaching(apex, points).map(|(cone, _)| cone)
+        let (axis, u, v) = axis_about(apex, points.clone())?;
+        let mut extent = Extent::EMPTY;
+        for p in points {
+            extent.add(p - apex, (axis, u, v));
+        }
+        extent.cone(apex, (axis, u, v)).map(|(cone, _)| cone)
     }
 
-    /// [`Self::around`], with the least and the greatest depth of the
-    /// points along its axis.
+    /// [`Self::around`] the points of a slice, with the least and the
+    /// greatest depth of the points along its axis: four points at a time
+    /// in AVX2 where the CPU has it (each lane the same operations; the
+    /// engine's render: 1.7 % fewer instructions).
     #[inline(always)]
-    pub fn around_reaching(
-        apex: DVec3,
-        points: impl Iterator<Item = DVec3> + Clone,
-    ) -> Option<(Self, [f64; 2])> {
-        let axis = points
-            .clone()
-            .fold(DVec3::ZERO, |s, p| s + (p - apex))
-            .try_normalize()?;
-        let (u, v) = axis.any_orthonormal_pair();
-        let (mut s0, mut s1, mut r0, mut r1) =
-            (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-        let (mut near, mut far) = (f64::INFINITY, 0.0_f64);
-        for p in points {
-            let w = p - apex;
-            let along = w.dot(axis);
-            // Two comparisons (NaN fails the first): `is_finite` and
-            // `f64::min`'s NaN rule took some 60 instructions a point.
-            if !(along > 0.0 && along < f64::INFINITY) {
-                return None;
-            }
-            (near, far) = (
-                if along < near { along } else { near },
-                if along > far { along } else { far },
-            );
-            let inverse = along.recip();
-            let (s, r) = (w.dot(u) * inverse, w.dot(v) * inverse);
-            // A NaN slope is passed over, as f64::min and max would.
-            (s0, s1) = (if s < s0 { s } else { s0 }, if s > s1 { s } else { s1 });
-            (r0, r1) = (if r < r0 { r } else { r0 }, if r > r1 { r } else { r1 });
+    pub fn around_reaching(apex: DVec3, points: &[DVec3]) -> Option<(Self, [f64; 2])> {
+        let frame = axis_about(apex, points.iter().copied())?;
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2.
+            let extent = unsafe { extent_avx2(apex, points, frame) };
+            return extent.cone(apex, frame);
         }
-        // Widened by the rounding of the slopes.
-        let widen = |x: f64| ROUNDING * (1.0 + x.abs());
-        let (s0, s1, r0, r1) = (s0 - widen(s0), s1 + widen(s1), r0 - widen(r0), r1 + widen(r1));
-        let cone = Self {
-            apex,
-            planes: [u - axis * s0, axis * s1 - u, v - axis * r0, axis * r1 - v],
-            axis,
-        };
-        Some((cone, [near, far]))
+        let mut extent = Extent::EMPTY;
+        for &p in points {
+            extent.add(p - apex, frame);
+        }
+        extent.cone(apex, frame)
     }
 
     /// The square pyramid from `apex` about the unit `axis` whose four
@@ -267,4 +248,199 @@ fn corner_values(node: &CwBvhNode, n: DVec3, p: DVec3, e: DVec3, farthest: bool)
     let q: [&[u8; 8]; 3] = std::array::from_fn(|k| if (n[k] > 0.0) == farthest { hi[k] } else { lo[k] });
     let (base, w) = (n.dot(p), n * e);
     std::array::from_fn(|c| base + w.x * q[0][c] as f64 + w.y * q[1][c] as f64 + w.z * q[2][c] as f64)
+}
+
+/// The unit direction of the mean of `points` from `apex` and two unit
+/// directions across it (None when the mean is the apex, or not finite).
+#[inline(always)]
+fn axis_about(apex: DVec3, points: impl Iterator<Item = DVec3>) -> Option<(DVec3, DVec3, DVec3)> {
+    let axis = points.fold(DVec3::ZERO, |s, p| s + (p - apex)).try_normalize()?;
+    let (u, v) = axis.any_orthonormal_pair();
+    Some((axis, u, v))
+}
+
+/// Points seen from an apex: their least and greatest depth along an axis
+/// and the least and greatest of their two slopes across it, and whether
+/// every one lies ahead, at a finite depth.
+#[derive(Clone, Copy, Debug)]
+struct Extent {
+    near: f64,
+    far: f64,
+    s: [f64; 2],
+    r: [f64; 2],
+    ahead: bool,
+}
+
+impl Extent {
+    const EMPTY: Self = Self {
+        near: f64::INFINITY,
+        far: 0.0,
+        s: [f64::INFINITY, f64::NEG_INFINITY],
+        r: [f64::INFINITY, f64::NEG_INFINITY],
+        ahead: true,
+    };
+
+    /// One more point, at w from the apex.
+    #[inline(always)]
+    fn add(&mut self, w: DVec3, (axis, u, v): (DVec3, DVec3, DVec3)) {
+        let along = w.dot(axis);
+        // Two comparisons (NaN fails the first): `is_finite` and
+        // `f64::min`'s NaN rule took some 60 instructions a point.
+        self.ahead &= along > 0.0 && along < f64::INFINITY;
+        self.near = if along < self.near { along } else { self.near };
+        self.far = if along > self.far { along } else { self.far };
+        let inverse = along.recip();
+        let (s, r) = (w.dot(u) * inverse, w.dot(v) * inverse);
+        // A NaN slope is passed over, as f64::min and max would.
+        self.s = [
+            if s < self.s[0] { s } else { self.s[0] },
+            if s > self.s[1] { s } else { self.s[1] },
+        ];
+        self.r = [
+            if r < self.r[0] { r } else { self.r[0] },
+            if r > self.r[1] { r } else { self.r[1] },
+        ];
+    }
+
+    /// The cone from `apex` about `axis` that holds the points, widened by
+    /// the rounding of their slopes, with their least and greatest depth;
+    /// None unless every point lies ahead.
+    fn cone(&self, apex: DVec3, (axis, u, v): (DVec3, DVec3, DVec3)) -> Option<(Cone, [f64; 2])> {
+        if !self.ahead {
+            return None;
+        }
+        let widen = |x: f64| ROUNDING * (1.0 + x.abs());
+        let ([s0, s1], [r0, r1]) = (self.s, self.r);
+        let (s0, s1, r0, r1) = (s0 - widen(s0), s1 + widen(s1), r0 - widen(r0), r1 + widen(r1));
+        let cone = Cone {
+            apex,
+            planes: [u - axis * s0, axis * s1 - u, v - axis * r0, axis * r1 - v],
+            axis,
+        };
+        Some((cone, [self.near, self.far]))
+    }
+}
+
+/// The [`Extent`] of `points` seen from `apex`, four points at a time,
+/// each lane doing [`Extent::add`]'s operations in its order (packed
+/// minimum and maximum choose as its comparisons do); the points past the
+/// last four one by one.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn extent_avx2(apex: DVec3, points: &[DVec3], frame: (DVec3, DVec3, DVec3)) -> Extent {
+    use std::arch::x86_64::*;
+    let (axis, u, v) = frame;
+    let set = |x: f64| _mm256_set1_pd(x);
+    let dot = |w: [__m256d; 3], n: DVec3| {
+        _mm256_add_pd(
+            _mm256_add_pd(_mm256_mul_pd(w[0], set(n.x)), _mm256_mul_pd(w[1], set(n.y))),
+            _mm256_mul_pd(w[2], set(n.z)),
+        )
+    };
+    let (mut near, mut far) = (set(f64::INFINITY), set(0.0));
+    let (mut s0, mut s1) = (set(f64::INFINITY), set(f64::NEG_INFINITY));
+    let (mut r0, mut r1) = (s0, s1);
+    let mut ahead = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+    let chunks = points.chunks_exact(4);
+    let rest = chunks.remainder();
+    // Each point's coordinates, three f64 apart.
+    let index = _mm256_setr_epi64x(0, 3, 6, 9);
+    for chunk in chunks {
+        let at = chunk.as_ptr().cast::<f64>();
+        // SAFETY: the four points' twelve coordinates lie in the chunk.
+        let p = [0, 1, 2].map(|k| unsafe { _mm256_i64gather_pd::<8>(at.add(k), index) });
+        let w = [0, 1, 2].map(|k| _mm256_sub_pd(p[k], set(apex[k])));
+        let along = dot(w, axis);
+        let fine = _mm256_and_pd(
+            _mm256_cmp_pd::<_CMP_GT_OQ>(along, _mm256_setzero_pd()),
+            _mm256_cmp_pd::<_CMP_LT_OQ>(along, set(f64::INFINITY)),
+        );
+        ahead = _mm256_and_pd(ahead, fine);
+        (near, far) = (_mm256_min_pd(along, near), _mm256_max_pd(along, far));
+        let inverse = _mm256_div_pd(set(1.0), along);
+        let (s, r) = (
+            _mm256_mul_pd(dot(w, u), inverse),
+            _mm256_mul_pd(dot(w, v), inverse),
+        );
+        (s0, s1) = (_mm256_min_pd(s, s0), _mm256_max_pd(s, s1));
+        (r0, r1) = (_mm256_min_pd(r, r0), _mm256_max_pd(r, r1));
+    }
+    let lanes = |x: __m256d| {
+        let mut out = [0.0; 4];
+        // SAFETY: four f64 into an array of four.
+        unsafe { _mm256_storeu_pd(out.as_mut_ptr(), x) };
+        out
+    };
+    let least = |x: __m256d| {
+        lanes(x)
+            .into_iter()
+            .fold(f64::INFINITY, |m, x| if x < m { x } else { m })
+    };
+    let most = |x: __m256d, from: f64| lanes(x).into_iter().fold(from, |m, x| if x > m { x } else { m });
+    let mut extent = Extent {
+        near: least(near),
+        far: most(far, 0.0),
+        s: [least(s0), most(s1, f64::NEG_INFINITY)],
+        r: [least(r0), most(r1, f64::NEG_INFINITY)],
+        ahead: _mm256_movemask_pd(ahead) == 0b1111,
+    };
+    for &p in rest {
+        extent.add(p - apex, frame);
+    }
+    extent
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference::sampling::Rng;
+
+    /// The AVX2 extent of 1 to 13 points (some behind the apex, some at
+    /// it, some not finite) is the one the points give one by one.
+    #[test]
+    #[cfg(target_arch = "x86_64")]
+    fn the_lanes_extent_is_the_points_one_by_one() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        let mut rng = Rng::new(43, 0, 0);
+        let mut unit = || rng.next_f64() - 0.5;
+        let (mut ahead, mut behind) = (0, 0);
+        for case in 0..3000 {
+            let apex = DVec3::new(unit(), unit(), unit()) * 10.0;
+            let towards = DVec3::new(unit(), unit(), unit()) * 8.0;
+            let spread = [1e-3, 0.3, 3.0][case % 3];
+            let mut points: Vec<DVec3> = (0..1 + case % 13)
+                .map(|_| apex + towards + DVec3::new(unit(), unit(), unit()) * spread * 8.0)
+                .collect();
+            let some = case % points.len();
+            if case % 50 == 7 {
+                points[some] = apex;
+            }
+            if case % 50 == 9 {
+                points[some].y = f64::NAN;
+            }
+            let Some(frame) = axis_about(apex, points.iter().copied()) else {
+                continue;
+            };
+            let mut one_by_one = Extent::EMPTY;
+            for &p in &points {
+                one_by_one.add(p - apex, frame);
+            }
+            // SAFETY: the CPU has AVX2.
+            let lanes = unsafe { extent_avx2(apex, &points, frame) };
+            assert_eq!(lanes.ahead, one_by_one.ahead, "case {case}");
+            if !one_by_one.ahead {
+                behind += 1;
+                continue;
+            }
+            ahead += 1;
+            let values = |e: &Extent| [e.near, e.far, e.s[0], e.s[1], e.r[0], e.r[1]];
+            assert_eq!(values(&lanes), values(&one_by_one), "case {case}");
+        }
+        assert!(
+            ahead > 1000 && behind > 100,
+            "ahead {ahead}, behind {behind}: too one-sided"
+        );
+    }
 }
