@@ -318,7 +318,7 @@ impl DirectionGrid {
             return Answer::AskBvh;
         };
         let ray = ShearedRay::new(self.centre, direction);
-        Answer::Known(with_axes!(ray.axes(), KZ, SWAP => self.closest_among::<KZ, SWAP>(&ray, items)))
+        Answer::Known(with_axes!(ray.shear.axes(), KZ, SWAP => self.closest_among::<KZ, SWAP>(&ray, items)))
     }
 
     /// The closest hit among the items, nearest first: the search ends at
@@ -330,7 +330,7 @@ impl DirectionGrid {
         ray: &ShearedRay,
         items: &[Item],
     ) -> Option<Hit> {
-        let per_depth = ray.per_depth();
+        let per_depth = ray.shear.per_depth();
         let mut best: Option<Hit> = None;
         for item in items {
             if best.is_some_and(|b| item.depth as f64 * per_depth > b.at.t) {
@@ -338,7 +338,10 @@ impl DirectionGrid {
             }
             let member = item.member as usize;
             let limit = best.map_or(f64::INFINITY, |b| b.at.t.next_up());
-            let Some(at) = ray.intersect_in::<KZ, SWAP>(&self.relative[member], 0.0, limit) else {
+            let Some(at) = ray
+                .shear
+                .intersect_in::<KZ, SWAP>(&self.relative[member], 0.0, limit)
+            else {
                 continue;
             };
             let triangle = self.members[member] as usize;
@@ -382,8 +385,8 @@ impl DirectionGrid {
             return Answer::Known(false);
         }
         let ray = ShearedRay::new(origin, -w);
-        let blocked = with_axes!(ray.axes(), KZ, SWAP => candidates.any(|triangle| {
-            ray.hits_in::<KZ, SWAP>(&ray.relative(&triangles[triangle].corners_f64()), 0.0, t_max)
+        let blocked = with_axes!(ray.shear.axes(), KZ, SWAP => candidates.any(|triangle| {
+            ray.shear.hits_in::<KZ, SWAP>(&ray.relative(&triangles[triangle].corners_f64()), 0.0, t_max)
         }));
         Answer::Known(blocked)
     }

@@ -50,13 +50,22 @@ macro_rules! with_axes {
 }
 pub(crate) use with_axes;
 
-/// A ray prepared for many triangle tests: its axes and the shear.
+/// A ray prepared for many triangle tests: its origin, its direction and
+/// their shear.
 #[derive(Clone, Copy, Debug)]
 pub struct ShearedRay {
     pub origin: DVec3,
     pub direction: DVec3,
+    pub shear: Shear,
+}
+
+/// What the tests of triangles taken relative to a ray's origin need of
+/// its direction: its axes and the shear constants (40 bytes, against a
+/// whole ray's 88: a packet of rays from one point keeps only these).
+#[derive(Clone, Copy, Debug)]
+pub struct Shear {
     axes: Axes,
-    /// Shear constants: d_kx / d_kz, d_ky / d_kz, 1 / d_kz.
+    /// d_kx / d_kz, d_ky / d_kz, 1 / d_kz.
     sx: f64,
     sy: f64,
     sz: f64,
@@ -81,6 +90,41 @@ pub(crate) const fn other_axes(kz: usize, swap: bool) -> (usize, usize) {
 impl ShearedRay {
     /// `direction` need not be normalized but must not be zero.
     pub fn new(origin: DVec3, direction: DVec3) -> Self {
+        Self {
+            origin,
+            direction,
+            shear: Shear::new(direction),
+        }
+    }
+
+    /// The corners relative to the ray's origin, as the `*_in` methods take them.
+    #[inline(always)]
+    pub fn relative(&self, corners: &[DVec3; 3]) -> [DVec3; 3] {
+        corners.map(|p| p - self.origin)
+    }
+
+    /// The hit with t ∈ (t_min, t_max), both faces counted; None for a miss
+    /// or a degenerate (zero-area in projection) triangle.
+    #[inline]
+    pub fn intersect(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> Option<TriangleHit> {
+        let relative = self.relative(corners);
+        let shear = &self.shear;
+        with_axes!(shear.axes, KZ, SWAP => shear.intersect_in::<KZ, SWAP>(&relative, t_min, t_max))
+    }
+
+    /// Whether the ray meets the triangle at t ∈ (t_min, t_max), without
+    /// any division (t = t_scaled / det compared as in Woop et al.).
+    #[inline]
+    pub fn hits(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> bool {
+        let relative = self.relative(corners);
+        let shear = &self.shear;
+        with_axes!(shear.axes, KZ, SWAP => shear.hits_in::<KZ, SWAP>(&relative, t_min, t_max))
+    }
+}
+
+impl Shear {
+    /// `direction`'s (not normalized, not zero).
+    pub fn new(direction: DVec3) -> Self {
         let a = direction.abs();
         let kz = if a.x >= a.y && a.x >= a.z {
             0
@@ -96,8 +140,6 @@ impl ShearedRay {
         let (kx, ky) = other_axes(kz, axes.swap);
         let sz = 1.0 / direction[kz];
         Self {
-            origin,
-            direction,
             axes,
             sx: direction[kx] * sz,
             sy: direction[ky] * sz,
@@ -119,30 +161,8 @@ impl ShearedRay {
         self.sz.abs()
     }
 
-    /// The corners relative to the ray's origin, as the `*_in` methods take them.
-    #[inline(always)]
-    pub fn relative(&self, corners: &[DVec3; 3]) -> [DVec3; 3] {
-        corners.map(|p| p - self.origin)
-    }
-
-    /// The hit with t ∈ (t_min, t_max), both faces counted; None for a miss
-    /// or a degenerate (zero-area in projection) triangle.
-    #[inline]
-    pub fn intersect(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> Option<TriangleHit> {
-        let relative = self.relative(corners);
-        with_axes!(self.axes, KZ, SWAP => self.intersect_in::<KZ, SWAP>(&relative, t_min, t_max))
-    }
-
-    /// Whether the ray meets the triangle at t ∈ (t_min, t_max), without
-    /// any division (t = t_scaled / det compared as in Woop et al.).
-    #[inline]
-    pub fn hits(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> bool {
-        let relative = self.relative(corners);
-        with_axes!(self.axes, KZ, SWAP => self.hits_in::<KZ, SWAP>(&relative, t_min, t_max))
-    }
-
-    /// [`Self::intersect`] with the corners relative to the origin and the
-    /// ray's own axes as `KZ`, `SWAP` (see `with_axes!`).
+    /// [`ShearedRay::intersect`] with the corners relative to the origin and
+    /// the ray's own axes as `KZ`, `SWAP` (see `with_axes!`).
     #[inline(always)]
     pub fn intersect_in<const KZ: usize, const SWAP: bool>(
         &self,
@@ -167,8 +187,8 @@ impl ShearedRay {
         })
     }
 
-    /// [`Self::hits`] with the corners relative to the origin and the ray's
-    /// own axes as `KZ`, `SWAP`.
+    /// [`ShearedRay::hits`] with the corners relative to the origin and the
+    /// ray's own axes as `KZ`, `SWAP`.
     #[inline(always)]
     pub fn hits_in<const KZ: usize, const SWAP: bool>(
         &self,

@@ -34,7 +34,7 @@
 use super::cone::{Cone, FrameCone, ROUNDING};
 use super::lanes::{GROUP, LANES, LEFT_PACKED, Lines};
 use super::{Hit, TRAVERSAL, TriangleBvh, closer, widened};
-use crate::reference::intersect::{ShearedRay, extent, with_axes};
+use crate::reference::intersect::{Shear, ShearedRay, extent, with_axes};
 use crate::reference::simd::{self, Isa};
 // `UVec2` is named inside obvhs's `traverse!` macro.
 use glam::{DVec3, UVec2};
@@ -284,7 +284,7 @@ impl TriangleBvh {
         packet.limits.resize(directions.len(), f64::INFINITY);
         packet.hits.clear();
         packet.hits.resize(directions.len(), None);
-        packet.apex_axis = (cone.apex, cone.axis);
+        packet.axis = cone.axis;
         packet.ready = false;
         self.walk_cone(cone, packet);
     }
@@ -398,12 +398,12 @@ impl<F: FnMut(usize, &[DVec3; 3]) -> bool> Rays for Visitor<F> {
 /// Primary rays from one point: each one's closest hit so far.
 #[derive(Debug, Default)]
 pub struct PrimaryPacket {
-    /// The rays' directions, and the cone's apex and axis: the rays, their
+    /// The rays' directions, and the cone's axis: the rays, their
     /// depths along the axis and their lines are made from them at the
     /// first triangle the walk tests (`ready`), so that a packet that
     /// meets none (background) never pays for them.
     directions: Vec<DVec3>,
-    apex_axis: (DVec3, DVec3),
+    axis: DVec3,
     ready: bool,
     rays: Vec<PrimaryRay>,
     limits: Vec<f64>,
@@ -416,7 +416,8 @@ pub struct PrimaryPacket {
 /// look-up a test: engine's primary walk −3 %).
 #[derive(Debug)]
 struct PrimaryRay {
-    ray: ShearedRay,
+    /// Its shear (its origin is the apex).
+    shear: Shear,
     /// d · axis (rounded up): depth = t · along.
     along: f64,
     /// The farthest t its next hit may have: just past its closest so far.
@@ -434,7 +435,7 @@ impl PrimaryPacket {
         relative: &[DVec3; 3],
     ) -> bool {
         let ray = &mut self.rays[k];
-        if let Some(at) = ray.ray.intersect_in::<KZ, SWAP>(relative, 0.0, ray.t_max) {
+        if let Some(at) = ray.shear.intersect_in::<KZ, SWAP>(relative, 0.0, ray.t_max) {
             let best = &mut self.hits[k];
             if best.is_none_or(|b| closer(at, triangle, b)) {
                 *best = Some(Hit { triangle, at });
@@ -473,11 +474,11 @@ impl Rays for PrimaryPacket {
             return;
         }
         self.ready = true;
-        let (apex, axis) = self.apex_axis;
+        let axis = self.axis;
         self.rays.clear();
         for &d in &self.directions {
             self.rays.push(PrimaryRay {
-                ray: ShearedRay::new(apex, d),
+                shear: Shear::new(d),
                 along: d.dot(axis) * (1.0 + ROUNDING),
                 t_max: f64::INFINITY,
             });
@@ -489,7 +490,7 @@ impl Rays for PrimaryPacket {
     #[inline(always)]
     fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize) -> bool {
         let triangle = bvh.original[slot];
-        with_axes!(self.rays[k].ray.axes(), KZ, SWAP => self.test_axes::<KZ, SWAP>(k, triangle, relative))
+        with_axes!(self.rays[k].shear.axes(), KZ, SWAP => self.test_axes::<KZ, SWAP>(k, triangle, relative))
     }
 }
 
