@@ -116,9 +116,7 @@ impl ShearedRay {
     /// any division (t = t_scaled / det compared as in Woop et al.).
     #[inline]
     pub fn hits(&self, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> bool {
-        let relative = self.relative(corners);
-        let shear = &self.shear;
-        with_axes!(shear.axes, KZ, SWAP => shear.hits_in::<KZ, SWAP>(&relative, t_min, t_max))
+        self.shear.hits_from(self.origin, corners, t_min, t_max)
     }
 }
 
@@ -159,6 +157,14 @@ impl Shear {
     /// 1 / |d_kz|: a point at depth z along the ray's main axis is at t = z / |d_kz|.
     pub fn per_depth(&self) -> f64 {
         self.sz.abs()
+    }
+
+    /// [`ShearedRay::hits`] of the ray from `origin` along this shear's
+    /// direction.
+    #[inline]
+    pub fn hits_from(&self, origin: DVec3, corners: &[DVec3; 3], t_min: f64, t_max: f64) -> bool {
+        let relative = corners.map(|p| p - origin);
+        with_axes!(self.axes, KZ, SWAP => self.hits_in::<KZ, SWAP>(&relative, t_min, t_max))
     }
 
     /// [`ShearedRay::intersect`] with the corners relative to the origin and

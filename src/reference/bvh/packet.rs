@@ -34,7 +34,7 @@
 use super::cone::{Cone, FrameCone, ROUNDING};
 use super::lanes::{GROUP, LANES, LEFT_PACKED, Lines};
 use super::{Hit, TRAVERSAL, TriangleBvh, closer, widened};
-use crate::reference::intersect::{Shear, ShearedRay, extent, with_axes};
+use crate::reference::intersect::{Shear, extent, with_axes};
 use crate::reference::simd::{self, Isa};
 // `UVec2` is named inside obvhs's `traverse!` macro.
 use glam::{DVec3, UVec2};
@@ -514,16 +514,16 @@ pub struct ShadowPacket {
     /// The rays' origins, their end (the light) and the origins' spread
     /// about it: the rays' lines are made from them at the first triangle
     /// tested (`ready`), so that a packet whose cone meets none (a lit
-    /// patch) never pays for them, and each ray's sheared form at its first
-    /// exact test (most rays of the 110 k-triangle engine's packets have
-    /// none: −1.2 % of its instructions).
+    /// patch) never pays for them, and each ray's shear at its first exact
+    /// test (most rays of the 110 k-triangle engine's packets have none:
+    /// −1.2 % of its instructions; its origin is in `origins`).
     origins: Vec<DVec3>,
     /// The triangle each ray passes over (`usize::MAX`: none).
     passes: Vec<usize>,
     apex: DVec3,
     spread: f64,
     ready: bool,
-    rays: Vec<Option<ShearedRay>>,
+    rays: Vec<Option<Shear>>,
     limits: Vec<f64>,
     /// What lies below it blocks no ray (see [`floor_below`]).
     floor: Option<(DVec3, f64)>,
@@ -578,8 +578,8 @@ impl Rays for ShadowPacket {
         }
         let o = self.origins[k];
         let apex = self.apex;
-        let ray = self.rays[k].get_or_insert_with(|| ShearedRay::new(o, apex - o));
-        let blocked = ray.hits(&widened(&bvh.corners[slot]), 0.0, self.t_max);
+        let shear = self.rays[k].get_or_insert_with(|| Shear::new(apex - o));
+        let blocked = shear.hits_from(o, &widened(&bvh.corners[slot]), 0.0, self.t_max);
         if blocked {
             self.limits[k] = f64::NEG_INFINITY;
             self.lines.set_limit(k, f64::NEG_INFINITY);
