@@ -111,9 +111,6 @@ impl LightPacket {
     /// Whether the shadow ray from `origin` (one of the packet's) to the
     /// light at `light` is blocked; None when the packet cannot tell.
     pub fn blocked(&mut self, bvh: &TriangleBvh, light: DVec3, origin: DVec3) -> Option<bool> {
-        if self.origins.len() < MIN_RAYS {
-            return None;
-        }
         // An equal origin elsewhere is the same ray, with the same answer.
         let i = (self.cursor..self.origins.len())
             .chain(0..self.cursor)
