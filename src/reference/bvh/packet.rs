@@ -26,19 +26,24 @@
 //!   ties are still tested, so the lowest index wins among equal distances;
 //! - a shadow packet's segments all lie above a floor across the normal of
 //!   the surfaces they leave, below their origins and the light (see
-//!   [`floor_below`]): a box or triangle wholly below it blocks none;
+//!   `shadow::floor_below`): a box or triangle wholly below it blocks none;
 //! - rays are tested eight at a time against the triangle's edge planes
 //!   through the apex in f32 (`bvh/lanes.rs`), with a margin that makes a
 //!   ray it rules out a miss of the scalar test.
 
 use super::cone::{Cone, FrameCone, ROUNDING};
 use super::lanes::{GROUP, LANES, LEFT_PACKED, Lines};
-use super::{Hit, TRAVERSAL, TriangleBvh, closer, widened};
-use crate::reference::intersect::{Shear, extent, with_axes};
+use super::{TRAVERSAL, TriangleBvh, widened};
+use crate::reference::intersect::extent;
 use crate::reference::simd::{self, Isa};
 // `UVec2` is named inside obvhs's `traverse!` macro.
 use glam::{DVec3, UVec2};
 use obvhs::cwbvh::CwBvh;
+pub use primary::PrimaryPacket;
+pub use shadow::ShadowPacket;
+
+mod primary;
+mod shadow;
 
 /// The deepest of the rays' limits.
 #[inline(always)]
@@ -278,14 +283,7 @@ impl TriangleBvh {
     /// `directions` (each inside the cone), into `hits`: what
     /// [`Self::closest_hit`] gives each with t ∈ (0, ∞).
     pub fn closest_hits_in_cone(&self, cone: &Cone, directions: &[DVec3], packet: &mut PrimaryPacket) {
-        packet.directions.clear();
-        packet.directions.extend_from_slice(directions);
-        packet.limits.clear();
-        packet.limits.resize(directions.len(), f64::INFINITY);
-        packet.hits.clear();
-        packet.hits.resize(directions.len(), None);
-        packet.axis = cone.axis;
-        packet.ready = false;
+        packet.start(cone, directions);
         self.walk_cone(cone, packet);
     }
 
@@ -304,33 +302,15 @@ impl TriangleBvh {
         t_max: f64,
         packet: &mut ShadowPacket,
     ) {
-        packet.origins.clear();
-        packet.origins.extend_from_slice(origins);
-        packet.passes.clear();
-        packet.passes.extend_from_slice(passes);
-        packet.passes.resize(origins.len(), usize::MAX);
-        packet.limits.clear();
-        packet.t_max = t_max;
-        packet.apex = cone.apex;
-        packet.ready = false;
-        let mut spread = 0.0_f64;
-        for &o in origins {
-            let depth = (o - cone.apex).dot(cone.axis);
-            packet
-                .limits
-                .push(depth + ROUNDING * (o - cone.apex).abs().element_sum());
-            spread = spread.max((o - cone.apex).abs().max_element());
-        }
-        packet.spread = spread;
-        packet.floor = floor_below(cone.apex, up, (origins, spread));
+        packet.start(cone, (origins, up, passes), t_max);
         // The triangle that blocked a ray of the previous packet first: it
         // often blocks these too, and a blocked ray is done (any hit will
         // do); unless it lies outside the cone, as the walk would find.
-        if let Some(slot) = packet.last_blocker {
+        if let Some(slot) = packet.last_blocker() {
             let (relative, slack) = self.relative_to(slot, cone.apex);
             if !cone.misses(&relative, slack) {
                 packet.test(self, slot, &relative, f64::MIN);
-                if packet.limits.iter().all(|&l| l < 0.0) {
+                if packet.limits().iter().all(|&l| l < 0.0) {
                     return;
                 }
             }
@@ -392,199 +372,5 @@ impl<F: FnMut(usize, &[DVec3; 3]) -> bool> Rays for Visitor<F> {
         }
         self.limits = [-1.0];
         true
-    }
-}
-
-/// Primary rays from one point: each one's closest hit so far.
-#[derive(Debug, Default)]
-pub struct PrimaryPacket {
-    /// The rays' directions, and the cone's axis: the rays, their
-    /// depths along the axis and their lines are made from them at the
-    /// first triangle the walk tests (`ready`), so that a packet that
-    /// meets none (background) never pays for them.
-    directions: Vec<DVec3>,
-    axis: DVec3,
-    ready: bool,
-    rays: Vec<PrimaryRay>,
-    limits: Vec<f64>,
-    pub hits: Vec<Option<Hit>>,
-    /// The rays in blocks for the eight-lane miss test.
-    lines: Lines,
-}
-
-/// A primary ray and what its tests need beside it, in one place (one
-/// look-up a test: engine's primary walk −3 %).
-#[derive(Debug)]
-struct PrimaryRay {
-    /// Its shear (its origin is the apex).
-    shear: Shear,
-    /// d · axis (rounded up): depth = t · along.
-    along: f64,
-    /// The farthest t its next hit may have: just past its closest so far.
-    t_max: f64,
-}
-
-impl PrimaryPacket {
-    /// Ray k's test against the triangle (`relative` to the apex, the
-    /// rays' common origin), kept when it is the closest hit so far (true).
-    #[inline(always)]
-    fn test_axes<const KZ: usize, const SWAP: bool>(
-        &mut self,
-        k: usize,
-        triangle: usize,
-        relative: &[DVec3; 3],
-    ) -> bool {
-        let ray = &mut self.rays[k];
-        if let Some(at) = ray.shear.intersect_in::<KZ, SWAP>(relative, 0.0, ray.t_max) {
-            let best = &mut self.hits[k];
-            if best.is_none_or(|b| closer(at, triangle, b)) {
-                *best = Some(Hit { triangle, at });
-                ray.t_max = at.t.next_up();
-                let limit = at.t * ray.along * (1.0 + ROUNDING);
-                self.limits[k] = limit;
-                self.lines.set_limit(k, limit);
-                return true;
-            }
-        }
-        false
-    }
-}
-
-impl Rays for PrimaryPacket {
-    const NEAREST_FIRST: bool = true;
-
-    fn limits(&self) -> &[f64] {
-        &self.limits
-    }
-
-    fn lines(&self) -> &Lines {
-        &self.lines
-    }
-
-    /// From the blocks' limits, 32 for a packet of 256 rays (engine's
-    /// primary walk −1.8 %; the shadow packets' walk ran 0.4 % more, its
-    /// coarser bound cutting less).
-    fn deepest(&self) -> f64 {
-        self.lines.deepest()
-    }
-
-    #[inline(always)]
-    fn make_ready(&mut self) {
-        if self.ready {
-            return;
-        }
-        self.ready = true;
-        let axis = self.axis;
-        self.rays.clear();
-        for &d in &self.directions {
-            self.rays.push(PrimaryRay {
-                shear: Shear::new(d),
-                along: d.dot(axis) * (1.0 + ROUNDING),
-                t_max: f64::INFINITY,
-            });
-        }
-        self.lines
-            .fill(self.directions.iter().copied(), &self.limits, 0.0);
-    }
-
-    #[inline(always)]
-    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, relative: &[DVec3; 3], k: usize) -> bool {
-        let triangle = bvh.original[slot];
-        with_axes!(self.rays[k].shear.axes(), KZ, SWAP => self.test_axes::<KZ, SWAP>(k, triangle, relative))
-    }
-}
-
-/// The floor (n, c) across `normal` below the apex and every one of
-/// `points`: a segment from a point to the apex stays above a plane that
-/// both its ends lie above, so what lies wholly below it blocks none. It
-/// is lowered by the rounding of the points' heights and of the segments'
-/// own tests, which work relative to the points (10⁻¹² of their distances
-/// from the apex, `reach` the farthest by |·|∞, beside the filters' own
-/// 10⁻¹² of a box's or triangle's, far above it). None for a normal that
-/// is not finite.
-fn floor_below(apex: DVec3, normal: DVec3, (points, reach): (&[DVec3], f64)) -> Option<(DVec3, f64)> {
-    let lowest = points.iter().fold(0.0_f64, |m, &p| m.min(normal.dot(p - apex)));
-    let floor = lowest - ROUNDING * reach * normal.abs().element_sum();
-    floor.is_finite().then_some((normal, floor))
-}
-
-/// Shadow rays to one point: blocked ones are done (limit −∞).
-#[derive(Debug, Default)]
-pub struct ShadowPacket {
-    /// The rays' origins, their end (the light) and the origins' spread
-    /// about it: the rays' lines are made from them at the first triangle
-    /// tested (`ready`), so that a packet whose cone meets none (a lit
-    /// patch) never pays for them, and each ray's shear at its first exact
-    /// test (most rays of the 110 k-triangle engine's packets have none:
-    /// −1.2 % of its instructions; its origin is in `origins`).
-    origins: Vec<DVec3>,
-    /// The triangle each ray passes over (`usize::MAX`: none).
-    passes: Vec<usize>,
-    apex: DVec3,
-    spread: f64,
-    ready: bool,
-    rays: Vec<Option<Shear>>,
-    limits: Vec<f64>,
-    /// What lies below it blocks no ray (see [`floor_below`]).
-    floor: Option<(DVec3, f64)>,
-    t_max: f64,
-    /// The slot of the last triangle found blocking a ray.
-    last_blocker: Option<usize>,
-    /// The rays in blocks for the eight-lane miss test.
-    lines: Lines,
-}
-
-impl ShadowPacket {
-    /// Whether ray i was found blocked.
-    pub fn blocked(&self, i: usize) -> bool {
-        self.limits[i] == f64::NEG_INFINITY
-    }
-}
-
-impl Rays for ShadowPacket {
-    fn limits(&self) -> &[f64] {
-        &self.limits
-    }
-
-    fn floor(&self) -> Option<(DVec3, f64)> {
-        self.floor
-    }
-
-    fn lines(&self) -> &Lines {
-        &self.lines
-    }
-
-    fn takes(&self, bvh: &TriangleBvh, slot: usize) -> bool {
-        bvh.occludes[slot]
-    }
-
-    #[inline(always)]
-    fn make_ready(&mut self) {
-        if self.ready {
-            return;
-        }
-        self.ready = true;
-        self.rays.clear();
-        self.rays.resize(self.origins.len(), None);
-        let apex = self.apex;
-        let directions = self.origins.iter().map(|&o| apex - o);
-        self.lines.fill(directions, &self.limits, self.spread);
-    }
-
-    #[inline(always)]
-    fn test_ray(&mut self, bvh: &TriangleBvh, slot: usize, _: &[DVec3; 3], k: usize) -> bool {
-        if bvh.original[slot] == self.passes[k] {
-            return false;
-        }
-        let o = self.origins[k];
-        let apex = self.apex;
-        let shear = self.rays[k].get_or_insert_with(|| Shear::new(apex - o));
-        let blocked = shear.hits_from(o, &widened(&bvh.corners[slot]), 0.0, self.t_max);
-        if blocked {
-            self.limits[k] = f64::NEG_INFINITY;
-            self.lines.set_limit(k, f64::NEG_INFINITY);
-            self.last_blocker = Some(slot);
-        }
-        blocked
     }
 }
