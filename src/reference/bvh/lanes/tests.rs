@@ -1,5 +1,6 @@
 //! The lanes' filter against the scalar test, and their rounding.
 
+use super::bound::UNBOUNDED;
 use super::*;
 use crate::reference::intersect::ShearedRay;
 use crate::reference::sampling::Rng;
