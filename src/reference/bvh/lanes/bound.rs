@@ -2,9 +2,9 @@
 //! centre and a spread, in f32 (the lanes side by side in AVX where the
 //! CPU has it).
 
+use super::{BOUND_ROUNDING, Block, LANES};
 #[cfg(doc)]
 use super::{Bounds, Lines};
-use super::{BOUND_ROUNDING, Block, LANES};
 
 /// A block's entries in [`Bounds`] but its limit.
 #[derive(Clone, Copy, Debug, PartialEq)]
