@@ -71,8 +71,8 @@ impl Reference {
     }
 
     /// [`Self::render`] with primary packets of `block` pixels (columns,
-    /// rows) where there is no eye grid, and the `shortcuts` taken (all but for the tests that
-    /// show what they change).
+    /// rows) where there is no eye grid, and the `shortcuts` taken (all but
+    /// for the tests that show what they change).
     fn render_in_blocks(
         &self,
         settings: &Settings,

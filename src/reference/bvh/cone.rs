@@ -39,12 +39,11 @@ impl Cone {
     /// the 110 k-triangle engine's process, a shadow packet holding 128.)
     #[inline(always)]
     pub fn around(apex: DVec3, points: impl Iterator<Item = DVec3> + Clone) -> Option<Self> {
-        let (axis, u, v) = axis_about(apex, points.clone())?;
-        let mut extent = Extent::EMPTY;
-        for p in points {
-            extent.add(p - apex, (axis, u, v));
-        }
-        extent.cone(apex, (axis, u, v)).map(|(cone, _)| cone)
+        let frame = axis_about(apex, points.clone())?;
+        Extent::EMPTY
+            .with(apex, points, frame)
+            .cone(apex, frame)
+            .map(|(cone, _)| cone)
     }
 
     /// [`Self::around`] the points of a slice, with the least and the
@@ -60,11 +59,9 @@ impl Cone {
             let extent = unsafe { extent_avx2(apex, points, frame) };
             return extent.cone(apex, frame);
         }
-        let mut extent = Extent::EMPTY;
-        for &p in points {
-            extent.add(p - apex, frame);
-        }
-        extent.cone(apex, frame)
+        Extent::EMPTY
+            .with(apex, points.iter().copied(), frame)
+            .cone(apex, frame)
     }
 
     /// The square pyramid from `apex` about the unit `axis` whose four
@@ -302,6 +299,20 @@ impl Extent {
         ];
     }
 
+    /// With `points` too, seen from `apex`.
+    #[inline(always)]
+    fn with(
+        mut self,
+        apex: DVec3,
+        points: impl Iterator<Item = DVec3>,
+        frame: (DVec3, DVec3, DVec3),
+    ) -> Self {
+        for p in points {
+            self.add(p - apex, frame);
+        }
+        self
+    }
+
     /// The cone from `apex` about `axis` that holds the points, widened by
     /// the rounding of their slopes, with their least and greatest depth;
     /// None unless every point lies ahead.
@@ -377,17 +388,14 @@ fn extent_avx2(apex: DVec3, points: &[DVec3], frame: (DVec3, DVec3, DVec3)) -> E
             .fold(f64::INFINITY, |m, x| if x < m { x } else { m })
     };
     let most = |x: __m256d, from: f64| lanes(x).into_iter().fold(from, |m, x| if x > m { x } else { m });
-    let mut extent = Extent {
+    let lanes = Extent {
         near: least(near),
         far: most(far, 0.0),
         s: [least(s0), most(s1, f64::NEG_INFINITY)],
         r: [least(r0), most(r1, f64::NEG_INFINITY)],
         ahead: _mm256_movemask_pd(ahead) == 0b1111,
     };
-    for &p in rest {
-        extent.add(p - apex, frame);
-    }
-    extent
+    lanes.with(apex, rest.iter().copied(), frame)
 }
 
 #[cfg(test)]
@@ -423,10 +431,7 @@ mod tests {
             let Some(frame) = axis_about(apex, points.iter().copied()) else {
                 continue;
             };
-            let mut one_by_one = Extent::EMPTY;
-            for &p in &points {
-                one_by_one.add(p - apex, frame);
-            }
+            let one_by_one = Extent::EMPTY.with(apex, points.iter().copied(), frame);
             // SAFETY: the CPU has AVX2.
             let lanes = unsafe { extent_avx2(apex, &points, frame) };
             assert_eq!(lanes.ahead, one_by_one.ahead, "case {case}");
