@@ -50,12 +50,14 @@ pub struct ShadowPacket {
 
 impl ShadowPacket {
     /// Whether ray i was found blocked.
+    #[inline]
     pub fn blocked(&self, i: usize) -> bool {
         self.limits[i] == f64::NEG_INFINITY
     }
 
     /// Ready for a walk of the segments from `origins` to the apex of
     /// `cone` (see [`TriangleBvh::occluded_in_cone`]).
+    #[inline]
     pub(super) fn start(
         &mut self,
         cone: &Cone,
@@ -83,24 +85,29 @@ impl ShadowPacket {
     }
 
     /// The slot of the last triangle found blocking a ray.
+    #[inline]
     pub(super) fn last_blocker(&self) -> Option<usize> {
         self.last_blocker
     }
 }
 
 impl Rays for ShadowPacket {
+    #[inline]
     fn limits(&self) -> &[f64] {
         &self.limits
     }
 
+    #[inline]
     fn floor(&self) -> Option<(DVec3, f64)> {
         self.floor
     }
 
+    #[inline]
     fn lines(&self) -> &Lines {
         &self.lines
     }
 
+    #[inline]
     fn takes(&self, bvh: &TriangleBvh, slot: usize) -> bool {
         bvh.occludes[slot]
     }
