@@ -139,19 +139,12 @@ impl Reference {
                 ..RenderStats::default()
             },
         };
-        for tile in rendered.into_iter().flatten() {
+        for tile in rendered.iter().flatten() {
             image.stats.primary_rays += tile.primary_rays;
             image.stats.shadow_rays += tile.shadow_rays;
             image.noise_known &= tile.noise_known;
-            for (k, px) in tile.pixels.iter().enumerate() {
-                let (i, j) = (tile.x0 + k as u32 % tile.width, tile.y0 + k as u32 / tile.width);
-                let at = image.index(i, j);
-                image.radiance[at] = px.radiance;
-                image.visibility[at] = px.visibility;
-                image.coverage[at] = px.coverage;
-                image.noise[at] = px.noise;
-            }
         }
+        image.place_tiles(&rendered);
         image.stats.elapsed = start.elapsed();
         Ok(image)
     }
@@ -175,7 +168,6 @@ impl Reference {
         let (x1, y1) = ((x0 + TILE).min(setup.width), (y0 + TILE).min(setup.height));
         let mut tile = Tile {
             x0,
-            y0,
             width: x1 - x0,
             pixels: Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize),
             primary_rays: 0,

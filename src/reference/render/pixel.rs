@@ -1,9 +1,11 @@
 //! A pixel's values from its samples, and the tiles that collect them.
 
-use crate::reference::image::luminance;
+use super::TILE;
+use crate::reference::image::{ReferenceImage, luminance};
 use crate::reference::sampling::collapsed_strata_variance;
 use crate::reference::shading::LightEstimate;
 use glam::DVec3;
+use rayon::prelude::*;
 
 pub(super) struct Pixel {
     pub(super) radiance: [f64; 3],
@@ -33,7 +35,6 @@ impl Pixel {
 
 pub(super) struct Tile {
     pub(super) x0: u32,
-    pub(super) y0: u32,
     pub(super) width: u32,
     pub(super) pixels: Vec<Pixel>,
     pub(super) primary_rays: u64,
@@ -125,5 +126,35 @@ impl<'a> PixelSums<'a> {
             shadow_rays: self.shadow_rays,
             noise_known: self.noise_known,
         }
+    }
+}
+
+impl ReferenceImage {
+    /// Copies each tile's pixels into place, `tiles` in row order of
+    /// [`TILE`]-pixel squares: one band of tiles a job, a row at a time (on
+    /// one thread, pixel by pixel with two divisions each and the arrays'
+    /// first touch, it took some 4 % of the engine's render).
+    pub(super) fn place_tiles(&mut self, tiles: &[Option<Tile>]) {
+        let width = self.width as usize;
+        let band = width * TILE as usize;
+        self.radiance
+            .par_chunks_mut(band)
+            .zip(self.visibility.par_chunks_mut(band))
+            .zip(self.coverage.par_chunks_mut(band))
+            .zip(self.noise.par_chunks_mut(band))
+            .zip(tiles.par_chunks(width.div_ceil(TILE as usize)))
+            .for_each(|((((radiance, visibility), coverage), noise), tiles)| {
+                for tile in tiles.iter().flatten() {
+                    for (r, row) in tile.pixels.chunks(tile.width as usize).enumerate() {
+                        let at = r * width + tile.x0 as usize;
+                        for (k, px) in row.iter().enumerate() {
+                            radiance[at + k] = px.radiance;
+                            visibility[at + k] = px.visibility;
+                            coverage[at + k] = px.coverage;
+                            noise[at + k] = px.noise;
+                        }
+                    }
+                }
+            });
     }
 }
