@@ -11,7 +11,7 @@ use super::{Reference, ReferenceError, ReferenceOptions, RenderControl, pixel_in
 use crate::settings::Settings;
 use cover::{BlockCovers, Covered};
 use glam::DVec3;
-use pixel::{Pixel, PixelSums, Tile};
+use pixel::{Pixel, PixelSums, Tile, TileRows, tile_rows};
 use rayon::prelude::*;
 use std::sync::atomic::Ordering;
 use std::time::Instant;
@@ -112,14 +112,6 @@ impl Reference {
         // whose last part no idle thread may take, and the tiles' costs are
         // very uneven (background, a model's edges); with two threads one
         // sat idle for up to a fifth of the engine's render.
-        let rendered: Vec<Option<Tile>> = tiles
-            .par_iter()
-            .with_max_len(1)
-            .map(|&(x0, y0)| self.render_tile(&setup, spp, (x0, y0), block, shortcuts, control))
-            .collect();
-        if control.cancelled() {
-            return Err(ReferenceError::Cancelled);
-        }
         let pixels = width as usize * height as usize;
         let mut image = ReferenceImage {
             width,
@@ -139,41 +131,50 @@ impl Reference {
                 ..RenderStats::default()
             },
         };
+        // Each tile writes its pixels into the image's arrays itself: kept
+        // aside and copied after, they took as many fresh pages again and
+        // a pass on one thread (the engine's render −2 %).
+        let targets = tile_rows(
+            width as usize,
+            (&mut image.radiance, &mut image.visibility),
+            (&mut image.coverage, &mut image.noise),
+        );
+        let rendered: Vec<Option<Tile>> = tiles
+            .into_par_iter()
+            .zip(targets)
+            .with_max_len(1)
+            .map(|(origin, rows)| self.render_tile(&setup, spp, (origin, rows), block, shortcuts, control))
+            .collect();
+        if control.cancelled() {
+            return Err(ReferenceError::Cancelled);
+        }
         for tile in rendered.iter().flatten() {
             image.stats.primary_rays += tile.primary_rays;
             image.stats.shadow_rays += tile.shadow_rays;
             image.noise_known &= tile.noise_known;
         }
-        image.place_tiles(&rendered);
         image.stats.elapsed = start.elapsed();
         Ok(image)
     }
 
     /// One tile from (x0, y0), with primary packets of `block` pixels
     /// (columns, rows) where there is no eye grid, or None when cancelled.
-    fn render_tile(
+    fn render_tile<'a>(
         &self,
         setup: &Setup,
         spp: Strata,
-        (x0, y0): (u32, u32),
+        ((x0, y0), target): ((u32, u32), TileRows<'a>),
         block: (u32, u32),
         shortcuts: Shortcuts,
         control: &RenderControl,
-    ) -> Option<Tile> {
+    ) -> Option<Tile<'a>> {
         let (cols, rows) = if setup.eye_grid.is_none() && spp.count() > 1 {
             block
         } else {
             (1, 1)
         };
         let (x1, y1) = ((x0 + TILE).min(setup.width), (y0 + TILE).min(setup.height));
-        let mut tile = Tile {
-            x0,
-            width: x1 - x0,
-            pixels: Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize),
-            primary_rays: 0,
-            shadow_rays: 0,
-            noise_known: true,
-        };
+        let mut tile = Tile::new(target);
         let n = spp.count();
         let sees = !shortcuts.background
             || self

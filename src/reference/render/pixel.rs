@@ -1,11 +1,10 @@
 //! A pixel's values from its samples, and the tiles that collect them.
 
 use super::TILE;
-use crate::reference::image::{ReferenceImage, luminance};
+use crate::reference::image::luminance;
 use crate::reference::sampling::collapsed_strata_variance;
 use crate::reference::shading::LightEstimate;
 use glam::DVec3;
-use rayon::prelude::*;
 
 pub(super) struct Pixel {
     pub(super) radiance: [f64; 3],
@@ -33,23 +32,79 @@ impl Pixel {
     }
 }
 
-pub(super) struct Tile {
-    pub(super) x0: u32,
-    pub(super) width: u32,
-    pub(super) pixels: Vec<Pixel>,
+/// One row of a tile in the image's arrays: radiance, visibility,
+/// coverage and noise.
+type Row<'a> = (&'a mut [[f64; 3]], &'a mut [f32], &'a mut [f32], &'a mut [f32]);
+
+/// A tile's rows, top to bottom.
+pub(super) type TileRows<'a> = Vec<Row<'a>>;
+
+/// The image's arrays (`width` pixels a row) cut into the rows of each
+/// [`TILE`]-pixel square, the squares in row order.
+pub(super) fn tile_rows<'a>(
+    width: usize,
+    (radiance, visibility): (&'a mut [[f64; 3]], &'a mut [f32]),
+    (coverage, noise): (&'a mut [f32], &'a mut [f32]),
+) -> Vec<TileRows<'a>> {
+    let side = TILE as usize;
+    let across = width.div_ceil(side);
+    let down = radiance.len().div_ceil(width * side);
+    let mut tiles: Vec<TileRows> = (0..across * down).map(|_| Vec::with_capacity(side)).collect();
+    let rows = radiance
+        .chunks_mut(width)
+        .zip(visibility.chunks_mut(width))
+        .zip(coverage.chunks_mut(width).zip(noise.chunks_mut(width)));
+    for (j, ((r, v), (c, n))) in rows.enumerate() {
+        let parts = r
+            .chunks_mut(side)
+            .zip(v.chunks_mut(side))
+            .zip(c.chunks_mut(side).zip(n.chunks_mut(side)));
+        for (i, ((r, v), (c, n))) in parts.enumerate() {
+            tiles[j / side * across + i].push((r, v, c, n));
+        }
+    }
+    tiles
+}
+
+/// A tile being rendered: its pixels go straight into its rows of the
+/// image, and its rays are counted.
+pub(super) struct Tile<'a> {
+    rows: TileRows<'a>,
+    /// Where the next pixel goes: row, column.
+    next: (usize, usize),
     pub(super) primary_rays: u64,
     pub(super) shadow_rays: u64,
     pub(super) noise_known: bool,
 }
 
-impl Tile {
+impl<'a> Tile<'a> {
+    pub(super) fn new(rows: TileRows<'a>) -> Self {
+        Self {
+            rows,
+            next: (0, 0),
+            primary_rays: 0,
+            shadow_rays: 0,
+            noise_known: true,
+        }
+    }
+
     /// The next pixel, in row order, and its rays.
     #[inline(always)]
     pub(super) fn add(&mut self, pixel: Pixel) {
         self.primary_rays += pixel.primary_rays;
         self.shadow_rays += pixel.shadow_rays;
         self.noise_known &= pixel.noise_known;
-        self.pixels.push(pixel);
+        let (j, i) = self.next;
+        let (radiance, visibility, coverage, noise) = &mut self.rows[j];
+        radiance[i] = pixel.radiance;
+        visibility[i] = pixel.visibility;
+        coverage[i] = pixel.coverage;
+        noise[i] = pixel.noise;
+        self.next = if i + 1 == radiance.len() {
+            (j + 1, 0)
+        } else {
+            (j, i + 1)
+        };
     }
 }
 
@@ -126,35 +181,5 @@ impl<'a> PixelSums<'a> {
             shadow_rays: self.shadow_rays,
             noise_known: self.noise_known,
         }
-    }
-}
-
-impl ReferenceImage {
-    /// Copies each tile's pixels into place, `tiles` in row order of
-    /// [`TILE`]-pixel squares: one band of tiles a job, a row at a time (on
-    /// one thread, pixel by pixel with two divisions each and the arrays'
-    /// first touch, it took some 4 % of the engine's render).
-    pub(super) fn place_tiles(&mut self, tiles: &[Option<Tile>]) {
-        let width = self.width as usize;
-        let band = width * TILE as usize;
-        self.radiance
-            .par_chunks_mut(band)
-            .zip(self.visibility.par_chunks_mut(band))
-            .zip(self.coverage.par_chunks_mut(band))
-            .zip(self.noise.par_chunks_mut(band))
-            .zip(tiles.par_chunks(width.div_ceil(TILE as usize)))
-            .for_each(|((((radiance, visibility), coverage), noise), tiles)| {
-                for tile in tiles.iter().flatten() {
-                    for (r, row) in tile.pixels.chunks(tile.width as usize).enumerate() {
-                        let at = r * width + tile.x0 as usize;
-                        for (k, px) in row.iter().enumerate() {
-                            radiance[at + k] = px.radiance;
-                            visibility[at + k] = px.visibility;
-                            coverage[at + k] = px.coverage;
-                            noise[at + k] = px.noise;
-                        }
-                    }
-                }
-            });
     }
 }
