@@ -142,12 +142,11 @@ pub struct EdgePlanes {
 }
 
 impl Lines {
-    /// The rays along `directions` (one per ray, in order) with their
-    /// deepest useful depths `limits`, each on a line through the apex from
-    /// an origin within `spread` (|·|∞) of it. Inlined into the walks,
-    /// so compiled for AVX2 where they are.
+    /// The `rays`, each a direction and its deepest useful depth, in order,
+    /// each on a line through the apex from an origin within `spread` (|·|∞)
+    /// of it. Inlined into the walks, so compiled for AVX2 where they are.
     #[inline(always)]
-    pub fn fill(&mut self, directions: impl Iterator<Item = DVec3>, limits: &[f64], spread: f64) {
+    pub fn fill(&mut self, rays: impl ExactSizeIterator<Item = (DVec3, f64)>, spread: f64) {
         self.blocks.clear();
         self.spread = spread;
         #[cfg(target_arch = "x86_64")]
@@ -157,9 +156,9 @@ impl Lines {
         // Unused lanes stay zero: E = 0 is never a sure sign. (The blocks
         // made first: a new one every eighth ray was a branch the loop
         // mispredicted.)
-        self.blocks.resize(limits.len().div_ceil(LANES), Block::default());
+        self.blocks.resize(rays.len().div_ceil(LANES), Block::default());
         let mut count = 0_usize;
-        for ((k, d), &limit) in directions.enumerate().zip(limits) {
+        for (k, (d, limit)) in rays.enumerate() {
             count += 1;
             let (block, l) = (&mut self.blocks[k / LANES], k % LANES);
             let d = d.as_vec3();

@@ -71,8 +71,6 @@ pub trait Rays {
     /// hits: the first found is more often the closest, and cuts the rest).
     const NEAREST_FIRST: bool = false;
 
-    /// Each ray's deepest depth that still matters (negative: done).
-    fn limits(&self) -> &[f64];
     /// A floor (n, c) below every ray: each point a ray can reach has
     /// n · (x − apex) ≥ c (none unless they say so).
     fn floor(&self) -> Option<(DVec3, f64)> {
@@ -80,11 +78,10 @@ pub trait Rays {
     }
     /// The rays as lines through the apex, for the eight-lane filter.
     fn lines(&self) -> &Lines;
-    /// No shallower than the deepest of [`Self::limits`], once a test
-    /// changed one: the walk stops short of nothing it needs.
-    fn deepest(&self) -> f64 {
-        deepest(self.limits())
-    }
+    /// No shallower than the deepest depth that still matters to a ray
+    /// (negative: every ray is done): the walk stops short of nothing it
+    /// needs.
+    fn deepest(&self) -> f64;
     /// Makes the rays and [`Self::lines`] where the packet left that to its
     /// first triangle (a packet that meets none never pays for them).
     fn make_ready(&mut self) {}
@@ -151,7 +148,7 @@ impl TriangleBvh {
             return;
         };
         let frame = FrameCone::new(*cone, self, rays.floor());
-        let mut farthest = deepest(rays.limits());
+        let mut farthest = rays.deepest();
         if R::NEAREST_FIRST {
             self.walk_nearest_first(bvh, &frame, rays, &mut farthest);
             return;
@@ -310,7 +307,7 @@ impl TriangleBvh {
             let (relative, slack) = self.relative_to(slot, cone.apex);
             if !cone.misses(&relative, slack) {
                 packet.test(self, slot, &relative, f64::MIN);
-                if packet.limits().iter().all(|&l| l < 0.0) {
+                if packet.all_blocked() {
                     return;
                 }
             }
@@ -322,8 +319,8 @@ impl TriangleBvh {
 /// No ray: each triangle the walk keeps (slot, corners relative to the
 /// apex) goes to `visit`, which says whether the walk goes on.
 pub struct Visitor<F> {
-    /// [deepest] while the walk goes on, then [−1]: it stops.
-    limits: [f64; 1],
+    /// The deepest depth visited while the walk goes on, then −1: it stops.
+    deepest: f64,
     lines: Lines,
     /// What lies wholly below it is not visited ([`Rays::floor`]).
     floor: Option<(DVec3, f64)>,
@@ -334,7 +331,7 @@ impl<F: FnMut(usize, &[DVec3; 3]) -> bool> Visitor<F> {
     /// A visitor of the triangles no deeper along the cone than `deepest`.
     pub fn new(deepest: f64, visit: F) -> Self {
         Self {
-            limits: [deepest],
+            deepest,
             lines: Lines::default(),
             floor: None,
             visit,
@@ -349,8 +346,8 @@ impl<F: FnMut(usize, &[DVec3; 3]) -> bool> Visitor<F> {
 }
 
 impl<F: FnMut(usize, &[DVec3; 3]) -> bool> Rays for Visitor<F> {
-    fn limits(&self) -> &[f64] {
-        &self.limits
+    fn deepest(&self) -> f64 {
+        self.deepest
     }
 
     fn floor(&self) -> Option<(DVec3, f64)> {
@@ -370,7 +367,7 @@ impl<F: FnMut(usize, &[DVec3; 3]) -> bool> Rays for Visitor<F> {
         if (self.visit)(slot, relative) {
             return false;
         }
-        self.limits = [-1.0];
+        self.deepest = -1.0;
         true
     }
 }

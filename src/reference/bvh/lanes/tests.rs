@@ -118,7 +118,10 @@ fn a_lane_called_a_miss_is_a_miss_of_the_scalar_test() {
                 _ => f64::INFINITY,
             })
             .collect();
-        lines.fill(rays.iter().map(|r| r.direction), &limits, spread);
+        lines.fill(
+            rays.iter().map(|r| r.direction).zip(limits.iter().copied()),
+            spread,
+        );
         let planes = lines.planes(&tri.map(|p| p - apex));
         #[cfg(target_arch = "x86_64")]
         for block in lines.blocks.iter().filter(|_| lines.avx) {
@@ -185,7 +188,10 @@ fn a_block_passed_over_keeps_no_lane() {
                 _ => f64::INFINITY,
             })
             .collect();
-        lines.fill(rays.iter().map(|r| r.direction), &limits, spread);
+        lines.fill(
+            rays.iter().map(|r| r.direction).zip(limits.iter().copied()),
+            spread,
+        );
         let planes = lines.planes(&tri.map(|p| p - apex));
         #[cfg(target_arch = "x86_64")]
         for bounds in lines.bounds.iter().filter(|_| lines.avx) {

@@ -19,7 +19,6 @@ pub struct PrimaryPacket {
     axis: DVec3,
     ready: bool,
     rays: Vec<PrimaryRay>,
-    limits: Vec<f64>,
     pub hits: Vec<Option<Hit>>,
     /// The rays in blocks for the eight-lane miss test.
     lines: Lines,
@@ -43,8 +42,6 @@ impl PrimaryPacket {
     pub(super) fn start(&mut self, cone: &Cone, directions: &[DVec3]) {
         self.directions.clear();
         self.directions.extend_from_slice(directions);
-        self.limits.clear();
-        self.limits.resize(directions.len(), f64::INFINITY);
         self.hits.clear();
         self.hits.resize(directions.len(), None);
         self.axis = cone.axis;
@@ -67,7 +64,6 @@ impl PrimaryPacket {
                 *best = Some(Hit { triangle, at });
                 ray.t_max = at.t.next_up();
                 let limit = at.t * ray.along * (1.0 + ROUNDING);
-                self.limits[k] = limit;
                 self.lines.set_limit(k, limit);
                 return true;
             }
@@ -80,21 +76,21 @@ impl Rays for PrimaryPacket {
     const NEAREST_FIRST: bool = true;
 
     #[inline]
-    fn limits(&self) -> &[f64] {
-        &self.limits
-    }
-
-    #[inline]
     fn lines(&self) -> &Lines {
         &self.lines
     }
 
     /// From the blocks' limits, 32 for a packet of 256 rays (engine's
     /// primary walk −1.8 %; the shadow packets' walk ran 0.4 % more, its
-    /// coarser bound cutting less).
+    /// coarser bound cutting less). Unbounded before the first test: no
+    /// ray has a hit yet (and the lines are not made).
     #[inline]
     fn deepest(&self) -> f64 {
-        self.lines.deepest()
+        if self.ready {
+            self.lines.deepest()
+        } else {
+            f64::INFINITY
+        }
     }
 
     #[inline(always)]
@@ -113,7 +109,7 @@ impl Rays for PrimaryPacket {
             });
         }
         self.lines
-            .fill(self.directions.iter().copied(), &self.limits, 0.0);
+            .fill(self.directions.iter().map(|&d| (d, f64::INFINITY)), 0.0);
     }
 
     #[inline(always)]

@@ -1,7 +1,7 @@
 //! Shadow rays to one point (the light) as a packet: blocked ones are
 //! done (see `bvh/packet.rs`).
 
-use super::Rays;
+use super::{Rays, deepest};
 use crate::reference::bvh::cone::{Cone, ROUNDING};
 use crate::reference::bvh::lanes::Lines;
 use crate::reference::bvh::{TriangleBvh, widened};
@@ -55,6 +55,12 @@ impl ShadowPacket {
         self.limits[i] == f64::NEG_INFINITY
     }
 
+    /// Whether every ray was found blocked.
+    #[inline]
+    pub(super) fn all_blocked(&self) -> bool {
+        self.limits.iter().all(|&l| l < 0.0)
+    }
+
     /// Ready for a walk of the segments from `origins` to the apex of
     /// `cone` (see [`TriangleBvh::occluded_in_cone`]).
     #[inline]
@@ -93,8 +99,8 @@ impl ShadowPacket {
 
 impl Rays for ShadowPacket {
     #[inline]
-    fn limits(&self) -> &[f64] {
-        &self.limits
+    fn deepest(&self) -> f64 {
+        deepest(&self.limits)
     }
 
     #[inline]
@@ -122,7 +128,8 @@ impl Rays for ShadowPacket {
         self.rays.resize(self.origins.len(), None);
         let apex = self.apex;
         let directions = self.origins.iter().map(|&o| apex - o);
-        self.lines.fill(directions, &self.limits, self.spread);
+        self.lines
+            .fill(directions.zip(self.limits.iter().copied()), self.spread);
     }
 
     #[inline(always)]
