@@ -8,16 +8,15 @@ use crate::reference::bvh::{TriangleBvh, widened};
 use crate::reference::intersect::Shear;
 use glam::DVec3;
 
-/// The floor (n, c) across `normal` below the apex and every one of
-/// `points`: a segment from a point to the apex stays above a plane that
-/// both its ends lie above, so what lies wholly below it blocks none. It
-/// is lowered by the rounding of the points' heights and of the segments'
-/// own tests, which work relative to the points (10⁻¹² of their distances
-/// from the apex, `reach` the farthest by |·|∞, beside the filters' own
-/// 10⁻¹² of a box's or triangle's, far above it). None for a normal that
-/// is not finite.
-fn floor_below(apex: DVec3, normal: DVec3, (points, reach): (&[DVec3], f64)) -> Option<(DVec3, f64)> {
-    let lowest = points.iter().fold(0.0_f64, |m, &p| m.min(normal.dot(p - apex)));
+/// The floor (n, c) across `normal` below the apex and every point of a
+/// packet, `lowest` the least of 0 and n · (p − apex) over them: a segment
+/// from a point to the apex stays above a plane that both its ends lie
+/// above, so what lies wholly below it blocks none. It is lowered by the
+/// rounding of the points' heights and of the segments' own tests, which
+/// work relative to the points (10⁻¹² of their distances from the apex,
+/// `reach` the farthest by |·|∞, beside the filters' own 10⁻¹² of a box's
+/// or triangle's, far above it). None for a normal that is not finite.
+fn floor_below(normal: DVec3, lowest: f64, reach: f64) -> Option<(DVec3, f64)> {
     let floor = lowest - ROUNDING * reach * normal.abs().element_sum();
     floor.is_finite().then_some((normal, floor))
 }
@@ -79,15 +78,17 @@ impl ShadowPacket {
         self.t_max = t_max;
         self.apex = cone.apex;
         self.ready = false;
-        let mut spread = 0.0_f64;
-        for &o in origins {
-            let depth = (o - cone.apex).dot(cone.axis);
-            self.limits
-                .push(depth + ROUNDING * (o - cone.apex).abs().element_sum());
-            spread = spread.max((o - cone.apex).abs().max_element());
-        }
+        // One pass over the origins: their limits, their spread and the
+        // lowest across `up`.
+        let (mut spread, mut lowest) = (0.0_f64, 0.0_f64);
+        self.limits.extend(origins.iter().map(|&o| {
+            let d = o - cone.apex;
+            spread = spread.max(d.abs().max_element());
+            lowest = lowest.min(up.dot(d));
+            d.dot(cone.axis) + ROUNDING * d.abs().element_sum()
+        }));
         self.spread = spread;
-        self.floor = floor_below(cone.apex, up, (origins, spread));
+        self.floor = floor_below(up, lowest, spread);
     }
 
     /// The slot of the last triangle found blocking a ray.
