@@ -45,12 +45,6 @@ pub use shadow::ShadowPacket;
 mod primary;
 mod shadow;
 
-/// The deepest of the rays' limits.
-#[inline(always)]
-fn deepest(limits: &[f64]) -> f64 {
-    limits.iter().fold(f64::NEG_INFINITY, |m, &l| m.max(l))
-}
-
 /// What the walk visits next: a node (its index) or a leaf's triangles
 /// (first slot, count).
 #[derive(Clone, Copy, Debug)]

@@ -1,7 +1,7 @@
 //! Shadow rays to one point (the light) as a packet: blocked ones are
 //! done (see `bvh/packet.rs`).
 
-use super::{Rays, deepest};
+use super::Rays;
 use crate::reference::bvh::cone::{Cone, ROUNDING};
 use crate::reference::bvh::lanes::Lines;
 use crate::reference::bvh::{TriangleBvh, widened};
@@ -99,9 +99,10 @@ impl ShadowPacket {
 }
 
 impl Rays for ShadowPacket {
+    /// The deepest of the rays' limits.
     #[inline]
     fn deepest(&self) -> f64 {
-        deepest(&self.limits)
+        self.limits.iter().fold(f64::NEG_INFINITY, |m, &l| m.max(l))
     }
 
     #[inline]
