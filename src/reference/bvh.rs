@@ -28,6 +28,8 @@ mod node_avx;
 mod packet;
 
 use super::intersect::{ShearedRay, TriangleHit};
+#[cfg(target_arch = "x86_64")]
+use super::simd::Isa;
 pub use ball::BallRegion;
 pub use cone::Cone;
 pub use packet::{PrimaryPacket, ShadowPacket};
@@ -310,8 +312,8 @@ impl TriangleBvh {
     #[inline(always)]
     fn walk_ray(&self, bvh: &CwBvh, query: &Query, visit: impl FnMut(usize, &mut f32) -> bool) {
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2.
+        if Isa::Avx2.runs() {
+            // SAFETY: the CPU has AVX2 and the bit instructions with it.
             return unsafe { walk_ray_avx2(bvh, query, visit) };
         }
         walk_ray_with(bvh, query, visit, CwBvhNode::intersect_ray);
@@ -326,9 +328,10 @@ impl TriangleBvh {
     }
 }
 
-/// [`TriangleBvh::walk_ray`] with the node test in AVX2.
+/// [`TriangleBvh::walk_ray`] with the node test in AVX2 (and the walk's
+/// `count_ones` in POPCNT, as [`Isa::Avx2`]'s lane code).
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
+#[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
 fn walk_ray_avx2(bvh: &CwBvh, query: &Query, visit: impl FnMut(usize, &mut f32) -> bool) {
     walk_ray_with(bvh, query, visit, |node, ray, octant| {
         node_avx::children_hit(node, ray, octant)
