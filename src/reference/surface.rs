@@ -296,10 +296,8 @@ impl<'a> TriangleShading<'a> {
     #[inline(always)]
     pub(super) fn tint_at(&self, reference: &Reference, b: [f64; 3]) -> DVec3 {
         // The uv only where a texture needs it.
-        match self.plain {
-            Some((_, tint)) => tint,
-            None => self.uv_colour_and_tint(reference, b).2,
-        }
+        self.plain_tint()
+            .unwrap_or_else(|| self.uv_colour_and_tint(reference, b).2)
     }
 
     /// The uv at barycentrics b, and the colour c and tint there.
