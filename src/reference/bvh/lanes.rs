@@ -157,6 +157,8 @@ impl Lines {
         // made first: a new one every eighth ray was a branch the loop
         // mispredicted.)
         self.blocks.resize(rays.len().div_ceil(LANES), Block::default());
+        // Counted in the loop, though `rays.len()` knows it: taken from
+        // there, the engine's process ran 34 M instructions more.
         let mut count = 0_usize;
         for (k, (d, limit)) in rays.enumerate() {
             count += 1;
