@@ -44,15 +44,19 @@ under the sphere emitter; llvm_ad_rgb needs libLLVM (DRJIT_LIBLLVM_PATH=
 MODEL: a public Khronos sample, not committed. 2CylinderEngine (121 k
 triangles) is in KhronosGroup/glTF-Sample-Models,
 2.0/2CylinderEngine/glTF-Binary/2CylinderEngine.glb (also in assimp's
-test/models/glTF2/2CylinderEngine-glTF-Binary/). Its node transforms are
-applied, then it is centred and scaled to 4 m across.
+test/models/glTF2/2CylinderEngine-glTF-Binary/). Without --model the script
+fetches it from there once into $XDG_CACHE_HOME/lumlab (~/.cache/lumlab) and
+says so when its SHA-256 is not that of the copy the README's numbers were
+measured on. Its node transforms are applied, then it is centred and scaled
+to 4 m across.
 
     pip install mitsuba==3.5.2 drjit==0.4.6
     cargo build --release
-    python3 bench/mitsuba_compare.py --model /work/models/2CylinderEngine.glb [--runs 5]
+    python3 bench/mitsuba_compare.py [--model 2CylinderEngine.glb] [--runs 5]
 """
 
 import argparse
+import hashlib
 import json
 import math
 import os
@@ -62,6 +66,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import urllib.request
 from pathlib import Path
 
 import numpy as np
@@ -210,6 +215,45 @@ def framed(meshes, size, spp):
     eye = tuple(c + r * np.array([1.3, 1.0, 2.2]))
     light = tuple(c + r * np.array([0.8, 1.6, 0.9]))
     return Scene(meshes, eye, tuple(c), light, size, spp)
+
+
+MODEL_NAME = "2CylinderEngine.glb"
+MODEL_URLS = (
+    "https://raw.githubusercontent.com/KhronosGroup/glTF-Sample-Models/HEAD/2.0/2CylinderEngine/glTF-Binary/",
+    "https://raw.githubusercontent.com/assimp/assimp/HEAD/test/models/glTF2/2CylinderEngine-glTF-Binary/",
+)
+# The copy the README's and docs/performance.md's numbers were measured on.
+MODEL_SHA256 = "bb5fbccc73a3f68c52f26687fbb25b4a1248ab5f8a115ec55e7ac6a4451c47ee"
+
+
+def fetched_model():
+    """The model race's GLB from the cache, fetched there first if need be
+    (written to a temporary name, then renamed: never a half file)."""
+    cache = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "lumlab" / MODEL_NAME
+    if not cache.exists():
+        errors = []
+        for url in (base + MODEL_NAME for base in MODEL_URLS):
+            try:
+                with urllib.request.urlopen(url, timeout=60) as response:
+                    data = response.read()
+            except OSError as e:
+                errors.append(f"{url}: {e}")
+                continue
+            if data[:4] != b"glTF":
+                errors.append(f"{url}: not a GLB file")
+                continue
+            cache.parent.mkdir(parents=True, exist_ok=True)
+            part = cache.with_name(cache.name + ".part")
+            part.write_bytes(data)
+            part.replace(cache)
+            print(f"fetched {url} into {cache}")
+            break
+        else:
+            sys.exit(f"could not fetch {MODEL_NAME} ({'; '.join(errors)}): pass --model FILE.glb")
+    digest = hashlib.sha256(cache.read_bytes()).hexdigest()
+    if digest != MODEL_SHA256:
+        print(f"note: {cache} is not the copy the README measured (SHA-256 {digest})")
+    return cache
 
 
 def model_scene(path):
@@ -551,7 +595,7 @@ def sphere_race(args, folder):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--lumlab", default="target/release/lumlab", help="the lumlab binary")
-    parser.add_argument("--model", type=Path, help="a GLB of ≥ 100 k triangles (see MODEL above)")
+    parser.add_argument("--model", type=Path, help="a GLB of ≥ 100 k triangles (default: MODEL above, fetched)")
     parser.add_argument("--only", nargs="*", choices=["small", "model", "million", "sphere"], help="races to run")
     parser.add_argument("--runs", type=int, default=5, help="alternating runs of each renderer")
     parser.add_argument("--threads", type=int, default=2, help="threads for every renderer")
@@ -562,8 +606,11 @@ def main():
     if not Path(args.lumlab).exists():
         sys.exit(f"no lumlab binary at {args.lumlab} (cargo build --release)")
     races = args.only or ["small", "model", "million", "sphere"]
-    if "model" in races and not (args.model and args.model.exists()):
-        sys.exit("the model race needs --model FILE.glb (see MODEL in --help), or leave it out with --only")
+    if "model" in races:
+        if args.model is None:
+            args.model = fetched_model()
+        elif not args.model.exists():
+            sys.exit(f"no model at {args.model} (leave --model out to fetch {MODEL_NAME})")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for race in races:
