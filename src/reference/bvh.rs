@@ -29,7 +29,7 @@ mod packet;
 
 use super::intersect::{ShearedRay, TriangleHit};
 #[cfg(target_arch = "x86_64")]
-use super::simd::Isa;
+use super::simd::{self, Isa};
 pub use ball::BallRegion;
 pub use cone::Cone;
 pub use packet::{PrimaryPacket, ShadowPacket};
@@ -328,14 +328,15 @@ impl TriangleBvh {
     }
 }
 
-/// [`TriangleBvh::walk_ray`] with the node test in AVX2 (and the walk's
-/// `count_ones` in POPCNT, as [`Isa::Avx2`]'s lane code).
 #[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
-fn walk_ray_avx2(bvh: &CwBvh, query: &Query, visit: impl FnMut(usize, &mut f32) -> bool) {
-    walk_ray_with(bvh, query, visit, |node, ray, octant| {
-        node_avx::children_hit(node, ray, octant)
-    });
+simd::avx2_set! {
+    /// [`TriangleBvh::walk_ray`] with the node test in AVX2 (and the walk's
+    /// `count_ones` in POPCNT, as [`Isa::Avx2`]'s lane code).
+    fn walk_ray_avx2(bvh: &CwBvh, query: &Query, visit: impl FnMut(usize, &mut f32) -> bool) {
+        walk_ray_with(bvh, query, visit, |node, ray, octant| {
+            node_avx::children_hit(node, ray, octant)
+        });
+    }
 }
 
 /// [`TriangleBvh::walk_ray`] with `children` as the node test.

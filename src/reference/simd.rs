@@ -3,6 +3,23 @@
 //! (AVX-512: 8 f64 lanes, AVX2: 4, the SSE2 every x86-64 has: 2). Fused
 //! multiply-add stays off: every result keeps its bits whatever the set.
 
+/// [`Isa::Avx2`]'s features, written in one place: `avx2_set!(check)`
+/// says whether the CPU has them all, `avx2_set! { fn … }` compiles the
+/// function for them (an attribute takes only a literal, so the list is
+/// written twice, side by side).
+macro_rules! avx2_set {
+    (check) => {{
+        use std::arch::is_x86_feature_detected as has;
+        has!("avx2") && has!("popcnt") && has!("bmi1") && has!("bmi2") && has!("lzcnt")
+    }};
+    ($(#[$meta:meta])* $vis:vis fn $($rest:tt)*) => {
+        $(#[$meta])*
+        #[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
+        $vis fn $($rest)*
+    };
+}
+pub(crate) use avx2_set;
+
 /// An instruction set the reference's lane code is compiled for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Isa {
@@ -47,7 +64,7 @@ impl Isa {
             use std::arch::is_x86_feature_detected as has;
             match self {
                 Isa::Baseline => true,
-                Isa::Avx2 => has!("avx2") && has!("popcnt") && has!("bmi1") && has!("bmi2") && has!("lzcnt"),
+                Isa::Avx2 => avx2_set!(check),
                 Isa::Avx512 => has!("avx512f") && has!("avx512dq"),
             }
         }
@@ -68,9 +85,10 @@ pub fn with<R>(isa: Isa, f: impl FnOnce() -> R) -> R {
         fn avx512<R>(f: impl FnOnce() -> R) -> R {
             f()
         }
-        #[target_feature(enable = "avx2,popcnt,bmi1,bmi2,lzcnt")]
-        fn avx2<R>(f: impl FnOnce() -> R) -> R {
-            f()
+        avx2_set! {
+            fn avx2<R>(f: impl FnOnce() -> R) -> R {
+                f()
+            }
         }
         if isa == Isa::Avx512 && isa.runs() {
             // SAFETY: the CPU has AVX-512 F and DQ.
