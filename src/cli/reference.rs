@@ -84,7 +84,9 @@ pub fn run(args: &ReferenceArgs) -> anyhow::Result<()> {
             &args.out,
             &image.to_display_rgba8(settings.view.exposure_ev as f64),
         )?,
-        ImageFormat::Exr => write_exr(&args.out, &image.to_linear_rgba32f())?,
+        ImageFormat::Exr => write_exr(&args.out, (image.width, image.height), |x, y| {
+            image.linear_rgba(x, y)
+        })?,
     }
     eprintln!("{}", summary(&settings, &reference, &image, build));
     Ok(())

@@ -3,7 +3,7 @@
 
 use super::args::SceneOptions;
 use crate::gpu::{GpuContext, Renderer};
-use crate::image_io::{ImageFormat, write_exr, write_png_rgba8};
+use crate::image_io::{ImageFormat, write_exr_texels, write_png_rgba8};
 use crate::reference::{Reference, ReferenceOptions};
 use crate::scene::Scene;
 use crate::settings::{DebugView, Settings, Visibility};
@@ -132,11 +132,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
             }
         }
         ImageFormat::Exr => {
-            let texels = renderer.read_quantity();
-            let flat: Vec<f32> = texels.iter().flatten().copied().collect();
-            let image = image::Rgba32FImage::from_raw(size.0, size.1, flat)
-                .ok_or_else(|| anyhow::anyhow!("readback size mismatch"))?;
-            write_exr(&args.out, &image)?;
+            write_exr_texels(&args.out, size, &renderer.read_quantity())?;
         }
     }
     let times = renderer.wait_timings();

@@ -268,9 +268,10 @@ impl LabApp {
         let renderer = half.renderer();
         let (w, h) = half.report.size;
         let texels = renderer.read_quantity();
-        let flat: Vec<f32> = texels.iter().flatten().copied().collect();
-        let image = image::Rgba32FImage::from_raw(w, h, flat)
-            .ok_or_else(|| anyhow::anyhow!(tr!("error-image-changed-size")))?;
-        crate::image_io::write_exr(path, &image)
+        anyhow::ensure!(
+            texels.len() == w as usize * h as usize,
+            tr!("error-image-changed-size")
+        );
+        crate::image_io::write_exr_texels(path, (w, h), &texels)
     }
 }
