@@ -3,14 +3,15 @@
 time: the measurement the speed journal (docs/journal/reference*.md) reports
 for every step it kept or dropped.
 
-For one race scene of mitsuba_compare.py (the same triangles, camera, light,
-size and samples), both binaries render in alternation, A then B, then B then
-A, so that a slow spell of the host falls on both alike; the script prints
-each one's render time (the `N spp: S s` of its summary line: no loading, no
-BVH build, no file output), its BVH build and its whole process, as the median
-and [min–max] of --runs, and the ratio B / A of the render medians. It then
-says whether the two wrote the same EXR bytes: a change to the walks or the
-tests' order must keep every pixel, since each ray's answer is exact.
+For one race scene of mitsuba_compare.py (from race_scenes.py: the same
+triangles, camera, light, size and samples), both binaries render in
+alternation, A then B, then B then A, so that a slow spell of the host falls
+on both alike; the script prints each one's render time (the `N spp: S s` of
+its summary line: no loading, no BVH build, no file output), its BVH build and
+its whole process, as the median and [min–max] of --runs, and the ratio B / A
+of the render medians. It then says whether the two wrote the same EXR bytes:
+a change to the walks or the tests' order must keep every pixel, since each
+ray's answer is exact.
 
 With --branches, both also run once under valgrind's cachegrind with its
 branch simulation, on one thread: instructions and mispredicted branches, the
@@ -40,15 +41,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-from mitsuba_compare import (
-    SPHERE_RADIUS_M,
-    lumlab_command,
-    million_scene,
-    model_scene,
-    run_timed,
-    small_scene,
-    write_glb,
-)
+from mitsuba_compare import SPHERE_RADIUS_M, lumlab_command, run_timed
+from race_scenes import million_scene, model_scene, small_scene, write_glb
 
 
 def run(argv, threads):
