@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """The scenes `mitsuba_compare.py` races on, and the files it hands each
 renderer: the small plane and box, the real model (fetched once into the
 cache, centred and scaled to 4 m across), the million generated triangles,
