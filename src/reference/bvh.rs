@@ -68,6 +68,30 @@ impl BvhTriangle {
     }
 }
 
+/// Where a BVH reads its triangles from, by index: a list of them, or a
+/// scene's meshes read in place (see `Reference::new`), which spares a
+/// large scene a gathered copy (40 bytes a triangle).
+pub trait TriangleSource: Sync {
+    fn count(&self) -> usize;
+    fn corners(&self, i: usize) -> [Vec3; 3];
+    /// Whether triangle `i` blocks shadow rays.
+    fn occludes(&self, i: usize) -> bool;
+}
+
+impl TriangleSource for [BvhTriangle] {
+    fn count(&self) -> usize {
+        self.len()
+    }
+
+    fn corners(&self, i: usize) -> [Vec3; 3] {
+        self[i].corners
+    }
+
+    fn occludes(&self, i: usize) -> bool {
+        self[i].occludes
+    }
+}
+
 /// f32 corners in f64, exactly: what every test of a ray takes.
 #[inline(always)]
 pub fn widened(corners: &[Vec3; 3]) -> [DVec3; 3] {
@@ -77,7 +101,8 @@ pub fn widened(corners: &[Vec3; 3]) -> [DVec3; 3] {
 /// The closest hit of a ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
-    /// Index of the triangle in the list given to [`TriangleBvh::new`].
+    /// Index of the triangle in the list given to [`TriangleBvh::new`]
+    /// (in the source given to [`TriangleBvh::of`]).
     pub triangle: usize,
     /// Distance along the ray (its direction's units) and barycentrics.
     pub at: TriangleHit,
@@ -109,21 +134,30 @@ impl TriangleBvh {
     /// Builds the BVH. Triangles with a non-finite corner or zero area can
     /// never be hit and are left out.
     pub fn new(triangles: &[BvhTriangle]) -> Self {
-        Self::in_groups(triangles, (build::MIN_GROUP, build::VERY_FAST_FROM))
+        Self::of(triangles)
     }
 
-    /// [`Self::new`] built in parallel in groups of `min_group` triangles
+    /// [`Self::new`] of the triangles `source` gives: hits name their
+    /// index there.
+    pub fn of(source: &(impl TriangleSource + ?Sized)) -> Self {
+        Self::in_groups(source, (build::MIN_GROUP, build::VERY_FAST_FROM))
+    }
+
+    /// [`Self::of`] built in parallel in groups of `min_group` triangles
     /// or more, by obvhs's very fast build from `very_fast_from` triangles
     /// (see `bvh/build.rs`).
-    fn in_groups(triangles: &[BvhTriangle], (min_group, very_fast_from): (usize, usize)) -> Self {
+    fn in_groups(
+        source: &(impl TriangleSource + ?Sized),
+        (min_group, very_fast_from): (usize, usize),
+    ) -> Self {
         // On the pool, as the boxes below: the build's serial start took
         // some 32 ms of its 250 ms on 1 M triangles (the same values: each
         // keeps the triangles' order, and min and max round nothing). The
         // scene box and whether every triangle is usable come from one
         // pass; the usable ones are listed by a second only when some are
         // not (the list of a filter cost 14 ms of the 1 M scene's 34).
-        let usable_corners = |t: &BvhTriangle| {
-            let [a, b, c] = t.corners_f64();
+        let usable_corners = |i: usize| {
+            let [a, b, c] = widened(&source.corners(i));
             let usable = a.is_finite()
                 && b.is_finite()
                 && c.is_finite()
@@ -131,19 +165,20 @@ impl TriangleBvh {
             usable.then_some([a, b, c])
         };
         let empty = || (DVec3::INFINITY, DVec3::NEG_INFINITY, true);
-        let (min, max, every) = triangles
-            .par_iter()
-            .fold(empty, |(min, max, every), t| match usable_corners(t) {
+        let count = source.count();
+        let (min, max, every) = (0..count)
+            .into_par_iter()
+            .fold(empty, |(min, max, every), i| match usable_corners(i) {
                 Some([a, b, c]) => (min.min(a).min(b).min(c), max.max(a).max(b).max(c), every),
                 None => (min, max, false),
             })
             .reduce(empty, |(a0, a1, a), (b0, b1, b)| (a0.min(b0), a1.max(b1), a && b));
         let usable: Vec<u32> = if every {
-            (0..triangles.len() as u32).into_par_iter().collect()
+            (0..count as u32).into_par_iter().collect()
         } else {
-            (0..triangles.len() as u32)
+            (0..count as u32)
                 .into_par_iter()
-                .filter(|&i| usable_corners(&triangles[i as usize]).is_some())
+                .filter(|&i| usable_corners(i as usize).is_some())
                 .collect()
         };
         if usable.is_empty() {
@@ -165,7 +200,7 @@ impl TriangleBvh {
         let boxes: Vec<Aabb> = usable
             .par_iter()
             .map(|&i| {
-                let [a, b, c] = triangles[i as usize].corners_f64().map(to_frame);
+                let [a, b, c] = widened(&source.corners(i as usize)).map(to_frame);
                 let lo = a.min(b).min(c) - DVec3::splat(PAD);
                 let hi = a.max(b).max(c) + DVec3::splat(PAD);
                 Aabb::new(lo.as_vec3a(), hi.as_vec3a())
@@ -181,8 +216,8 @@ impl TriangleBvh {
             .collect();
         let pad_world = DVec3::splat(PAD * scale);
         Self {
-            corners: original.par_iter().map(|&i| triangles[i].corners).collect(),
-            occludes: original.par_iter().map(|&i| triangles[i].occludes).collect(),
+            corners: original.par_iter().map(|&i| source.corners(i)).collect(),
+            occludes: original.par_iter().map(|&i| source.occludes(i)).collect(),
             original,
             bvh: Some(bvh),
             centre,

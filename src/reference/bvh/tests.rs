@@ -144,7 +144,7 @@ fn bvh_in_groups_equals_brute_force(very_fast_from: usize) {
             occludes: s % 3 != 0,
         }));
     }
-    let bvh = TriangleBvh::in_groups(&tris, (300, very_fast_from));
+    let bvh = TriangleBvh::in_groups(tris.as_slice(), (300, very_fast_from));
     let root = &bvh.bvh.as_ref().unwrap().nodes[0];
     assert_eq!(root.imask.count_ones(), 8, "eight groups");
     // A corner, a point on an edge or inside a random triangle.
