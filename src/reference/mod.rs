@@ -263,7 +263,7 @@ impl Reference {
         // The BVH reads the corners from the meshes in place. Gathered
         // first (40 bytes a triangle), they took 26 ms of one thread on
         // 1 M triangles while the other waited: in place, that scene's
-        // BVH line is 3 % shorter and its peak 25–45 MB lower, the same
+        // BVH line is 3 % shorter and its peak some 35 MB lower, the same
         // bytes. Only the direction grids take a list, and only small
         // scenes build them.
         let source = MeshSource {
