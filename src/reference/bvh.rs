@@ -72,7 +72,9 @@ impl BvhTriangle {
 /// scene's meshes read in place (see `Reference::new`), which spares a
 /// large scene a gathered copy (40 bytes a triangle).
 pub trait TriangleSource: Sync {
+    /// How many triangles it holds: indices 0 to count − 1.
     fn count(&self) -> usize;
+    /// Triangle `i`'s corners, in f32 as scenes give them.
     fn corners(&self, i: usize) -> [Vec3; 3];
     /// Whether triangle `i` blocks shadow rays.
     fn occludes(&self, i: usize) -> bool;
