@@ -180,6 +180,8 @@ struct ObjectInfo {
     /// The scene's material index, None when it was out of range.
     material_index: Option<usize>,
     receives_shadows: bool,
+    /// Its triangles block shadow rays.
+    casts_shadows: bool,
     /// The mesh: its vertices and indices, which its triangles' shading
     /// reads (per vertex, not copied per triangle).
     mesh: Mesh,
@@ -193,9 +195,15 @@ impl ObjectInfo {
         [ids[0] as usize, ids[1] as usize, ids[2] as usize]
     }
 
+    /// The corners of the mesh's triangle `index`, in f32 as the mesh
+    /// holds them.
+    fn positions(&self, index: usize) -> [Vec3; 3] {
+        self.ids(index).map(|i| self.mesh.positions[i])
+    }
+
     /// The corners of the mesh's triangle `index`, in f64 (exact).
     fn corners(&self, index: usize) -> [DVec3; 3] {
-        self.ids(index).map(|i| self.mesh.positions[i].as_dvec3())
+        bvh::widened(&self.positions(index))
     }
 
     /// Its vertex normals; a missing one counts as zero: where the
@@ -255,6 +263,7 @@ impl Reference {
                     material: material_index.unwrap_or(fallback),
                     material_index,
                     receives_shadows: object.receives_shadows,
+                    casts_shadows: object.casts_shadows,
                     mesh: object.mesh.clone(),
                 }
             })
@@ -268,7 +277,6 @@ impl Reference {
         // scenes build them.
         let source = MeshSource {
             objects: &objects,
-            casts: scene.objects.iter().map(|o| o.casts_shadows).collect(),
             triangles: &triangles,
         };
         let (grid_triangles, bvh) = rayon::join(
@@ -347,8 +355,6 @@ fn kept_triangles(scene: &Scene) -> Vec<TriangleInfo> {
 /// The kept triangles as the BVH reads them: from the meshes, in place.
 struct MeshSource<'a> {
     objects: &'a [ObjectInfo],
-    /// Whether each object casts shadows.
-    casts: Vec<bool>,
     triangles: &'a [TriangleInfo],
 }
 
@@ -371,12 +377,11 @@ impl TriangleSource for MeshSource<'_> {
 
     fn corners(&self, i: usize) -> [Vec3; 3] {
         let t = self.triangles[i];
-        let object = &self.objects[t.object()];
-        object.ids(t.index()).map(|v| object.mesh.positions[v])
+        self.objects[t.object()].positions(t.index())
     }
 
     fn occludes(&self, i: usize) -> bool {
-        self.casts[self.triangles[i].object()]
+        self.objects[self.triangles[i].object()].casts_shadows
     }
 }
 
