@@ -16,8 +16,8 @@ pub const TARGET_FPS: f64 = 30.0;
 /// Share of a frame's budget left to the renderer's passes; the rest is
 /// egui's own drawing and the copy to the window.
 const RENDER_SHARE: f64 = 0.6;
-/// The smallest scale (per side): 1/16 of the pixels.
-pub const MIN_SCALE: f64 = 0.25;
+/// The smallest scale (per side): 1/32 of the pixels.
+pub const MIN_SCALE: f64 = 0.125 * std::f64::consts::SQRT_2;
 /// The scale used while dragging on adapters without GPU timestamps (no cost
 /// measured).
 const UNTIMED_SCALE: f64 = 0.5;
@@ -27,15 +27,16 @@ const PAUSE_S: f64 = 0.5;
 /// so that a drag's images keep one size while the cost hovers near a
 /// step, instead of a new size (new targets, new allocations, on a software
 /// adapter new shader variants) every frame.
-pub const STEPS: [f64; 5] = [
+pub const STEPS: [f64; 6] = [
     MIN_SCALE,
+    0.25,
     0.25 * std::f64::consts::SQRT_2,
     0.5,
     0.5 * std::f64::consts::SQRT_2,
     1.0,
 ];
 /// The scales below [`MIN_SCALE`] the shadow map's side may take alone, in
-/// the same √2 steps, then [`MIN_SCALE`] itself: down to 1/64 of the
+/// the same √2 steps, then [`MIN_SCALE`] itself: down to 1/128 of the
 /// chosen resolution's texels (never below
 /// [`ShadowSettings::MIN_RESOLUTION`], see [`shadow_map_side`]).
 pub const SHADOW_STEPS: [f64; 3] = [MIN_SCALE / 2.0, MIN_SCALE / std::f64::consts::SQRT_2, MIN_SCALE];
@@ -256,9 +257,9 @@ mod tests {
         }
         // Clear room above the step: up one.
         scale.observe(even(0.5), &at(0.5, 0.8));
-        assert_eq!(scale.begin_frame(true).image, STEPS[3]);
+        assert_eq!(scale.begin_frame(true).image, STEPS[4]);
         // Down at once when over the budget.
-        scale.observe(even(STEPS[3]), &at(STEPS[3], 0.6));
+        scale.observe(even(STEPS[4]), &at(STEPS[4], 0.6));
         assert_eq!(scale.begin_frame(true).image, 0.5);
         assert!(STEPS.windows(2).all(|w| w[0] < w[1]));
         assert!(SHADOW_STEPS.windows(2).all(|w| w[0] < w[1]));
@@ -269,9 +270,10 @@ mod tests {
     fn the_shadow_map_shrinks_with_the_image_only_while_it_is_scaled() {
         assert_eq!(shadow_map_side(2048, 1.0), 2048);
         assert_eq!(shadow_map_side(2048, 0.5), 1024);
-        assert_eq!(shadow_map_side(2048, MIN_SCALE), 512);
-        // √2 steps: a multiple of 64 near the exact side (1448.2).
-        assert_eq!(shadow_map_side(2048, STEPS[3]), 1472);
+        assert_eq!(shadow_map_side(2048, 0.25), 512);
+        // √2 steps: a multiple of 64 near the exact side (1448.2, 362.0).
+        assert_eq!(shadow_map_side(2048, STEPS[4]), 1472);
+        assert_eq!(shadow_map_side(2048, MIN_SCALE), 384);
         assert_eq!(shadow_map_side(512, MIN_SCALE), ShadowSettings::MIN_RESOLUTION);
         // Never above what was chosen, even below the minimum.
         assert_eq!(shadow_map_side(100, 0.5), 100);
