@@ -12,7 +12,7 @@ use lumlab::app::{DragDevice, LabApp, LaunchOptions, Preloaded};
 use lumlab::gpu::{Renderer, ShadeOptions};
 use lumlab::presets::Half;
 use lumlab::scene::simplify::THRESHOLD_TRIANGLES;
-use lumlab::settings::Filter;
+use lumlab::settings::{Filter, Visibility};
 
 /// The size (pixels) of half A's last rendered image.
 fn rendered_size(harness: &Harness<'_, LabApp>) -> (u32, u32) {
@@ -67,6 +67,11 @@ fn renderer_of_drawn_scene(harness: &Harness<'_, LabApp>) -> Renderer {
 /// so that a full-size frame needs well over the renderer's budget on the
 /// software adapter even on a fast machine (PCF 3×3 once fitted it).
 fn pressed_lab(device: DragDevice) -> (Harness<'static, LabApp>, egui::Pos2) {
+    pressed_lab_with(device, Visibility::ShadowMap)
+}
+
+/// [`pressed_lab`] with V from `visibility`.
+fn pressed_lab_with(device: DragDevice, visibility: Visibility) -> (Harness<'static, LabApp>, egui::Pos2) {
     let options = LaunchOptions {
         drag_device: device,
         ..LaunchOptions::default()
@@ -74,6 +79,7 @@ fn pressed_lab(device: DragDevice) -> (Harness<'static, LabApp>, egui::Pos2) {
     let mut harness = harness_with(None, &options);
     let settings = harness.state_mut().settings_mut();
     settings.shadow.filter = Filter::Pcss;
+    settings.shadow.visibility = visibility;
     settings.light.radius_m = 0.2;
     for _ in 0..20 {
         harness.step();
@@ -206,6 +212,31 @@ fn drag_frames_on_a_device_of_their_own_show_what_that_device_renders() {
         settled,
         "idle again: nothing shown anew"
     );
+}
+
+/// Under ray-traced V the viewport's label gives the accumulation of the
+/// image shown: a drag frame's one ray a pixel and its noise, not the
+/// still frame's samples (which had said "exact" under a point light).
+#[test]
+fn the_accumulation_shown_during_a_drag_is_the_drag_frames() {
+    let (mut harness, from) = pressed_lab_with(DragDevice::Own, Visibility::RayTraced);
+    let still = harness.state().shown_accumulation(Half::A).expect("ray traced");
+    let samples = harness.state().settings().shadow.rt_light_samples;
+    assert_eq!(still.rays_per_frame, samples, "the still frame's samples");
+    let to = drag_to_next_image(&mut harness, from);
+    let (_, shown) = harness.state().shown_image(Half::A).expect("an image is shown");
+    assert!(
+        shown.width() < harness.state().viewport_size().0,
+        "a drag frame is shown"
+    );
+    let dragging = harness.state().shown_accumulation(Half::A).expect("ray traced");
+    assert_eq!(dragging.rays_per_frame, 1, "one ray a pixel while dragging");
+    assert!(
+        dragging.noise_bound > 0.0,
+        "a sphere light's one ray is not exact"
+    );
+    primary_button(&mut harness, to, false);
+    harness.step();
 }
 
 /// In the split view both halves' drag frames come from the drag device.

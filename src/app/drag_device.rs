@@ -19,6 +19,7 @@
 //! next drag's pipeline ahead after each full frame, as the window's
 //! renderer did before.
 
+use crate::gpu::raytrace::Accumulation;
 use crate::gpu::timing::PassTimes;
 use crate::gpu::{ComparisonImage, FrameReport, Renderer, ShadeOptions};
 use crate::presets::Half;
@@ -78,6 +79,8 @@ pub struct DragFrame<T> {
     pub render_cpu_ms: f64,
     /// The false-colour scale, for the views that scale to the image.
     pub scale: Option<f32>,
+    /// Its ray-traced accumulation (None: V from the shadow map).
+    pub accumulation: Option<Accumulation>,
     pub tag: T,
 }
 
@@ -315,6 +318,7 @@ fn render<T>(renderer: &mut Renderer, job: Job<T>) -> DragFrame<T> {
         times: renderer.wait_timings(),
         render_cpu_ms,
         scale,
+        accumulation: renderer.accumulation(),
         tag: job.tag,
     }
 }

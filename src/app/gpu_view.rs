@@ -10,6 +10,7 @@ use super::drag_device::{DragDevice, DragFrame, DragRenderer, Job};
 use super::render_scale::{FrameScale, RenderScale, shadow_map_side};
 use super::view_readback::PendingProbe;
 use super::viewport_image::{ImageBinding, ImagePipeline};
+use crate::gpu::raytrace::Accumulation;
 use crate::gpu::readback::ReadState;
 use crate::gpu::timing::PassTimes;
 use crate::gpu::{Capabilities, ShadeOptions};
@@ -85,6 +86,9 @@ pub struct HalfView {
     pub renders: u64,
     /// The render scales of the last frame (1: the viewport's full size).
     rendered_scale: FrameScale,
+    /// The ray-traced accumulation of the image shown: the drag device's
+    /// while a drag frame is shown, not the still frame's before it.
+    shown_accumulation: Option<Accumulation>,
     /// Until when to keep polling for the last frame's GPU times.
     times_due: Option<Instant>,
     /// The false-colour scale of the displayed frame, once read back.
@@ -333,7 +337,8 @@ impl GpuViews {
                 None => h.renderer.compile_ahead(&drawn, ShadeOptions::INTERACTION),
             }
         }
-        h.shows(key, drawn, self.frame_scale);
+        let accumulation = h.renderer.accumulation();
+        h.shows(key, drawn, self.frame_scale, accumulation);
         if half == Half::A {
             self.render_scale.rendered(self.frame_scale);
         }
@@ -355,9 +360,10 @@ impl GpuViews {
         self.half(half).map_or(1.0, |h| h.rendered_scale.image)
     }
 
-    /// A half's ray-traced accumulation (None: V from the shadow map).
-    pub fn accumulation(&self, half: Half) -> Option<crate::gpu::raytrace::Accumulation> {
-        self.half(half)?.renderer.accumulation()
+    /// The ray-traced accumulation of the image a half shows (None: V from
+    /// the shadow map).
+    pub fn accumulation(&self, half: Half) -> Option<Accumulation> {
+        self.half(half)?.shown_accumulation
     }
 
     /// The shape that shows the part `uv` (0..1) of a half's last frame over `area`.
@@ -465,6 +471,7 @@ impl HalfView {
             render_cpu_ms: 0.0,
             renders: 0,
             rendered_scale: FrameScale::FULL,
+            shown_accumulation: None,
             times_due: None,
             scale: None,
             pending_scale: None,
@@ -492,9 +499,17 @@ impl HalfView {
         self.bind_shown(&render_state.device, pipeline, recreated);
     }
 
-    /// Counts a new image, rendered from `key` with `drawn` at render scales `scale`.
-    fn shows(&mut self, key: RenderKey, drawn: Settings, scale: FrameScale) {
+    /// Counts a new image, rendered from `key` with `drawn` at render scales
+    /// `scale`, its accumulation `accumulation`.
+    fn shows(
+        &mut self,
+        key: RenderKey,
+        drawn: Settings,
+        scale: FrameScale,
+        accumulation: Option<Accumulation>,
+    ) {
         self.renders += 1;
+        self.shown_accumulation = accumulation;
         self.rendered = Some(key);
         self.drawn = Some(drawn);
         self.rendered_scale = scale;
@@ -521,7 +536,7 @@ impl HalfView {
         }
         self.scale = frame.scale;
         self.pending_scale = None;
-        self.shows(frame.tag.key, frame.settings, frame.tag.scale);
+        self.shows(frame.tag.key, frame.settings, frame.tag.scale, frame.accumulation);
         let recreated = self.resize_shown(&render_state.device, size);
         let Some(shown) = &self.shown else { return };
         render_state.queue.write_texture(

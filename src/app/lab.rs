@@ -305,6 +305,12 @@ impl LabApp {
         self.gpu.as_ref()?.shown_image(half)
     }
 
+    /// The ray-traced accumulation of the image a half shows, as the
+    /// viewport's label gives it (None: V from the shadow map).
+    pub fn shown_accumulation(&self, half: Half) -> Option<crate::gpu::raytrace::Accumulation> {
+        self.gpu.as_ref()?.accumulation(half)
+    }
+
     /// The scene the viewport draws (the file's, with the ground).
     pub fn drawn_scene(&self) -> &Scene {
         &self.scene
