@@ -316,8 +316,7 @@ impl GpuViews {
             }
         }
         // A ray-traced image still accumulating renders on, unchanged settings or not.
-        let accumulating = h.renderer.accumulation().is_some_and(|a| !a.is_complete());
-        if h.rendered.as_ref() == Some(&key) && !accumulating {
+        if h.rendered.as_ref() == Some(&key) && !h.accumulating() {
             return false;
         }
         let interacting = self.render_scale.interacting;
@@ -364,6 +363,13 @@ impl GpuViews {
     /// the shadow map).
     pub fn accumulation(&self, half: Half) -> Option<Accumulation> {
         self.half(half)?.shown_accumulation
+    }
+
+    /// Whether a half's renderer has ray-traced frames still to fold in:
+    /// the viewport asks for frames until it is done (a drag frame's mean,
+    /// which no frame continues on the drag device, asks for none).
+    pub fn accumulating(&self, half: Half) -> bool {
+        self.half(half).is_some_and(HalfView::accumulating)
     }
 
     /// The shape that shows the part `uv` (0..1) of a half's last frame over `area`.
@@ -497,6 +503,11 @@ impl HalfView {
         encoder.copy_texture_to_texture(display.as_image_copy(), shown.as_image_copy(), size);
         render_state.queue.submit([encoder.finish()]);
         self.bind_shown(&render_state.device, pipeline, recreated);
+    }
+
+    /// Whether its renderer's ray-traced mean is still under way.
+    fn accumulating(&self) -> bool {
+        self.renderer.accumulation().is_some_and(|a| !a.is_complete())
     }
 
     /// Counts a new image, rendered from `key` with `drawn` at render scales

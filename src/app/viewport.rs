@@ -350,9 +350,9 @@ impl Viewport<'_> {
             if let Some(a) = gpu.accumulation(half) {
                 let (area, _) = part(half);
                 super::visibility::paint_accumulation(&painter, area, &a);
-                if !a.is_complete() {
-                    ui.ctx().request_repaint();
-                }
+            }
+            if gpu.accumulating(half) {
+                ui.ctx().request_repaint();
             }
         }
         if split.enabled {
