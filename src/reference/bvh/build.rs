@@ -78,7 +78,8 @@ pub fn build_cwbvh(boxes: &[Aabb], min_group: usize, very_fast_from: usize) -> C
     let built: Vec<CwBvh> = groups
         .par_chunks(run)
         .flat_map_iter(|run| {
-            let (mut scratch, mut group) = (Scratch::default(), Vec::new());
+            let largest = run.iter().map(Vec::len).max().unwrap_or(0);
+            let (mut scratch, mut group) = (Scratch::for_boxes(largest), Vec::with_capacity(largest));
             run.iter()
                 .map(|g| {
                     group.clear();
@@ -103,6 +104,23 @@ struct Scratch {
 }
 
 impl Scratch {
+    /// A scratch whose arrays already hold a group of `boxes` boxes (the
+    /// largest of its run). Grown as the groups came, an array that met a
+    /// group one box larger than the last (median cuts leave groups a box
+    /// apart) doubled, into memory fresh from the kernel, and was copied:
+    /// on 1 M triangles 13 % more page faults, the BVH line 4.5–7.5 %
+    /// longer (three rounds of 15–30 alternated runs).
+    fn for_boxes(boxes: usize) -> Self {
+        let nodes = (2 * boxes).saturating_sub(1);
+        let mut scratch = Self {
+            ploc: PlocBuilder::with_capacity(boxes),
+            ..Self::default()
+        };
+        scratch.bvh2.nodes.reserve_exact(nodes);
+        scratch.decisions.reserve_exact(nodes * 7);
+        scratch
+    }
+
     /// One BVH of `boxes` by obvhs on this thread: its `build_cwbvh`
     /// (PLOC, reinsertion, the collapse to CWBVH, whose cost table
     /// `collapse::fill` fills), each node's children ordered by the eight
