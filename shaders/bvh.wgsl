@@ -2,22 +2,22 @@
 // ray-traced visibility. Portable: storage buffers and a loop with a small
 // stack, no ray-query extension.
 
-// A child of an inner node: its box and its link.
-struct BvhNode {
-    min: vec3<f32>,
-    // Triangles in this leaf; 0: an inner node.
-    count: u32,
-    max: vec3<f32>,
+// A child of an inner node: its box on the BVH's grid (gpu::bvh, `Grid`),
+// u16 corners packed two to a u32 (min x, min y | min z, max x | max y,
+// max z), and its link.
+struct BvhChild {
+    corners: vec3<u32>,
     // Inner node: its pair's index; leaf: BVH_LEAF | count << 28 | first
     // triangle.
     first: u32,
 }
 
 // An inner node: its two children (gpu::bvh, `FlatBvh::pairs`). Pair 0
-// holds the root's children.
+// holds the grid (origin in a.corners, the step's x in a.first, its y and
+// z in b.corners.xy, as f32 bits), pair 1 the root's children.
 struct BvhPair {
-    a: BvhNode,
-    b: BvhNode,
+    a: BvhChild,
+    b: BvhChild,
 }
 
 // Corner v0 and the edges e1 = v1 − v0, e2 = v2 − v0 (m, world).
@@ -66,10 +66,14 @@ fn bvh_hits_triangle(tri: BvhTriangle, o: vec3<f32>, d: vec3<f32>, t_max: f32) -
     return t > 0.0 && t < t_max;
 }
 
-// Slab test of the segment's parameters [0, t_max] against a node's box.
-fn bvh_hits_box(node: BvhNode, o: vec3<f32>, inv_d: vec3<f32>, t_max: f32) -> bool {
-    let t0 = (node.min - o) * inv_d;
-    let t1 = (node.max - o) * inv_d;
+// Slab test of the segment's parameters [0, t_max] against a child's box,
+// its corners q at q · step + origin.
+fn bvh_hits_box(child: BvhChild, grid: array<vec3<f32>, 2>, o: vec3<f32>, inv_d: vec3<f32>, t_max: f32) -> bool {
+    let c = child.corners;
+    let low = vec3<f32>(vec3<u32>(c.x & 0xffffu, c.x >> 16u, c.y & 0xffffu));
+    let high = vec3<f32>(vec3<u32>(c.y >> 16u, c.z & 0xffffu, c.z >> 16u));
+    let t0 = (low * grid[1] + grid[0] - o) * inv_d;
+    let t1 = (high * grid[1] + grid[0] - o) * inv_d;
     let near = min(t0, t1);
     let far = max(t0, t1);
     let enter = max(max(near.x, near.y), max(near.z, 0.0));
@@ -88,9 +92,14 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32) -> bool
     if pair_count == 0u {
         return false;
     }
+    let header = bvh_pairs[0];
+    let grid = array<vec3<f32>, 2>(
+        bitcast<vec3<f32>>(header.a.corners),
+        bitcast<vec3<f32>>(vec3<u32>(header.a.first, header.b.corners.xy)),
+    );
     var stack: array<u32, BVH_STACK_SIZE>;
     var depth = 0u;
-    var item = 0u;
+    var item = 1u;
     var overflowed = false;
     var done = false;
     loop {
@@ -101,8 +110,8 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32) -> bool
                 break;
             }
             let pair = bvh_pairs[item];
-            let hit_a = bvh_hits_box(pair.a, o, inv_d, t_max);
-            let hit_b = bvh_hits_box(pair.b, o, inv_d, t_max);
+            let hit_a = bvh_hits_box(pair.a, grid, o, inv_d, t_max);
+            let hit_b = bvh_hits_box(pair.b, grid, o, inv_d, t_max);
             if hit_a && hit_b {
                 if depth < BVH_STACK_SIZE {
                     stack[depth] = pair.b.first;
