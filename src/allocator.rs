@@ -19,7 +19,7 @@ const LARGE: usize = 4 << 20;
 /// A huge page of x86-64 and most 64-bit Arm kernels.
 const HUGE_PAGE: usize = 2 << 20;
 
-/// [`System`], with blocks of [`LARGE`] bytes or more advised for huge pages.
+/// [`System`], with blocks of `LARGE` bytes (4 MiB) or more advised for huge pages.
 pub struct HugePages;
 
 // SAFETY: every call goes to `System` with the caller's arguments; the

@@ -82,7 +82,7 @@ pub enum FloatTarget {
     Aux,
 }
 
-/// Texels on their way back (see [`Renderer::request_texels`]).
+/// Texels on their way back (see [`super::Renderer::request_texels`]).
 pub struct PendingTexels {
     pub(super) read: PendingRead,
     pub(super) bytes_per_texel: u32,
@@ -99,7 +99,7 @@ impl PendingTexels {
     }
 }
 
-/// A false-colour scale on its way back (see [`Renderer::request_scale`]).
+/// A false-colour scale on its way back (see [`super::Renderer::request_scale`]).
 pub struct PendingScale(pub(super) PendingRead);
 
 impl PendingScale {

@@ -116,7 +116,7 @@ pub fn lobe<S: Real>(cos_theta: S, gap: S, m: S) -> S {
 /// f_r / c for the unit normal `n`, unit light direction `l` and unit view
 /// direction `o` (all pointing away from the surface). The horizons and
 /// Lambert alone inline (the reference's samples call it in their loops),
-/// the lobe in [`specular`].
+/// the lobe in `specular`.
 #[inline(always)]
 pub fn blinn_phong<V: Vector3>(n: V, l: V, o: V, params: &BrdfParams<V::S>) -> BrdfTerms<V::S> {
     let zero = V::S::zero();

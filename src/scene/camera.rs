@@ -66,7 +66,7 @@ impl PixelRays {
         f.forward + f.right * sx + f.up * sy
     }
 
-    /// [`Self::towards`] of each image point (x[k], y[k]), by coordinate
+    /// [`Self::towards`] of each image point (x\[k\], y\[k\]), by coordinate
     /// into `out`: the same operations, in a loop without branches, for
     /// lanes.
     #[inline(always)]

@@ -140,13 +140,13 @@ impl TriangleBvh {
     /// The occluders that may block a segment from `from` to any point of
     /// the ball (`centre`, `radius`), e.g. every shadow ray of a sphere light
     /// from one shading point: into `out`, as indices for [`Self::blocked_by`].
-    /// Conservative (see [`BallCone`]): an empty list means no segment is
+    /// Conservative (see `BallCone`): an empty list means no segment is
     /// blocked. False, with `out` unfinished, when more than `limit` are
     /// found or `from` lies (nearly) in the ball: cast each ray through the
     /// BVH instead. `surface`: the normal (either way, or zero) of the
     /// surface `from` was lifted off, whose plane through `from` is the
     /// walk's floor when the whole ball lies above it (see
-    /// [`BallCone::floor`]).
+    /// `BallCone::floor`).
     pub fn gather_near_ball(
         &self,
         (from, surface): (DVec3, DVec3),
