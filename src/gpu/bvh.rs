@@ -438,10 +438,10 @@ mod tests {
         // far more than their coordinates' own ulp): the shader's rounding
         // never takes a grid box inside the box the traversal met before.
         let mut rng = crate::reference::sampling::Rng::new(3, 0, 0);
-        let far = [-1e4; 3].map(|x| [Vec3::splat(x), Vec3::splat(x) + Vec3::X, Vec3::splat(x) + Vec3::Y]);
+        let far = Vec3::splat(-1e4);
         let cases = [
             (Vec3::new(12345.0, -6789.0, 4321.0), 1.0, None),
-            (Vec3::ZERO, 1e-3, Some(far[0])),
+            (Vec3::ZERO, 1e-3, Some([far, far + Vec3::X, far + Vec3::Y])),
         ];
         for (o, size, extra) in cases {
             let mut r = || 0.1 + rng.next_f64() as f32;
