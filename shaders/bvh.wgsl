@@ -119,15 +119,11 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32) -> bool
                 } else {
                     overflowed = true;
                 }
-                item = pair.a.first;
-                continue;
             }
-            if hit_a {
-                item = pair.a.first;
-                continue;
-            }
-            if hit_b {
-                item = pair.b.first;
+            // One step down, to a where it was met: lavapipe runs each
+            // branch under a mask, and a select costs less than a branch.
+            if hit_a || hit_b {
+                item = select(pair.b.first, pair.a.first, hit_a);
                 continue;
             }
             if depth == 0u {
