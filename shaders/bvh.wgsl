@@ -133,29 +133,27 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32) -> bool
             depth -= 1u;
             item = stack[depth];
         }
-        if done {
-            break;
+        // The leaf's triangles; none when nothing was left. Where subtrees
+        // were left out, the last step tests every triangle instead (the
+        // slow, exact answer): in this loop, not one of its own after it,
+        // which lavapipe would enter once under an empty mask on every ray.
+        let last = done || depth == 0u;
+        var first = item & BVH_FIRST_MASK;
+        var end = select(first + ((item >> BVH_COUNT_SHIFT) & BVH_COUNT_MASK), first, done);
+        if last && overflowed {
+            first = 0u;
+            end = arrayLength(&bvh_triangles);
         }
-        let first = item & BVH_FIRST_MASK;
-        let end = first + ((item >> BVH_COUNT_SHIFT) & BVH_COUNT_MASK);
         for (var i = first; i < end; i++) {
             if bvh_hits_triangle(bvh_triangles[i], o, d, t_max) {
                 return true;
             }
         }
-        if depth == 0u {
+        if last {
             break;
         }
         depth -= 1u;
         item = stack[depth];
-    }
-    if overflowed {
-        // Subtrees were left out: the slow, exact answer.
-        for (var i = 0u; i < arrayLength(&bvh_triangles); i++) {
-            if bvh_hits_triangle(bvh_triangles[i], o, d, t_max) {
-                return true;
-            }
-        }
     }
     return false;
 }
