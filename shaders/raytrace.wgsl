@@ -17,7 +17,7 @@ struct RayTrace {
     // Strata of the sphere light's cone per pixel and frame.
     strata_x: u32,
     strata_y: u32,
-    // Nodes of the BVH (0: nothing casts shadows).
+    // Entries of the BVH's pairs, the grid's among them (0: nothing casts shadows).
     pair_count: u32,
     // Changes every frame: a new stream of random numbers.
     frame_seed: u32,

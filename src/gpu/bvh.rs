@@ -47,9 +47,9 @@ const _: () = assert!(MAX_TRIANGLES_PER_LEAF <= LINK_MAX_COUNT);
 /// drops a triangle that touches its box's face.
 const BOX_PAD_REL: f32 = 1e-6;
 
-/// `BvhNode` of shaders/bvh.wgsl.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+/// A node of the binary BVH as built, f32 box and all ([`FlatBvh::nodes`]);
+/// [`FlatBvh::pairs`] turns the nodes into the layout the shader reads.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct BvhNodeRaw {
     pub min: [f32; 3],
     /// Triangles in this leaf; 0: an inner node.
@@ -316,8 +316,9 @@ pub struct GpuBvh {
     /// [`FlatBvh::pairs`].
     pub pairs: wgpu::Buffer,
     pub triangles: wgpu::Buffer,
-    /// Pairs in use: 0 when nothing casts shadows (the buffers then hold one
-    /// unused element each: bindings cannot be empty).
+    /// Pairs in use, the grid's entry among them: 0 when nothing casts
+    /// shadows (the buffers then hold one unused element each: bindings
+    /// cannot be empty).
     pub pair_count: u32,
     pub triangle_count: u32,
 }
