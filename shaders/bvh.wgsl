@@ -2,22 +2,17 @@
 // ray-traced visibility. Portable: storage buffers and a loop with a small
 // stack, no ray-query extension.
 
-// A child of an inner node: its box on the BVH's grid (gpu::bvh, `Grid`),
-// u16 corners packed two to a u32 (min x, min y | min z, max x | max y,
-// max z), and its link.
-struct BvhChild {
-    corners: vec3<u32>,
-    // Inner node: its pair's index; leaf: BVH_LEAF | count << 28 | first
-    // triangle.
-    first: u32,
-}
-
-// An inner node: its two children (gpu::bvh, `FlatBvh::pairs`). Pair 0
-// holds the grid (origin in a.corners, the step's x in a.first, its y and
-// z in b.corners.xy, as f32 bits), pair 1 the root's children.
+// An inner node: its two children (gpu::bvh, `FlatBvh::pairs`), each its
+// box on the BVH's grid (gpu::bvh, `Grid`), u16 corners packed two to a u32
+// (xyz: min x, min y | min z, max x | max y, max z), and its link (w): an
+// inner child's pair, or its leaf, BVH_LEAF | count << 28 | first triangle.
+// A child is one vec4, which lavapipe loads in one pass over its lanes (a
+// vec3 and a u32 took two). Pair 0 holds the grid (origin in a.xyz, the
+// step's x in a.w, its y and z in b.xy, as f32 bits), pair 1 the root's
+// children.
 struct BvhPair {
-    a: BvhChild,
-    b: BvhChild,
+    a: vec4<u32>,
+    b: vec4<u32>,
 }
 
 // Corner v0 and the edges e1 = v1 − v0, e2 = v2 − v0 (m, world).
@@ -72,8 +67,8 @@ fn bvh_hits_triangle(tri: BvhTriangle, o: vec3<f32>, d: vec3<f32>, t_max: f32) -
 
 // Slab test of the segment's parameters [0, t_max] against a child's box,
 // its corners q at q · step + origin.
-fn bvh_hits_box(child: BvhChild, grid: array<vec3<f32>, 2>, o: vec3<f32>, inv_d: vec3<f32>, t_max: f32) -> bool {
-    let c = child.corners;
+fn bvh_hits_box(child: vec4<u32>, grid: array<vec3<f32>, 2>, o: vec3<f32>, inv_d: vec3<f32>, t_max: f32) -> bool {
+    let c = child.xyz;
     let low = vec3<f32>(vec3<u32>(c.x & 0xffffu, c.x >> 16u, c.y & 0xffffu));
     let high = vec3<f32>(vec3<u32>(c.y >> 16u, c.z & 0xffffu, c.z >> 16u));
     let t0 = (low * grid[1] + grid[0] - o) * inv_d;
@@ -98,8 +93,8 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32) -> bool
     }
     let header = bvh_pairs[0];
     let grid = array<vec3<f32>, 2>(
-        bitcast<vec3<f32>>(header.a.corners),
-        bitcast<vec3<f32>>(vec3<u32>(header.a.first, header.b.corners.xy)),
+        bitcast<vec3<f32>>(header.a.xyz),
+        bitcast<vec3<f32>>(vec3<u32>(header.a.w, header.b.xy)),
     );
     var stack: array<u32, BVH_STACK_SIZE>;
     var depth = 0u;
@@ -118,7 +113,7 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32) -> bool
             let hit_b = bvh_hits_box(pair.b, grid, o, inv_d, t_max);
             if hit_a && hit_b {
                 if depth < BVH_STACK_SIZE {
-                    stack[depth] = pair.b.first;
+                    stack[depth] = pair.b.w;
                     depth += 1u;
                 } else {
                     overflowed = true;
@@ -127,7 +122,7 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32) -> bool
             // One step down, to a where it was met: lavapipe runs each
             // branch under a mask, and a select costs less than a branch.
             if hit_a || hit_b {
-                item = select(pair.b.first, pair.a.first, hit_a);
+                item = select(pair.b.w, pair.a.w, hit_a);
                 continue;
             }
             if depth == 0u {

@@ -7,7 +7,7 @@
 mod common;
 
 use glam::{Vec3, Vec4};
-use lumlab::gpu::bvh::{BvhChildRaw, BvhNodeRaw, BvhTriangleRaw, FlatBvh, GpuBvh};
+use lumlab::gpu::bvh::{BvhNodeRaw, BvhPairRaw, BvhTriangleRaw, FlatBvh, GpuBvh};
 use lumlab::gpu::raytrace::RayTraceRaw;
 use lumlab::gpu::shaders::Shader;
 use lumlab::gpu::{GpuContext, Renderer, ShadeOptions};
@@ -31,7 +31,7 @@ fn struct_size(module: &naga::Module, name: &str) -> usize {
 fn ray_tracer_structs_match_their_wgsl_size() {
     let module = naga::front::wgsl::parse_str(&Shader::Shade.source()).expect("the camera pass parses");
     assert_eq!(struct_size(&module, "RayTrace"), size_of::<RayTraceRaw>());
-    assert_eq!(struct_size(&module, "BvhChild"), size_of::<BvhChildRaw>());
+    assert_eq!(struct_size(&module, "BvhPair"), size_of::<BvhPairRaw>());
     assert_eq!(struct_size(&module, "BvhTriangle"), size_of::<BvhTriangleRaw>());
 }
 

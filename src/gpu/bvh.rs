@@ -59,7 +59,7 @@ pub struct BvhNodeRaw {
     pub first: u32,
 }
 
-/// `BvhChild` of shaders/bvh.wgsl: a child's box on the BVH's grid of 2¹⁶
+/// A child of `BvhPair` in shaders/bvh.wgsl (a `vec4<u32>`): its box on the BVH's grid of 2¹⁶
 /// steps an axis, three u16 corners a side packed two to a u32 (low, high:
 /// min x, min y | min z, max x | max y, max z), and its link: an inner
 /// child's pair, or its leaf (`leaf_link`).
