@@ -7,12 +7,19 @@
 // (xyz: min x, min y | min z, max x | max y, max z), and its link (w): an
 // inner child's pair, or its leaf, BVH_LEAF | count << 28 | first triangle.
 // A child is one vec4, which lavapipe loads in one pass over its lanes (a
-// vec3 and a u32 took two). Pair 0 holds the grid (origin in a.xyz, the
-// step's x in a.w, its y and z in b.xy, as f32 bits), pair 1 the root's
-// children.
+// vec3 and a u32 took two). Pair 0 holds the root's children.
 struct BvhPair {
     a: vec4<u32>,
     b: vec4<u32>,
+}
+
+// The grid of the boxes (gpu::bvh, `BvhGridRaw`): a corner q lies at
+// q · step + origin (m). The caller passes it from a uniform, which
+// lavapipe reads once for all lanes (a storage buffer's entry took two
+// loads lane by lane a ray).
+struct BvhGrid {
+    origin: vec3<f32>,
+    step: vec3<f32>,
 }
 
 // Corner v0 and the edges e1 = v1 − v0, e2 = v2 − v0 (m, world).
@@ -67,12 +74,12 @@ fn bvh_hits_triangle(tri: BvhTriangle, o: vec3<f32>, d: vec3<f32>, t_max: f32) -
 
 // Slab test of the segment's parameters [0, t_max] against a child's box,
 // its corners q at q · step + origin.
-fn bvh_hits_box(child: vec4<u32>, grid: array<vec3<f32>, 2>, o: vec3<f32>, inv_d: vec3<f32>, t_max: f32) -> bool {
+fn bvh_hits_box(child: vec4<u32>, grid: BvhGrid, o: vec3<f32>, inv_d: vec3<f32>, t_max: f32) -> bool {
     let c = child.xyz;
     let low = vec3<f32>(vec3<u32>(c.x & 0xffffu, c.x >> 16u, c.y & 0xffffu));
     let high = vec3<f32>(vec3<u32>(c.y >> 16u, c.z & 0xffffu, c.z >> 16u));
-    let t0 = (low * grid[1] + grid[0] - o) * inv_d;
-    let t1 = (high * grid[1] + grid[0] - o) * inv_d;
+    let t0 = (low * grid.step + grid.origin - o) * inv_d;
+    let t1 = (high * grid.step + grid.origin - o) * inv_d;
     let near = min(t0, t1);
     let far = max(t0, t1);
     let enter = max(max(near.x, near.y), max(near.z, 0.0));
@@ -82,23 +89,18 @@ fn bvh_hits_box(child: vec4<u32>, grid: array<vec3<f32>, 2>, o: vec3<f32>, inv_d
 
 // Whether any caster meets o + t d for 0 < t < t_max (d need not be unit).
 // The item visited is a pair (its index), or a leaf: BVH_LEAF, its count
-// (bits 28–30) and its first triangle (bits 0–27), as a child's `first`
+// (bits 28–30) and its first triangle (bits 0–27), as a child's link (w)
 // holds them, so that a leaf's step reads no node.
-fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32) -> bool {
+fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: BvhGrid) -> bool {
     // A zero component becomes a tiny one: its slabs then span ±∞, never NaN.
     let safe_d = select(d, vec3<f32>(1e-30), abs(d) < vec3<f32>(1e-30));
     let inv_d = 1.0 / safe_d;
     if pair_count == 0u {
         return false;
     }
-    let header = bvh_pairs[0];
-    let grid = array<vec3<f32>, 2>(
-        bitcast<vec3<f32>>(header.a.xyz),
-        bitcast<vec3<f32>>(vec3<u32>(header.a.w, header.b.xy)),
-    );
     var stack: array<u32, BVH_STACK_SIZE>;
     var depth = 0u;
-    var item = 1u;
+    var item = 0u;
     var overflowed = false;
     var done = false;
     loop {

@@ -17,12 +17,14 @@ struct RayTrace {
     // Strata of the sphere light's cone per pixel and frame.
     strata_x: u32,
     strata_y: u32,
-    // Entries of the BVH's pairs, the grid's among them (0: nothing casts shadows).
+    // Entries of the BVH's pairs (0: nothing casts shadows).
     pair_count: u32,
     // Changes every frame: a new stream of random numbers.
     frame_seed: u32,
     _padding0: u32,
     _padding1: u32,
+    // The grid of the BVH's boxes (bvh.wgsl).
+    grid: BvhGrid,
 }
 
 @group(2) @binding(0) var<uniform> rt: RayTrace;
@@ -68,7 +70,7 @@ fn rt_random(state: ptr<function, u32>) -> f32 {
 // Whether the segment from `origin_rel` along d (both relative to the eye)
 // is blocked before its end.
 fn rt_blocked(origin_rel: vec3<f32>, d: vec3<f32>) -> bool {
-    return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, knobs.rays.z);
+    return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, knobs.rays.z, rt.grid);
 }
 
 // V at the point p = eye + rel with shading normal n and facet normal n_geo

@@ -7,7 +7,7 @@
 mod common;
 
 use glam::{Vec3, Vec4};
-use lumlab::gpu::bvh::{BvhNodeRaw, BvhPairRaw, BvhTriangleRaw, FlatBvh, GpuBvh};
+use lumlab::gpu::bvh::{BvhGridRaw, BvhNodeRaw, BvhPairRaw, BvhTriangleRaw, FlatBvh, GpuBvh};
 use lumlab::gpu::raytrace::RayTraceRaw;
 use lumlab::gpu::shaders::Shader;
 use lumlab::gpu::{GpuContext, Renderer, ShadeOptions};
@@ -32,6 +32,7 @@ fn ray_tracer_structs_match_their_wgsl_size() {
     let module = naga::front::wgsl::parse_str(&Shader::Shade.source()).expect("the camera pass parses");
     assert_eq!(struct_size(&module, "RayTrace"), size_of::<RayTraceRaw>());
     assert_eq!(struct_size(&module, "BvhPair"), size_of::<BvhPairRaw>());
+    assert_eq!(struct_size(&module, "BvhGrid"), size_of::<BvhGridRaw>());
     assert_eq!(struct_size(&module, "BvhTriangle"), size_of::<BvhTriangleRaw>());
 }
 
@@ -41,24 +42,29 @@ fn ray_tracer_structs_match_their_wgsl_size() {
 const KERNEL: &str = "
 @group(0) @binding(0) var<storage, read> rays: array<vec4<f32>>;
 @group(0) @binding(1) var<storage, read_write> answers: array<vec2<u32>>;
-@group(0) @binding(2) var<uniform> counts: vec4<u32>;
+// Rays, pairs, triangles; the grid.
+struct Counts {
+    n: vec4<u32>,
+    grid: BvhGrid,
+}
+@group(0) @binding(2) var<uniform> counts: Counts;
 
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
-    if i >= counts.x {
+    if i >= counts.n.x {
         return;
     }
     let o = rays[2u * i].xyz;
     let t_max = rays[2u * i].w;
     let d = rays[2u * i + 1u].xyz;
     var brute = 0u;
-    for (var t = 0u; t < counts.z; t++) {
+    for (var t = 0u; t < counts.n.z; t++) {
         if bvh_hits_triangle(bvh_triangles[t], o, d, t_max) {
             brute = 1u;
         }
     }
-    answers[i] = vec2<u32>(select(0u, 1u, bvh_occluded(o, d, t_max, counts.y)), brute);
+    answers[i] = vec2<u32>(select(0u, 1u, bvh_occluded(o, d, t_max, counts.n.y, counts.grid)), brute);
 }
 ";
 
@@ -101,13 +107,10 @@ fn trace(gpu: &GpuContext, flat: &FlatBvh, rays: &[[f32; 4]]) -> Vec<[u32; 2]> {
         usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         mapped_at_creation: false,
     });
-    let counts = [n as u32, bvh.pair_count, bvh.triangle_count, 0];
-    let counts = storage(
-        gpu,
-        "counts",
-        bytemuck::cast_slice(&counts),
-        wgpu::BufferUsages::UNIFORM,
-    );
+    let mut counts: Vec<u8> =
+        bytemuck::cast_slice(&[n as u32, bvh.pair_count, bvh.triangle_count, 0]).to_vec();
+    counts.extend_from_slice(bytemuck::bytes_of(&bvh.grid));
+    let counts = storage(gpu, "counts", &counts, wgpu::BufferUsages::UNIFORM);
     let readback = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback"),
         size,

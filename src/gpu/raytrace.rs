@@ -7,7 +7,7 @@
 //! starts the mean anew.
 
 use super::binding;
-use super::bvh::GpuBvh;
+use super::bvh::{BvhGridRaw, GpuBvh};
 use super::shared::SharedScene;
 use crate::settings::{Settings, Visibility};
 use bytemuck::{Pod, Zeroable};
@@ -24,6 +24,7 @@ pub struct RayTraceRaw {
     pub pair_count: u32,
     pub frame_seed: u32,
     pub _padding: [u32; 2],
+    pub grid: BvhGridRaw,
 }
 
 /// Where the accumulation stands after a frame.
@@ -203,6 +204,7 @@ impl RayTracePass {
             pair_count: bvh.pair_count,
             frame_seed: self.frame_seed,
             _padding: [0; 2],
+            grid: bvh.grid,
         };
         queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&raw));
         let accumulating = traced && sphere && frames_before > 0;
