@@ -163,14 +163,10 @@ struct Shadow {
 struct Material {
     // Linear RGBA base colour factor.
     base_color: vec4<f32>,
-    own_k: f32,
-    own_m: f32,
-    has_own_k: u32,
-    has_own_m: u32,
-    // Base-colour texture layer + 1 (0 = none).
-    texture_layer_plus_one: u32,
-    // Both faces are shaded (0/1).
-    double_sided: u32,
+    // Own k and m (f32 bits), the base-colour texture layer + 1 (0 = none),
+    // flags (MATERIAL_*, generated from gpu::uniforms): one vec4, one load
+    // (gpu::uniforms::MaterialWordsRaw).
+    words: vec4<u32>,
     // The base colour under the other colour model (the `delta-e` view).
     other_model_color: vec4<f32>,
     // N(own_m) under each normalization, indexed by NORM_*.

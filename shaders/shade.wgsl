@@ -117,17 +117,17 @@ fn vs(in: VsIn) -> VsOut {
     // on the uniform for every pixel (0.6 M instructions a frame, 8 %).
     let overridden = globals.use_color_override != 0u;
     out.colour = select(in.colour, vec3<f32>(1.0), overridden);
-    out.texture_layer_plus_one = select(mat.texture_layer_plus_one, 0u, overridden);
+    out.texture_layer_plus_one = select(mat.words.z, 0u, overridden);
     out.base_color = select(mat.base_color.rgb, globals.color_override, overridden);
     out.other_model_color = select(mat.other_model_color.rgb, globals.other_color_override, overridden);
     // Selects, not an `if` on the uniform: see Knobs in shadow_map.wgsl.
     let scene = globals.use_scene_materials != 0u;
-    let own_k = scene & (mat.has_own_k != 0u);
-    let own_m = scene & (mat.has_own_m != 0u);
-    let k = select(globals.k, mat.own_k, own_k);
-    let m = select(globals.m, mat.own_m, own_m);
+    let own_k = scene & ((mat.words.w & MATERIAL_OWN_K) != 0u);
+    let own_m = scene & ((mat.words.w & MATERIAL_OWN_M) != 0u);
+    let k = select(globals.k, bitcast<f32>(mat.words.x), own_k);
+    let m = select(globals.m, bitcast<f32>(mat.words.y), own_m);
     let norm_factor = select(globals.norm_factor, mat.own_norm_factors[globals.normalization], own_m);
-    out.brdf = vec4<f32>(k, m, norm_factor, f32(mat.double_sided));
+    out.brdf = vec4<f32>(k, m, norm_factor, select(0.0, 1.0, (mat.words.w & MATERIAL_DOUBLE_SIDED) != 0u));
     out.knob_filter = vec4<u32>(shadow.pcf_size, shadow.range_block, shadow.pcss_blocker_samples, shadow.poisson_samples);
     out.knob_rays = vec4<u32>(rt.strata_x, rt.strata_y, rt.pair_count, globals.delta_e_defined);
     out.knob_radius_m = globals.light_radius_m;

@@ -113,6 +113,49 @@ fn unshadowed_pixels_equal_the_f64_physics() {
     eprintln!("largest relative difference GPU vs f64: {worst:.2e}");
 }
 
+/// Seen from below (the light below too), a double-sided plane shades as
+/// its top does in the mirrored view, and a one-sided one reflects nothing
+/// (the material's flags as the vertex stage reads them).
+#[test]
+fn only_a_double_sided_plane_reflects_from_below() {
+    let gpu = gpu();
+    let mut s = settings(96, 64);
+    s.shadow.enabled = false;
+    s.material.use_scene_materials = true;
+    (s.light.position, s.camera.eye) = (Vec3::new(0.0, -1.0, 0.0), Vec3::new(0.0, -2.0, 3.0));
+    s.camera.target = Vec3::ZERO;
+    let mut mirrored = s.clone();
+    mirrored.light.position.y = 1.0;
+    mirrored.camera.eye.y = 2.0;
+    for double_sided in [false, true] {
+        let mut scene = fine_plane_scene(40.0);
+        scene.materials[0].double_sided = double_sided;
+        let (_, quantity, _) = render(&gpu, &scene, &s);
+        let mut checked = 0;
+        for (idx, q) in quantity.iter().enumerate() {
+            let (x, y) = (
+                (idx as u32 % s.image.width) as f64 + 0.5,
+                (idx as u32 / s.image.width) as f64 + 0.5,
+            );
+            let Some(p) = plane_hit_at(&s, x, y) else { continue };
+            let got = q[0] as f64;
+            if !double_sided {
+                assert_eq!(got, 0.0, "one-sided, pixel {idx}: {got}");
+            } else {
+                let (low, high) = subpixel_range(x, y, |x, y| {
+                    plane_hit_at(&s, x, y).map_or(0.0, |p| expected_radiance(&mirrored, p))
+                });
+                assert!(
+                    got >= low * (1.0 - 1e-3) && got <= high * (1.0 + 1e-3) && got > 0.0,
+                    "double-sided, pixel {idx} at {p}: GPU {got} vs f64 {low} … {high}"
+                );
+            }
+            checked += 1;
+        }
+        assert!(checked > 3000, "only {checked} pixels compared");
+    }
+}
+
 fn occluder_settings() -> Settings {
     let mut s = settings(160, 120);
     s.light.position = Vec3::new(0.0, 4.0, 0.0);

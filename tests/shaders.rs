@@ -3,7 +3,7 @@
 //! settings' enums, and the numeric constants WGSL shares with Rust are the
 //! Rust ones.
 
-use lumlab::gpu::shaders::{Shader, luminance_weights, shared_f32_constants};
+use lumlab::gpu::shaders::{Shader, luminance_weights, shared_f32_constants, shared_u32_constants};
 use lumlab::gpu::uniforms::{
     BlurParamsRaw, DisplayParamsRaw, GlobalsRaw, MaterialRaw, ShadowLayerRaw, ShadowRaw,
 };
@@ -116,8 +116,7 @@ fn uniform_fields_match_their_wgsl_offsets() {
     assert_members(
         &shade,
         "Material",
-        &fields!(MaterialRaw: base_color, own_k, own_m, has_own_k, has_own_m, texture_layer_plus_one,
-            double_sided, other_model_color, own_norm_factors),
+        &fields!(MaterialRaw: base_color, words, other_model_color, own_norm_factors),
     );
     assert_members(
         &shade,
@@ -151,6 +150,19 @@ fn constant_value(module: &naga::Module, name: &str) -> Vec<f32> {
     }
 }
 
+/// The value of a module-scope u32 `const`, as naga reads it.
+fn constant_u32(module: &naga::Module, name: &str) -> u32 {
+    let (_, constant) = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("no const {name}"));
+    match &module.global_expressions[constant.init] {
+        naga::Expression::Literal(naga::Literal::U32(v)) => *v,
+        other => panic!("{name}: not a u32 literal: {other:?}"),
+    }
+}
+
 #[test]
 fn constants_shared_with_rust_are_defined_once_from_the_rust_values() {
     for shader in Shader::ALL {
@@ -162,6 +174,9 @@ fn constants_shared_with_rust_are_defined_once_from_the_rust_values() {
                 "{}: {name}",
                 shader.name()
             );
+        }
+        for (name, value) in shared_u32_constants() {
+            assert_eq!(constant_u32(&module, name), value, "{}: {name}", shader.name());
         }
         assert_eq!(
             constant_value(&module, "LUMINANCE_WEIGHTS"),
@@ -206,7 +221,8 @@ fn constants_shared_with_rust_are_defined_once_from_the_rust_values() {
         include_str!("../shaders/lines.wgsl"),
         include_str!("../shaders/stability.wgsl"),
     ];
-    for name in named.keys().copied().chain(["LUMINANCE_WEIGHTS"]) {
+    let flags = shared_u32_constants().map(|(name, _)| name);
+    for name in named.keys().copied().chain(flags).chain(["LUMINANCE_WEIGHTS"]) {
         let declaration = format!("const {name}:");
         assert!(
             files.iter().all(|f| !f.contains(&declaration)),

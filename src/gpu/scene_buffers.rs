@@ -6,7 +6,7 @@
 
 use super::bvh::{FlatBvh, GpuBvh};
 use super::specialise::SceneAttributes;
-use super::uniforms::MaterialRaw;
+use super::uniforms::{MATERIAL_DOUBLE_SIDED, MATERIAL_OWN_K, MATERIAL_OWN_M, MaterialRaw, MaterialWordsRaw};
 use crate::physics::brdf::Normalization;
 use crate::scene::simplify::SimplifiedMeshes;
 use crate::scene::{Aabb, Material, Scene};
@@ -196,20 +196,26 @@ impl GpuScene {
             .chain([&default_material])
             .map(|m| MaterialRaw {
                 base_color: m.base_color.to_array(),
-                own_k: m.k.unwrap_or(0.0),
-                own_m: m.m.unwrap_or(0.0),
-                has_own_k: m.k.is_some() as u32,
-                has_own_m: m.m.is_some() as u32,
-                texture_layer_plus_one: m
-                    .base_color_texture
-                    .and_then(|t| layer_of.get(t).copied())
-                    .map_or(0, |l| l + 1),
-                double_sided: m.double_sided as u32,
+                words: MaterialWordsRaw {
+                    own_k: m.k.unwrap_or(0.0),
+                    own_m: m.m.unwrap_or(0.0),
+                    texture_layer_plus_one: m
+                        .base_color_texture
+                        .and_then(|t| layer_of.get(t).copied())
+                        .map_or(0, |l| l + 1),
+                    flags: [
+                        (m.k.is_some(), MATERIAL_OWN_K),
+                        (m.m.is_some(), MATERIAL_OWN_M),
+                        (m.double_sided, MATERIAL_DOUBLE_SIDED),
+                    ]
+                    .into_iter()
+                    .filter_map(|(set, flag)| set.then_some(flag))
+                    .fold(0, |flags, flag| flags | flag),
+                },
                 other_model_color: m.base_color.to_array(),
                 own_norm_factors: std::array::from_fn(|n| {
                     Normalization::ALL[n].factor(f64::from(m.m.unwrap_or(0.0))) as f32
                 }),
-                ..Default::default()
             })
             .collect();
         let material_colours = scene
@@ -221,7 +227,7 @@ impl GpuScene {
         Self {
             attributes: SceneAttributes {
                 vertex_colours: scene.objects.iter().any(|o| !o.mesh.colours.is_empty()),
-                textures: materials.iter().any(|m| m.texture_layer_plus_one > 0),
+                textures: materials.iter().any(|m| m.words.texture_layer_plus_one > 0),
             },
             vertices: buffer(
                 "scene vertices",

@@ -132,22 +132,35 @@ pub struct ShadowRaw {
 pub struct MaterialRaw {
     /// Linear RGBA base colour factor.
     pub base_color: [f32; 4],
-    /// The material's own k and m, where `has_own_k` / `has_own_m`.
-    pub own_k: f32,
-    pub own_m: f32,
-    pub has_own_k: u32,
-    pub has_own_m: u32,
-    /// Base-colour texture layer + 1; 0 is none.
-    pub texture_layer_plus_one: u32,
-    /// Both faces are shaded (0/1).
-    pub double_sided: u32,
-    pub _padding: [u32; 2],
+    pub words: MaterialWordsRaw,
     /// The base colour under the other colour model (the `delta-e` view).
     pub other_model_color: [f32; 4],
     /// N(own_m) under each normalization, in `Normalization::ALL`'s order
     /// (`NORM_*`), where `has_own_m`: a change of normalization needs no upload.
     pub own_norm_factors: [f32; 4],
 }
+
+/// [`MaterialRaw::words`]: what `Material.words` (a `vec4<u32>`) holds,
+/// one load for the vertex stage where six scalars took six (lavapipe
+/// reads a storage buffer lane by lane, one pass over the lanes a load).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
+pub struct MaterialWordsRaw {
+    /// The material's own k and m, where its flags say so.
+    pub own_k: f32,
+    pub own_m: f32,
+    /// Base-colour texture layer + 1; 0 is none.
+    pub texture_layer_plus_one: u32,
+    /// [`MATERIAL_OWN_K`], [`MATERIAL_OWN_M`], [`MATERIAL_DOUBLE_SIDED`].
+    pub flags: u32,
+}
+
+/// Flags of [`MaterialWordsRaw::flags`] (the shaders' `MATERIAL_*`, from
+/// these: `shaders::shared_u32_constants`):
+/// the material has its own k, its own m, both faces shaded.
+pub const MATERIAL_OWN_K: u32 = 1;
+pub const MATERIAL_OWN_M: u32 = 2;
+pub const MATERIAL_DOUBLE_SIDED: u32 = 4;
 
 /// `DisplayParams`: how the display pass shows the view.
 #[repr(C)]
