@@ -160,9 +160,13 @@ impl FlatBvh {
         if usable.is_empty() {
             return Self::default();
         }
+        // obvhs's medium build (a wider PLOC search, more reinsertion): on
+        // lavapipe the ray-traced pass ran 7.9 % (default scene) and 3.1 %
+        // (engine model) fewer instructions than with its fast build, for
+        // some 25 ms more at the engine's load and 0.3 s at 1 M triangles.
         let params = BvhBuildParams {
             max_prims_per_leaf: MAX_TRIANGLES_PER_LEAF,
-            ..BvhBuildParams::fast_build()
+            ..BvhBuildParams::medium_build()
         };
         let bvh = obvhs::bvh2::builder::build_bvh2(&usable, params, &mut std::time::Duration::default());
         let (mut lo, mut hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
