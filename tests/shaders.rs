@@ -130,18 +130,23 @@ fn uniform_fields_match_their_wgsl_offsets() {
     );
 }
 
-/// The value of a module-scope `const` of the composed source, as naga reads it.
-fn constant_value(module: &naga::Module, name: &str) -> Vec<f32> {
+/// The expression a module-scope `const` of the composed source holds.
+fn constant_init<'a>(module: &'a naga::Module, name: &str) -> &'a naga::Expression {
     let (_, constant) = module
         .constants
         .iter()
         .find(|(_, c)| c.name.as_deref() == Some(name))
         .unwrap_or_else(|| panic!("no const {name}"));
+    &module.global_expressions[constant.init]
+}
+
+/// The value of a module-scope `const` of the composed source, as naga reads it.
+fn constant_value(module: &naga::Module, name: &str) -> Vec<f32> {
     let scalar = |e: &naga::Expression| match e {
         naga::Expression::Literal(naga::Literal::F32(v)) => *v,
         other => panic!("{name}: not an f32 literal: {other:?}"),
     };
-    match &module.global_expressions[constant.init] {
+    match constant_init(module, name) {
         naga::Expression::Compose { components, .. } => components
             .iter()
             .map(|&c| scalar(&module.global_expressions[c]))
@@ -152,12 +157,7 @@ fn constant_value(module: &naga::Module, name: &str) -> Vec<f32> {
 
 /// The value of a module-scope u32 `const`, as naga reads it.
 fn constant_u32(module: &naga::Module, name: &str) -> u32 {
-    let (_, constant) = module
-        .constants
-        .iter()
-        .find(|(_, c)| c.name.as_deref() == Some(name))
-        .unwrap_or_else(|| panic!("no const {name}"));
-    match &module.global_expressions[constant.init] {
+    match constant_init(module, name) {
         naga::Expression::Literal(naga::Literal::U32(v)) => *v,
         other => panic!("{name}: not a u32 literal: {other:?}"),
     }
