@@ -33,12 +33,13 @@ struct BvhTriangle {
 @group(2) @binding(2) var<storage, read> bvh_triangles: array<BvhTriangle>;
 
 // Nodes waiting to be visited. A ray keeps one for each node on its path
-// where it met both children: at most 18 for 200 k shadow rays of the
-// engine model and 13 of the 1 M-triangle scene (trees 31–35 deep).
-// lavapipe indexes this array lane by lane through a chain over all its
-// entries, on every push and pop: 64 → 32 entries ran 8 % fewer
-// instructions. A deeper (degenerate) tree does not lose nodes: a ray whose
-// stack overflows and finds no hit in the nodes it kept tests every triangle.
+// where it met both children: at most 17 for 200 k shadow rays of the
+// engine model and 12 of the 1 M-triangle scene (trees 30 and 34 deep).
+// lavapipe keeps the array in scratch memory and writes naga's zero
+// initializer into it lane by lane at every call, so its cost grows with
+// its size: 64 → 32 entries ran 8 % fewer instructions. A deeper
+// (degenerate) tree does not lose nodes: a ray whose stack overflows and
+// finds no hit in the nodes it kept tests every triangle.
 const BVH_STACK_SIZE: u32 = 32u;
 // A child's `first` that names a leaf, and its fields.
 const BVH_LEAF: u32 = 0x80000000u;
