@@ -201,11 +201,11 @@ impl FlatBvh {
         Self { nodes, triangles }
     }
 
-    /// The uploaded layout: an entry per inner node,
-    /// in node order (the root's first), each with its children's boxes on
-    /// the grid and their links, an inner child's `first` the index of its
-    /// entry. A root that is a leaf gets one entry whose children are both
-    /// that leaf. Empty when `nodes` is.
+    /// The uploaded layout: an entry per inner node, in node order (the
+    /// root's first), each with its children's boxes on the grid and their
+    /// links, an inner child's `first` the index of its entry. A root that
+    /// is a leaf gets one entry whose children are both that leaf. Empty
+    /// when `nodes` is.
     pub fn pairs(&self) -> Vec<BvhPairRaw> {
         let Some(&root) = self.nodes.first() else {
             return Vec::new();
@@ -222,21 +222,23 @@ impl FlatBvh {
         for (k, &i) in inner.iter().enumerate() {
             entry[i] = k as u32;
         }
-        let pairs = inner.iter().map(|&i| {
-            let first = self.nodes[i].first as usize;
-            BvhPairRaw {
-                children: [first, first + 1].map(|c| {
-                    let child = self.nodes[c];
-                    let link = if child.count > 0 {
-                        leaf_link(child)
-                    } else {
-                        entry[c]
-                    };
-                    grid.child(&child, link)
-                }),
-            }
-        });
-        pairs.collect()
+        inner
+            .iter()
+            .map(|&i| {
+                let first = self.nodes[i].first as usize;
+                BvhPairRaw {
+                    children: [first, first + 1].map(|c| {
+                        let child = self.nodes[c];
+                        let link = if child.count > 0 {
+                            leaf_link(child)
+                        } else {
+                            entry[c]
+                        };
+                        grid.child(&child, link)
+                    }),
+                }
+            })
+            .collect()
     }
 
     /// The grid the boxes of [`Self::pairs`] lie on (zero when `nodes` is
@@ -329,9 +331,8 @@ pub struct GpuBvh {
     /// [`FlatBvh::pairs`].
     pub pairs: wgpu::Buffer,
     pub triangles: wgpu::Buffer,
-    /// Pairs in use: 0 when nothing casts
-    /// shadows (the buffers then hold one unused element each: bindings
-    /// cannot be empty).
+    /// Pairs in use: 0 when nothing casts shadows (the buffers then hold one
+    /// unused element each: bindings cannot be empty).
     pub pair_count: u32,
     pub triangle_count: u32,
     /// [`FlatBvh::grid`].
