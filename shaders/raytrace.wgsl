@@ -110,24 +110,24 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
     var state = rt_hash(u32(pixel.x) ^ rt_hash(u32(pixel.y) ^ rt_hash(rt.frame_seed)));
     var cos_sum = 0.0;
     var visible_cos_sum = 0.0;
-    for (var iy = 0u; iy < knobs.rays.y; iy++) {
-        for (var ix = 0u; ix < knobs.rays.x; ix++) {
-            // Equal strata of (u, v) are equal solid angles of the cone.
-            let u = (f32(ix) + rt_random(&state)) / f32(knobs.rays.x);
-            let v = (f32(iy) + rt_random(&state)) / f32(knobs.rays.y);
-            let gap = u * gap_max;
-            let cos_theta = 1.0 - gap;
-            let sin2_theta = max(gap * (2.0 - gap), 0.0);
-            let phi = 2.0 * PI * v;
-            let l = w * cos_theta + (t1 * cos(phi) + t2 * sin(phi)) * sqrt(sin2_theta);
-            let c = max(dot(n, l), 0.0);
-            cos_sum += c;
-            if c > 0.0 {
-                // The near intersection with the sphere along l.
-                let t = dist * cos_theta - sqrt(max(radius * radius - d2 * sin2_theta, 0.0));
-                if !rt_blocked(origin, rel + l * t - origin) {
-                    visible_cos_sum += c;
-                }
+    // The strata row by row in one loop: each loop level costs lavapipe its
+    // own set-up and exit tests.
+    for (var at = vec2<u32>(0u); at.y < knobs.rays.y; at = select(at + vec2<u32>(1u, 0u), vec2<u32>(0u, at.y + 1u), at.x + 1u >= knobs.rays.x)) {
+        // Equal strata of (u, v) are equal solid angles of the cone.
+        let u = (f32(at.x) + rt_random(&state)) / f32(knobs.rays.x);
+        let v = (f32(at.y) + rt_random(&state)) / f32(knobs.rays.y);
+        let gap = u * gap_max;
+        let cos_theta = 1.0 - gap;
+        let sin2_theta = max(gap * (2.0 - gap), 0.0);
+        let phi = 2.0 * PI * v;
+        let l = w * cos_theta + (t1 * cos(phi) + t2 * sin(phi)) * sqrt(sin2_theta);
+        let c = max(dot(n, l), 0.0);
+        cos_sum += c;
+        if c > 0.0 {
+            // The near intersection with the sphere along l.
+            let t = dist * cos_theta - sqrt(max(radius * radius - d2 * sin2_theta, 0.0));
+            if !rt_blocked(origin, rel + l * t - origin) {
+                visible_cos_sum += c;
             }
         }
     }
