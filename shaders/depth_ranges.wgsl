@@ -63,17 +63,18 @@ fn fs_blocks(in: FullscreenBound) -> @location(0) vec4<f32> {
     var low = 3.0e38;
     var above = -3.0e38;
     var below = 3.0e38;
-    for (var j = 0; j < b; j += 2) {
-        for (var i = 0; i < b; i += 2) {
-            let d = textureGather(0, source, nearest_clamped, corner(first + vec2<i32>(i, j)), params.layer);
-            // The plane at texels (i, j + 1), (i + 1, j + 1), (i + 1, j), (i, j).
-            let at = plane_at(c, g, vec2<f32>(f32(i), f32(j)));
-            let residual = d - (at + vec4<f32>(g.y, g.x + g.y, g.x, 0.0));
-            high = max(high, largest(d));
-            low = min(low, smallest(d));
-            above = max(above, largest(residual));
-            below = min(below, smallest(residual));
-        }
+    // The block's texels 2×2 a gather, k along its rows: one loop, not a
+    // loop of rows around a loop of columns (each level costs a software
+    // rasterizer its own set-up and exit tests).
+    for (var k = vec2<i32>(0); k.y < b; k = select(k + vec2<i32>(2, 0), vec2<i32>(0, k.y + 2), k.x + 2 >= b)) {
+        let d = textureGather(0, source, nearest_clamped, corner(first + k), params.layer);
+        // The plane at texels k + (0, 1), (1, 1), (1, 0), (0, 0).
+        let at = plane_at(c, g, vec2<f32>(k));
+        let residual = d - (at + vec4<f32>(g.y, g.x + g.y, g.x, 0.0));
+        high = max(high, largest(d));
+        low = min(low, smallest(d));
+        above = max(above, largest(residual));
+        below = min(below, smallest(residual));
     }
     var bound = vec4<f32>(0.5 * (high + low), 0.0, 0.0, 0.5 * (high - low));
     if above - below < high - low {
