@@ -189,13 +189,13 @@ fn plane_depth(r: Receiver, texel: vec2<i32>) -> f32 {
 
 // The tangent plane's depth along a light ray: numerator dot(n_v, v),
 // denominator dot(n_v, dir) for the ray's direction dir = (t, −1), the
-// answer kept within `reach` of the receiver's depth (and the receiver's
-// depth where the plane does not face the ray).
+// answer no nearer than `reach` before the receiver's depth (and the
+// receiver's depth where the plane does not face the ray). Its only use,
+// auto_compared_depth, takes min(·, r.z): a clamp's upper end at
+// r.z + reach would change nothing, and costs a software rasterizer an
+// operation a texel. A select, not an early return: lavapipe runs both.
 fn plane_along(r: Receiver, numerator: f32, denom: f32, reach: f32) -> f32 {
-    if denom > -1e-6 {
-        return r.z;
-    }
-    return clamp(numerator / denom, r.z - reach, r.z + reach);
+    return select(max(numerator / denom, r.z - reach), r.z, denom > -1e-6);
 }
 
 // The automatic bias's slack for float rounding and curvature (m).
