@@ -119,7 +119,13 @@ fn vs(in: VsIn) -> VsOut {
     out.colour = select(in.colour, vec3<f32>(1.0), overridden);
     out.texture_layer_plus_one = select(mat.words.z, 0u, overridden);
     out.base_color = select(mat.base_color.rgb, globals.color_override, overridden);
-    out.other_model_color = select(mat.other_model_color.rgb, globals.other_color_override, overridden);
+    // The other colour model's colour feeds the delta-e view alone: a
+    // pipeline specialised to another view loads none. Lavapipe loads a
+    // per-vertex material's field lane by lane, and computes outputs the
+    // fragment stage never reads (the engine's vertex stage −16 %).
+    // A select, not an `if` on uniforms (tests/uniform_branches.rs).
+    let other = (view_mode() == VIEW_DELTA_E) & !overridden;
+    out.other_model_color = select(globals.other_color_override, mat.other_model_color.rgb, other);
     // Selects, not an `if` on the uniform: see Knobs in shadow_map.wgsl.
     let scene = globals.use_scene_materials != 0u;
     let own_k = scene & ((mat.words.w & MATERIAL_OWN_K) != 0u);

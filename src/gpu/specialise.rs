@@ -248,10 +248,12 @@ impl Specialisation {
         device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(&format!("camera pass {self:?}")),
             layout: Some(layout),
+            // Both stages specialised: the vertex stage reads a material's
+            // other-colour field only for the delta-e view.
             vertex: wgpu::VertexState {
                 module,
                 entry_point: Some("vs"),
-                compilation_options: Default::default(),
+                compilation_options: compilation_options.clone(),
                 buffers: &[Some(Vertex::layout())],
             },
             fragment: Some(wgpu::FragmentState {
