@@ -71,15 +71,13 @@ struct Globals {
     m: f32,
     // VIEW_*.
     view: u32,
-    // NORM_*.
-    normalization: u32,
     // VISIBILITY_*: where V comes from.
     visibility: u32,
     // Materials' own k and m are used where they give them (0/1).
     use_scene_materials: u32,
     // 0/1.
     use_color_override: u32,
-    // N(m) for m under `normalization` (computed on the CPU).
+    // N(m) for m under the settings' normalization (computed on the CPU).
     norm_factor: f32,
     // Where the shadow map is drawn from, relative to the eye (m): the light,
     // or its stand-in on the same line for a far light.
@@ -161,7 +159,8 @@ struct Shadow {
 
 // A material (gpu::uniforms::MaterialRaw).
 struct Material {
-    // Linear RGBA base colour factor.
+    // Linear RGB base colour factor; w: N(own m) under the frame's
+    // normalization (gpu::scene_buffers::GpuScene::write_norm_factors).
     base_color: vec4<f32>,
     // Own k and m (f32 bits), the base-colour texture layer + 1 (0 = none),
     // flags (MATERIAL_*, generated from gpu::uniforms): one vec4, one load
@@ -169,8 +168,6 @@ struct Material {
     words: vec4<u32>,
     // The base colour under the other colour model (the `delta-e` view).
     other_model_color: vec4<f32>,
-    // N(own_m) under each normalization, indexed by NORM_*.
-    own_norm_factors: vec4<f32>,
 }
 
 // How a view is displayed (gpu::uniforms::DisplayParamsRaw).

@@ -97,7 +97,7 @@ fn uniform_fields_match_their_wgsl_offsets() {
         &shade,
         "Globals",
         &fields!(GlobalsRaw: view_proj, light_rel, light_radius_m, eye, light_power_w, light_color, k,
-            color_override, m, view, normalization, visibility, use_scene_materials, use_color_override, norm_factor, shadow_apex_rel,
+            color_override, m, view, visibility, use_scene_materials, use_color_override, norm_factor, shadow_apex_rel,
             exposure_ev, other_light_color, delta_e_defined, other_color_override, lab_white_relative),
     );
     assert_members(
@@ -116,7 +116,7 @@ fn uniform_fields_match_their_wgsl_offsets() {
     assert_members(
         &shade,
         "Material",
-        &fields!(MaterialRaw: base_color, words, other_model_color, own_norm_factors),
+        &fields!(MaterialRaw: base_color, words, other_model_color),
     );
     assert_members(
         &shade,

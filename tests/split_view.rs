@@ -120,6 +120,40 @@ fn a_normalization_split_draws_the_shadow_map_once_per_change() {
     );
 }
 
+/// The materials' own N(m) are in the materials buffer, which the halves
+/// share: each half writes its normalization's before it draws.
+#[test]
+fn each_half_shades_the_materials_own_m_under_its_own_normalization() {
+    let gpu = gpu();
+    let mut scene = occluder_scene(20.0, aabb(OCCLUDER.0, OCCLUDER.1));
+    for material in &mut scene.materials {
+        material.m = Some(32.0);
+    }
+    let (mut a_settings, mut b_settings) = split_settings();
+    for s in [&mut a_settings, &mut b_settings] {
+        s.material.m = 5.0;
+        s.material.use_scene_materials = true;
+    }
+    let mut a = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    let mut b = a.sharing();
+    for round in 0..2 {
+        let (a_frame, _) = frame(&mut a, &a_settings);
+        let (b_frame, _) = frame(&mut b, &b_settings);
+        assert!(
+            a_frame == single(&gpu, &scene, &a_settings),
+            "round {round}: half A"
+        );
+        assert!(
+            b_frame == single(&gpu, &scene, &b_settings),
+            "round {round}: half B"
+        );
+        assert!(
+            a_frame[0] != b_frame[0],
+            "round {round}: N(own m) changes the image"
+        );
+    }
+}
+
 #[test]
 fn visibility_is_a_setting_of_its_own_and_defaults_to_the_shadow_map() {
     assert_eq!(Visibility::ALL, &[Visibility::ShadowMap, Visibility::RayTraced]);

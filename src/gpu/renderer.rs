@@ -18,7 +18,6 @@ use super::specialise::{ShadeOptions, Specialisation};
 use super::targets::FrameTargets;
 use super::timing::{GpuTimer, Pass, PassTimes};
 use super::uniforms::{DisplayParamsRaw, GlobalsRaw, ShadowRaw, mat, uniform_buffer};
-use crate::physics::Normalization;
 use crate::scene::{Aabb, Camera, Scene};
 use crate::settings::{DebugView, Settings, Visibility};
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
@@ -276,6 +275,7 @@ impl Renderer {
         let colours = self
             .colours
             .apply(settings, &mut shared.scene, generation, &self.queue);
+        shared.scene.write_norm_factors(&self.queue, m.norm);
         let globals = GlobalsRaw {
             view_proj: mat(view_proj),
             light_rel: (light - eye).as_vec3().to_array(),
@@ -293,7 +293,6 @@ impl Renderer {
                 .to_array(),
             m: m.m,
             view: code(DebugView::ALL, &settings.view.mode),
-            normalization: code(Normalization::ALL, &m.norm),
             norm_factor: m.norm.factor(f64::from(m.m)) as f32,
             visibility: code(Visibility::ALL, &settings.shadow.visibility),
             use_scene_materials: m.use_scene_materials as u32,

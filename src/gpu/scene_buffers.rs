@@ -127,6 +127,10 @@ pub struct GpuScene {
     pub material_colours: Vec<(String, glam::DVec3)>,
     /// The colours last written, for the colour settings of this key.
     colours_written: Option<ColourKey>,
+    /// Each material's own m (0 where it has none), and the normalization
+    /// whose N(own m) the materials buffer holds (see [`Self::write_norm_factors`]).
+    own_m: Vec<f64>,
+    norm_written: Option<Normalization>,
     pub textures: wgpu::Texture,
     pub texture_view: wgpu::TextureView,
     pub triangle_count: usize,
@@ -213,10 +217,13 @@ impl GpuScene {
                     .fold(0, |flags, flag| flags | flag),
                 },
                 other_model_color: m.base_color.to_array(),
-                own_norm_factors: std::array::from_fn(|n| {
-                    Normalization::ALL[n].factor(f64::from(m.m.unwrap_or(0.0))) as f32
-                }),
             })
+            .collect();
+        let own_m = scene
+            .materials
+            .iter()
+            .chain([&default_material])
+            .map(|m| f64::from(m.m.unwrap_or(0.0)))
             .collect();
         let material_colours = scene
             .materials
@@ -254,6 +261,8 @@ impl GpuScene {
                 wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             ),
             materials_raw: materials,
+            own_m,
+            norm_written: None,
             material_colours,
             colours_written: None,
             texture_view: textures.create_view(&wgpu::TextureViewDescriptor {
@@ -367,12 +376,29 @@ impl GpuScene {
             return;
         }
         for ((raw, c), o) in self.materials_raw.iter_mut().zip(colours).zip(other) {
-            let alpha = raw.base_color[3];
-            raw.base_color = c.as_vec3().extend(alpha).to_array();
-            raw.other_model_color = o.as_vec3().extend(alpha).to_array();
+            let norm = raw.base_color[3];
+            raw.base_color = c.as_vec3().extend(norm).to_array();
+            raw.other_model_color = o.as_vec3().extend(raw.other_model_color[3]).to_array();
         }
         queue.write_buffer(&self.materials, 0, bytemuck::cast_slice(&self.materials_raw));
         self.colours_written = Some(key);
+    }
+
+    /// Makes the materials buffer hold each material's N(own m) under
+    /// `norm` (in its base colour's w), unless it already does; views of
+    /// other normalizations write theirs before they submit, as for
+    /// [`Self::write_colours`]. One value a material, not one per
+    /// normalization indexed in the shader: lavapipe loads a per-vertex
+    /// material's field lane by lane, one pass over the lanes a load.
+    pub fn write_norm_factors(&mut self, queue: &wgpu::Queue, norm: Normalization) {
+        if self.norm_written == Some(norm) {
+            return;
+        }
+        for (raw, &m) in self.materials_raw.iter_mut().zip(&self.own_m) {
+            raw.base_color[3] = norm.factor(m) as f32;
+        }
+        queue.write_buffer(&self.materials, 0, bytemuck::cast_slice(&self.materials_raw));
+        self.norm_written = Some(norm);
     }
 
     /// Bounds of every object.

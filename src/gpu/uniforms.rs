@@ -29,18 +29,17 @@ pub struct GlobalsRaw {
     pub m: f32,
     /// settings::DebugView code (`VIEW_*`).
     pub view: u32,
-    /// physics::Normalization code (`NORM_*`).
-    pub normalization: u32,
     /// settings::Visibility code (`VISIBILITY_*`): where V comes from.
     pub visibility: u32,
     /// Materials' own k and m are used where they give them (0/1).
     pub use_scene_materials: u32,
     /// `color_override` replaces the materials' colour (0/1).
     pub use_color_override: u32,
-    /// N(m) of `m` under `normalization`, computed here in f64: the camera
-    /// pass reads it instead of evaluating the normalization per pixel.
+    /// N(m) of `m` under the settings' normalization, computed here in f64:
+    /// the camera pass reads it instead of evaluating the normalization per
+    /// pixel (the materials' own, N(own m), are in their buffer).
     pub norm_factor: f32,
-    pub _padding: [u32; 2],
+    pub _padding: [u32; 3],
     /// Where the shadow map is drawn from, relative to the eye (m): the
     /// light, or its stand-in for a far light (`light_frustum::shadow_apex`).
     pub shadow_apex_rel: [f32; 3],
@@ -130,14 +129,12 @@ pub struct ShadowRaw {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct MaterialRaw {
-    /// Linear RGBA base colour factor.
+    /// Linear RGB base colour factor, and in w N(own m) under the frame's
+    /// normalization (`GpuScene::write_norm_factors`).
     pub base_color: [f32; 4],
     pub words: MaterialWordsRaw,
     /// The base colour under the other colour model (the `delta-e` view).
     pub other_model_color: [f32; 4],
-    /// N(own_m) under each normalization, in `Normalization::ALL`'s order
-    /// (`NORM_*`), where `has_own_m`: a change of normalization needs no upload.
-    pub own_norm_factors: [f32; 4],
 }
 
 /// [`MaterialRaw::words`]: what `Material.words` (a `vec4<u32>`) holds,
