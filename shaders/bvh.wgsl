@@ -37,10 +37,13 @@ struct BvhTriangle {
 // engine model and 12 of the 1 M-triangle scene (trees 30 and 34 deep).
 // lavapipe keeps the array in scratch memory and writes naga's zero
 // initializer into it lane by lane at every call, so its cost grows with
-// its size: 64 → 32 entries ran 8 % fewer instructions. A deeper
+// its size: 64 → 32 entries ran 8 % fewer instructions. The caller holds
+// it, so that a pixel's several rays (a sphere light's strata) pay the
+// initializer once, not once a ray. A deeper
 // (degenerate) tree does not lose nodes: a ray whose stack overflows and
 // finds no hit in the nodes it kept tests every triangle.
 const BVH_STACK_SIZE: u32 = 32u;
+alias BvhStack = array<u32, BVH_STACK_SIZE>;
 // A child's `first` that names a leaf, and its fields.
 const BVH_LEAF: u32 = 0x80000000u;
 const BVH_COUNT_SHIFT: u32 = 28u;
@@ -92,14 +95,14 @@ fn bvh_hits_box(child: vec4<u32>, grid: BvhGrid, o: vec3<f32>, inv_d: vec3<f32>,
 // The item visited is a pair (its index), or a leaf: BVH_LEAF, its count
 // (bits 28–30) and its first triangle (bits 0–27), as a child's link (w)
 // holds them, so that a leaf's step reads no node.
-fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: BvhGrid) -> bool {
+// `stack`: scratch of the caller's (its contents on entry do not matter).
+fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: BvhGrid, stack: ptr<function, BvhStack>) -> bool {
     // A zero component becomes a tiny one: its slabs then span ±∞, never NaN.
     let safe_d = select(d, vec3<f32>(1e-30), abs(d) < vec3<f32>(1e-30));
     let inv_d = 1.0 / safe_d;
     if pair_count == 0u {
         return false;
     }
-    var stack: array<u32, BVH_STACK_SIZE>;
     var depth = 0u;
     var item = 0u;
     var overflowed = false;
@@ -116,7 +119,7 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: B
             let hit_b = bvh_hits_box(pair.b, grid, o, inv_d, t_max);
             if hit_a && hit_b {
                 if depth < BVH_STACK_SIZE {
-                    stack[depth] = pair.b.w;
+                    (*stack)[depth] = pair.b.w;
                     depth += 1u;
                 } else {
                     overflowed = true;
@@ -133,7 +136,7 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: B
                 break;
             }
             depth -= 1u;
-            item = stack[depth];
+            item = (*stack)[depth];
         }
         // The leaf's triangles; none when nothing was left. Where subtrees
         // were left out, the last step tests every triangle instead (the
@@ -155,7 +158,7 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: B
             break;
         }
         depth -= 1u;
-        item = stack[depth];
+        item = (*stack)[depth];
     }
     return false;
 }

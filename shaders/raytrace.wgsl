@@ -69,8 +69,8 @@ fn rt_random(state: ptr<function, u32>) -> f32 {
 
 // Whether the segment from `origin_rel` along d (both relative to the eye)
 // is blocked before its end.
-fn rt_blocked(origin_rel: vec3<f32>, d: vec3<f32>) -> bool {
-    return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, knobs.rays.z, rt.grid);
+fn rt_blocked(origin_rel: vec3<f32>, d: vec3<f32>, stack: ptr<function, BvhStack>) -> bool {
+    return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, knobs.rays.z, rt.grid, stack);
 }
 
 // V at the point p = eye + rel with shading normal n and facet normal n_geo
@@ -84,12 +84,14 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
     let origin = rel + n_geo * offset;
     let to_centre = globals.light_rel - rel;
     let radius = knobs.radius_m;
+    // One walk's scratch for all of the pixel's rays (bvh.wgsl).
+    var stack: BvhStack;
     if !sphere_light() {
         // Attached shadow: the light below the surface's horizon.
         if dot(n, to_centre) <= 0.0 {
             return 0.0;
         }
-        return select(1.0, 0.0, rt_blocked(origin, globals.light_rel - origin));
+        return select(1.0, 0.0, rt_blocked(origin, globals.light_rel - origin, &stack));
     }
     let d2 = dot(to_centre, to_centre);
     if d2 <= radius * radius {
@@ -126,7 +128,7 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
         if c > 0.0 {
             // The near intersection with the sphere along l.
             let t = dist * cos_theta - sqrt(max(radius * radius - d2 * sin2_theta, 0.0));
-            if !rt_blocked(origin, rel + l * t - origin) {
+            if !rt_blocked(origin, rel + l * t - origin, &stack) {
                 visible_cos_sum += c;
             }
         }

@@ -64,7 +64,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             brute = 1u;
         }
     }
-    answers[i] = vec2<u32>(select(0u, 1u, bvh_occluded(o, d, t_max, counts.n.y, counts.grid)), brute);
+    var stack: BvhStack;
+    answers[i] = vec2<u32>(select(0u, 1u, bvh_occluded(o, d, t_max, counts.n.y, counts.grid, &stack)), brute);
 }
 ";
 
