@@ -127,9 +127,8 @@ pub struct GpuScene {
     pub material_colours: Vec<(String, glam::DVec3)>,
     /// The colours last written, for the colour settings of this key.
     colours_written: Option<ColourKey>,
-    /// Each material's own m (0 where it has none), and the normalization
-    /// whose N(own m) the materials buffer holds (see [`Self::write_norm_factors`]).
-    own_m: Vec<f64>,
+    /// The normalization whose N(own m) the materials buffer holds (see
+    /// [`Self::write_norm_factors`]).
     norm_written: Option<Normalization>,
     pub textures: wgpu::Texture,
     pub texture_view: wgpu::TextureView,
@@ -219,12 +218,6 @@ impl GpuScene {
                 other_model_color: m.base_color.to_array(),
             })
             .collect();
-        let own_m = scene
-            .materials
-            .iter()
-            .chain([&default_material])
-            .map(|m| f64::from(m.m.unwrap_or(0.0)))
-            .collect();
         let material_colours = scene
             .materials
             .iter()
@@ -261,7 +254,6 @@ impl GpuScene {
                 wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
             ),
             materials_raw: materials,
-            own_m,
             norm_written: None,
             material_colours,
             colours_written: None,
@@ -394,8 +386,8 @@ impl GpuScene {
         if self.norm_written == Some(norm) {
             return;
         }
-        for (raw, &m) in self.materials_raw.iter_mut().zip(&self.own_m) {
-            raw.base_color[3] = norm.factor(m) as f32;
+        for raw in &mut self.materials_raw {
+            raw.base_color[3] = norm.factor(f64::from(raw.words.own_m)) as f32;
         }
         queue.write_buffer(&self.materials, 0, bytemuck::cast_slice(&self.materials_raw));
         self.norm_written = Some(norm);
