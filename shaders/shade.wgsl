@@ -7,8 +7,9 @@
 
 @group(0) @binding(0) var<uniform> globals: Globals;
 @group(0) @binding(1) var<uniform> shadow: Shadow;
-// Read by the vertex stage (VsOut carries a triangle's material).
-@group(0) @binding(2) var<storage, read> materials: array<Material>;
+// The drawn object's material, read by the vertex stage (VsOut carries it):
+// its slot bound for each draw (gpu::scene_buffers::MATERIAL_SLOT_BYTES).
+@group(0) @binding(2) var<uniform> material: Material;
 @group(0) @binding(3) var base_textures: texture_2d_array<f32>;
 @group(0) @binding(4) var base_sampler: sampler;
 // Group 1: the visibility source's resources (shadow_map.wgsl); group 2:
@@ -59,9 +60,8 @@ struct VsIn {
     @location(0) position: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) uv: vec2<f32>,
-    @location(3) material: u32,
     // The vertex colour multiplying the base colour (1 without one).
-    @location(4) colour: vec3<f32>,
+    @location(3) colour: vec3<f32>,
 }
 
 struct VsOut {
@@ -87,10 +87,6 @@ struct VsOut {
     @location(11) @interpolate(flat) knob_radius_m: f32,
 }
 
-// gpu::scene_buffers::Vertex::NO_SHADOWS_RECEIVED: set in a vertex's material
-// word on objects that receive no shadows.
-const NO_SHADOWS_RECEIVED: u32 = 0x80000000u;
-
 // The clip position of a vertex: shared by both vertex stages below.
 fn clip_position(position: vec3<f32>) -> vec4<f32> {
     return globals.view_proj * vec4<f32>(position - globals.eye, 1.0);
@@ -114,8 +110,8 @@ fn vs(in: VsIn) -> VsOut {
     // them: a software rasterizer computes every output of this stage (the
     // engine's vertex stage −10 %).
     out.uv = select(in.uv, vec2<f32>(0.0), SPECIALISED_TEXTURES == 0u);
-    out.receives_shadows = u32((in.material & NO_SHADOWS_RECEIVED) == 0u);
-    let mat = materials[in.material & ~NO_SHADOWS_RECEIVED];
+    let mat = material;
+    out.receives_shadows = u32((mat.words.w & MATERIAL_NO_SHADOWS_RECEIVED) == 0u);
     // The colour override replaces the base colour, its texture and the
     // vertex colour, here once a vertex: lavapipe ran the fragment's `if`
     // on the uniform for every pixel (0.6 M instructions a frame, 8 %).

@@ -7,7 +7,7 @@ use super::scene_buffers::{GpuScene, Meshes, Vertex};
 use super::shaders::Shader;
 use super::shadow::ShadowTextures;
 use super::specialise::{Specialisation, camera_depth_test};
-use super::uniforms::{GlobalsRaw, uniform_buffer};
+use super::uniforms::{GlobalsRaw, MaterialRaw, uniform_buffer};
 use std::collections::HashMap;
 use std::thread::JoinHandle;
 use wgpu::ShaderStages;
@@ -47,7 +47,8 @@ impl ShadePass {
                 binding::uniform(0, ShaderStages::VERTEX_FRAGMENT),
                 // The vertex stage copies the knobs (shadow_map.wgsl).
                 binding::uniform(1, ShaderStages::VERTEX_FRAGMENT),
-                binding::storage(2, ShaderStages::VERTEX, true),
+                // The drawn object's material slot (scene_buffers::MATERIAL_SLOT_BYTES).
+                binding::dynamic_uniform(2, ShaderStages::VERTEX),
                 binding::texture(
                     3,
                     fragment,
@@ -159,7 +160,11 @@ impl ShadePass {
             &[
                 self.globals.as_entire_binding(),
                 shadow_uniform.as_entire_binding(),
-                scene.materials.as_entire_binding(),
+                wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &scene.materials,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(std::mem::size_of::<MaterialRaw>() as u64),
+                }),
                 wgpu::BindingResource::TextureView(&scene.texture_view),
                 wgpu::BindingResource::Sampler(&self.texture_sampler),
             ],
@@ -257,7 +262,8 @@ impl ShadePass {
             return;
         };
         pass.set_pipeline(&self.depth_pipeline);
-        pass.set_bind_group(0, scene_group, &[]);
+        // vs_depth reads no material: any slot.
+        pass.set_bind_group(0, scene_group, &[0]);
         meshes.bind(&mut pass);
         for &object in visible {
             meshes.draw(&mut pass, object);
@@ -308,11 +314,11 @@ impl ShadePass {
             return;
         };
         pass.set_pipeline(pipeline);
-        pass.set_bind_group(0, scene_group, &[]);
         pass.set_bind_group(1, shadow_group, &[]);
         pass.set_bind_group(2, raytrace_group, &[]);
         meshes.bind(&mut pass);
         for &object in visible {
+            pass.set_bind_group(0, scene_group, &[meshes.material_offset(object)]);
             meshes.draw(&mut pass, object);
         }
     }

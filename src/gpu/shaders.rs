@@ -25,12 +25,15 @@ pub fn shared_f32_constants() -> [(&'static str, f32); 6] {
 
 /// The scalar u32 `const` declarations every module starts with, each
 /// taken from the Rust constant of the same name.
-pub fn shared_u32_constants() -> [(&'static str, u32); 3] {
-    use super::uniforms::{MATERIAL_DOUBLE_SIDED, MATERIAL_OWN_K, MATERIAL_OWN_M};
+pub fn shared_u32_constants() -> [(&'static str, u32); 4] {
+    use super::uniforms::{
+        MATERIAL_DOUBLE_SIDED, MATERIAL_NO_SHADOWS_RECEIVED, MATERIAL_OWN_K, MATERIAL_OWN_M,
+    };
     [
         ("MATERIAL_OWN_K", MATERIAL_OWN_K),
         ("MATERIAL_OWN_M", MATERIAL_OWN_M),
         ("MATERIAL_DOUBLE_SIDED", MATERIAL_DOUBLE_SIDED),
+        ("MATERIAL_NO_SHADOWS_RECEIVED", MATERIAL_NO_SHADOWS_RECEIVED),
     ]
 }
 

@@ -138,8 +138,7 @@ pub struct MaterialRaw {
 }
 
 /// [`MaterialRaw::words`]: what `Material.words` (a `vec4<u32>`) holds,
-/// one load for the vertex stage where six scalars took six (lavapipe
-/// reads a storage buffer lane by lane, one pass over the lanes a load).
+/// one load for the vertex stage where six scalars took six.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, Pod, Zeroable)]
 pub struct MaterialWordsRaw {
@@ -148,16 +147,21 @@ pub struct MaterialWordsRaw {
     pub own_m: f32,
     /// Base-colour texture layer + 1; 0 is none.
     pub texture_layer_plus_one: u32,
-    /// [`MATERIAL_OWN_K`], [`MATERIAL_OWN_M`], [`MATERIAL_DOUBLE_SIDED`].
+    /// [`MATERIAL_OWN_K`], [`MATERIAL_OWN_M`], [`MATERIAL_DOUBLE_SIDED`],
+    /// [`MATERIAL_NO_SHADOWS_RECEIVED`].
     pub flags: u32,
 }
 
 /// Flags of [`MaterialWordsRaw::flags`] (the shaders' `MATERIAL_*`, from
 /// these: `shaders::shared_u32_constants`):
-/// the material has its own k, its own m, both faces shaded.
+/// the material has its own k, its own m, both faces shaded; the object
+/// drawn with it receives no shadows (`Object::receives_shadows`: its V is 1
+/// under every visibility source, as in the reference), set in the second
+/// of each material's two slots (`gpu::scene_buffers::Draw::slot`).
 pub const MATERIAL_OWN_K: u32 = 1;
 pub const MATERIAL_OWN_M: u32 = 2;
 pub const MATERIAL_DOUBLE_SIDED: u32 = 4;
+pub const MATERIAL_NO_SHADOWS_RECEIVED: u32 = 8;
 
 /// `DisplayParams`: how the display pass shows the view.
 #[repr(C)]
