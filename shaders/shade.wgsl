@@ -8,7 +8,7 @@
 @group(0) @binding(0) var<uniform> globals: Globals;
 @group(0) @binding(1) var<uniform> shadow: Shadow;
 // The drawn object's material, read by the vertex stage (VsOut carries it):
-// its slot bound for each draw (gpu::scene_buffers::MATERIAL_SLOT_BYTES).
+// its slot bound for each draw (gpu::scene_buffers::Meshes::material_offset).
 @group(0) @binding(2) var<uniform> material: Material;
 @group(0) @binding(3) var base_textures: texture_2d_array<f32>;
 @group(0) @binding(4) var base_sampler: sampler;

@@ -2,8 +2,10 @@
 // Depth only for the depth-test filters; VSM/EVSM/MSM also write depth moments.
 
 @group(0) @binding(0) var<uniform> shadow: Shadow;
-// The layer drawn (a dynamic offset selects it).
-@group(0) @binding(1) var<uniform> layer_index: u32;
+// The layer drawn: its slot bound by a dynamic offset (gpu::shadow::ShadowPass::write).
+// A uniform lavapipe loads once, where `shadow.layers[i]` at a uniform's i it
+// loads lane by lane (the engine's shadow vertex stage −45 %).
+@group(0) @binding(1) var<uniform> layer: ShadowLayer;
 
 struct VsOut {
     @builtin(position) clip: vec4<f32>,
@@ -13,7 +15,6 @@ struct VsOut {
 
 @vertex
 fn vs(@location(0) position: vec3<f32>) -> VsOut {
-    let layer = shadow.layers[layer_index];
     let v = (layer.rotation * vec4<f32>(position - shadow.light_position, 0.0)).xyz;
     var out: VsOut;
     out.clip = layer.proj * vec4<f32>(v, 1.0);
@@ -25,7 +26,7 @@ fn vs(@location(0) position: vec3<f32>) -> VsOut {
 // VSM; for EVSM the moments of exp(c w) and −exp(−c w), w = 2u − 1.
 @fragment
 fn fs_moments(in: VsOut) -> @location(0) vec4<f32> {
-    let f = shadow.layers[layer_index];
+    let f = layer;
     let u = clamp((in.depth - f.near_m) / (f.far_m - f.near_m), 0.0, 1.0);
     let u2 = u * u;
     let c = shadow.evsm_exponent;

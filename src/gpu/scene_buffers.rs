@@ -7,8 +7,8 @@
 use super::bvh::{FlatBvh, GpuBvh};
 use super::specialise::SceneAttributes;
 use super::uniforms::{
-    MATERIAL_DOUBLE_SIDED, MATERIAL_NO_SHADOWS_RECEIVED, MATERIAL_OWN_K, MATERIAL_OWN_M, MaterialRaw,
-    MaterialWordsRaw,
+    DYNAMIC_STRIDE, MATERIAL_DOUBLE_SIDED, MATERIAL_NO_SHADOWS_RECEIVED, MATERIAL_OWN_K, MATERIAL_OWN_M,
+    MaterialRaw, MaterialWordsRaw,
 };
 use crate::physics::brdf::Normalization;
 use crate::scene::simplify::SimplifiedMeshes;
@@ -57,23 +57,19 @@ pub struct Draw {
     pub first_index: u32,
     pub index_count: u32,
     pub base_vertex: i32,
-    /// The object's slot in the materials buffer (see [`MATERIAL_SLOT_BYTES`]).
+    /// The object's slot in the materials buffer (see [`material_slots`]).
     pub slot: u32,
 }
 
-/// The materials buffer holds two slots a material, this many bytes apart
-/// (the largest alignment of a uniform's dynamic offset any device asks
-/// for): 2 i for an object that receives shadows, 2 i + 1, with
+/// The materials buffer's bytes: two slots a material, [`DYNAMIC_STRIDE`]
+/// bytes apart: 2 i for an object that receives shadows, 2 i + 1, with
 /// [`MATERIAL_NO_SHADOWS_RECEIVED`] set, for one that does not. The camera
 /// pass binds an object's slot for its draw, so its vertex stage reads the
 /// material as a uniform: a software rasterizer loads a storage buffer at a
 /// per-vertex index lane by lane, a uniform once (the engine's vertex stage
 /// 24.8 → 13.0 M instructions).
-pub const MATERIAL_SLOT_BYTES: u32 = 256;
-
-/// The materials buffer's bytes: each material's two slots.
 fn material_slots(materials: &[MaterialRaw]) -> Vec<u8> {
-    let slot = MATERIAL_SLOT_BYTES as usize;
+    let slot = DYNAMIC_STRIDE as usize;
     let mut bytes = vec![0; 2 * slot * materials.len()];
     for (raw, pair) in materials.iter().zip(bytes.chunks_exact_mut(2 * slot)) {
         let mut unshadowed = *raw;
@@ -102,7 +98,7 @@ impl Meshes<'_> {
 
     /// The dynamic offset that binds object `i`'s material slot.
     pub fn material_offset(&self, i: usize) -> wgpu::DynamicOffset {
-        self.draws[i].slot * MATERIAL_SLOT_BYTES
+        self.draws[i].slot * DYNAMIC_STRIDE as u32
     }
 
     /// Draws object `i` (the pass has the buffers bound).

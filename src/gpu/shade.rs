@@ -47,7 +47,7 @@ impl ShadePass {
                 binding::uniform(0, ShaderStages::VERTEX_FRAGMENT),
                 // The vertex stage copies the knobs (shadow_map.wgsl).
                 binding::uniform(1, ShaderStages::VERTEX_FRAGMENT),
-                // The drawn object's material slot (scene_buffers::MATERIAL_SLOT_BYTES).
+                // The drawn object's material slot (scene_buffers::Meshes::material_offset).
                 binding::dynamic_uniform(2, ShaderStages::VERTEX),
                 binding::texture(
                     3,

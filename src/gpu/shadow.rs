@@ -8,7 +8,7 @@ use super::light_frustum::ShadowLayout;
 use super::scene_buffers::{Meshes, Vertex};
 use super::shaders::Shader;
 use super::timing::{GpuTimer, Pass};
-use super::uniforms::{BlurParamsRaw, DYNAMIC_STRIDE, ShadowRaw, uniform_buffer};
+use super::uniforms::{BlurParamsRaw, DYNAMIC_STRIDE, ShadowLayerRaw, ShadowRaw, uniform_buffer};
 use wgpu::ShaderStages;
 
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
@@ -178,8 +178,9 @@ pub fn allowed_resolution(
 
 /// The shadow pass's pipelines and uniforms.
 pub struct ShadowPass {
-    pub uniform: wgpu::Buffer,
-    layer_index: wgpu::Buffer,
+    uniform: wgpu::Buffer,
+    /// Each layer of `uniform` again in a slot of its own (see [`Self::write`]).
+    layers: wgpu::Buffer,
     bind_group: wgpu::BindGroup,
     depth_pipeline: wgpu::RenderPipeline,
     moments_pipeline: wgpu::RenderPipeline,
@@ -239,8 +240,8 @@ fn shadow_pipeline(
 impl ShadowPass {
     pub fn new(device: &wgpu::Device, moments_format: wgpu::TextureFormat, depth_ranges: bool) -> Self {
         let uniform = uniform_buffer::<ShadowRaw>(device, "shadow uniforms");
-        let layer_index = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("shadow layer index"),
+        let layers = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("shadow layers"),
             size: DYNAMIC_STRIDE * MAX_LAYERS as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
@@ -264,10 +265,9 @@ impl ShadowPass {
                 wgpu::BindGroupEntry {
                     binding: 1,
                     resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: &layer_index,
+                        buffer: &layers,
                         offset: 0,
-                        // 16: std140 backends (GL) round a uniform block up to 16 bytes.
-                        size: wgpu::BufferSize::new(16),
+                        size: wgpu::BufferSize::new(std::mem::size_of::<ShadowLayerRaw>() as u64),
                     }),
                 },
             ],
@@ -280,20 +280,20 @@ impl ShadowPass {
             blur: BlurPass::new(device, moments_format),
             ranges: depth_ranges.then(|| RangePass::new(device, MAX_LAYERS)),
             uniform,
-            layer_index,
+            layers,
             bind_group,
             moments_format,
         }
     }
 
-    /// Writes the per-layer indices once (they never change).
-    pub fn init(&self, queue: &wgpu::Queue) {
-        for layer in 0..MAX_LAYERS {
-            queue.write_buffer(
-                &self.layer_index,
-                DYNAMIC_STRIDE * layer as u64,
-                bytemuck::bytes_of(&layer),
-            );
+    /// Writes the uniforms the next [`Self::encode`] draws with: `raw`,
+    /// and each of its layers in the slot the layer's draws bind (a
+    /// dynamic offset), so that the vertex stage reads its layer as a
+    /// uniform of its own, not at an index into `raw.layers`.
+    pub fn write(&self, queue: &wgpu::Queue, raw: &ShadowRaw) {
+        queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(raw));
+        for (i, layer) in raw.layers.iter().enumerate() {
+            queue.write_buffer(&self.layers, DYNAMIC_STRIDE * i as u64, bytemuck::bytes_of(layer));
         }
     }
 

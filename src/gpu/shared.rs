@@ -90,7 +90,6 @@ pub struct SharedScene {
 impl SharedScene {
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, caps: Capabilities, scene: &Scene) -> Self {
         let shadow = ShadowPass::new(device, caps.moments_format, caps.depth_ranges);
-        shadow.init(queue);
         let dummy_moments = ShadowTextures::new(
             device,
             1,
@@ -349,8 +348,7 @@ impl SharedScene {
         };
         let Some(key) = &slot.key else { return };
         if prepared.redraw {
-            self.queue
-                .write_buffer(&self.shadow.uniform, 0, bytemuck::bytes_of(&prepared.raw));
+            self.shadow.write(&self.queue, &prepared.raw);
             self.shadow.encode(
                 &self.device,
                 &self.queue,

@@ -201,7 +201,8 @@ pub struct RangeParamsRaw {
     pub _padding: [i32; 2],
 }
 
-/// Stride of per-layer uniforms selected with a dynamic offset.
+/// Stride of per-layer (per-material) uniforms selected with a dynamic
+/// offset: the largest alignment of a dynamic offset any device asks for.
 pub const DYNAMIC_STRIDE: u64 = 256;
 
 /// A uniform buffer holding one `T`, written with `queue.write_buffer`.
