@@ -139,13 +139,19 @@ impl Shader {
 
 /// `own` (a pass's WGSL, or a test's kernel) after what every module
 /// starts with: the shared constants, common.wgsl and the generated tables.
+/// That prelude is built once a process: the Poisson disc's best-candidate
+/// search alone took some 4 M instructions, and a renderer builds a dozen
+/// modules.
 pub fn with_common(own: &str) -> String {
-    let mut source = constants_wgsl();
-    source += include_str!("../../shaders/common.wgsl");
-    source += &poisson_wgsl();
-    source += &super::colormap::wgsl();
-    source += own;
-    source
+    static PRELUDE: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    let prelude = PRELUDE.get_or_init(|| {
+        let mut source = constants_wgsl();
+        source += include_str!("../../shaders/common.wgsl");
+        source += &poisson_wgsl();
+        source += &super::colormap::wgsl();
+        source
+    });
+    prelude.clone() + own
 }
 
 /// A Poisson disc of unit radius, built by best-candidate sampling with a
