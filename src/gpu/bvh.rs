@@ -123,25 +123,33 @@ impl FlatBvh {
     /// As [`Self::of_scene`], each object's triangles given by its list in
     /// `indices` (one per object, into its vertices): a simplified copy.
     pub fn of_casters<'a>(scene: &Scene, indices: impl IntoIterator<Item = &'a [u32]>) -> Self {
-        let triangles: Vec<[Vec3; 3]> = scene
-            .objects
-            .iter()
-            .zip(indices)
-            .filter(|(o, _)| o.casts_shadows)
-            .flat_map(|(o, indices)| {
-                let p = &o.mesh.positions;
-                indices.chunks_exact(3).filter_map(move |ids| {
-                    Some([
-                        *p.get(ids[0] as usize)?,
-                        *p.get(ids[1] as usize)?,
-                        *p.get(ids[2] as usize)?,
-                    ])
-                })
-            })
-            .collect();
-        Self::new(&triangles)
+        Self::new(&caster_triangles(scene, indices))
     }
+}
 
+/// The corners of each triangle of the objects that cast shadows, each
+/// object's triangles given by its list in `indices` (one per object, into
+/// its vertices); a corner index out of range leaves its triangle out.
+pub fn caster_triangles<'a>(scene: &Scene, indices: impl IntoIterator<Item = &'a [u32]>) -> Vec<[Vec3; 3]> {
+    scene
+        .objects
+        .iter()
+        .zip(indices)
+        .filter(|(o, _)| o.casts_shadows)
+        .flat_map(|(o, indices)| {
+            let p = &o.mesh.positions;
+            indices.chunks_exact(3).filter_map(move |ids| {
+                Some([
+                    *p.get(ids[0] as usize)?,
+                    *p.get(ids[1] as usize)?,
+                    *p.get(ids[2] as usize)?,
+                ])
+            })
+        })
+        .collect()
+}
+
+impl FlatBvh {
     pub fn new(triangles: &[[Vec3; 3]]) -> Self {
         let usable: Vec<Triangle> = triangles
             .iter()

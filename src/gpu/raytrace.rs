@@ -98,6 +98,9 @@ struct History {
     scene_generation: u64,
     /// The group binds the simplified meshes' BVH.
     simplified_bvh: bool,
+    /// The group binds the scene's BVH, not the empty one that stands in
+    /// until a frame traces rays (`GpuScene::bvh`).
+    scene_bvh: bool,
 }
 
 pub struct RayTracePass {
@@ -145,21 +148,25 @@ impl RayTracePass {
         variant: FrameVariant,
     ) -> (&wgpu::BindGroup, bool) {
         let scene_generation = shared.generation;
-        let bvh = shared.scene.bvh(variant.simplified);
+        let s = &settings.shadow;
+        let traced = s.visibility == Visibility::RayTraced;
+        let (bvh, scene_bvh) = shared.scene.bvh(device, variant.simplified, traced);
         if self.history.as_ref().is_none_or(|h| {
-            h.size != size || h.scene_generation != scene_generation || h.simplified_bvh != variant.simplified
+            h.size != size
+                || h.scene_generation != scene_generation
+                || h.simplified_bvh != variant.simplified
+                || h.scene_bvh != scene_bvh
         }) {
             let target = Target {
                 size,
                 format: self.format,
                 scene_generation,
                 simplified_bvh: variant.simplified,
+                scene_bvh,
             };
             self.history = Some(History::new(device, &self.layout, &self.uniform, bvh, target));
             self.key = None;
         }
-        let s = &settings.shadow;
-        let traced = s.visibility == Visibility::RayTraced;
         let key = Key {
             settings: settings.clone(),
             size,
@@ -235,6 +242,7 @@ struct Target {
     format: wgpu::TextureFormat,
     scene_generation: u64,
     simplified_bvh: bool,
+    scene_bvh: bool,
 }
 
 /// The strata nx × ny of n light samples: the divisor pair of n nearest a
@@ -262,6 +270,7 @@ impl History {
             format,
             scene_generation,
             simplified_bvh,
+            scene_bvh,
         } = target;
         let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
         let texture = |label: &str| super::targets::image_texture(device, label, size, format, usage);
@@ -286,6 +295,7 @@ impl History {
             group,
             scene_generation,
             simplified_bvh,
+            scene_bvh,
         }
     }
 }

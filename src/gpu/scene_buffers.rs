@@ -4,7 +4,7 @@
 //! frames of a large scene draw ([`crate::scene::simplify`]), as a second
 //! index buffer over the same vertices.
 
-use super::bvh::{FlatBvh, GpuBvh};
+use super::bvh::{FlatBvh, GpuBvh, caster_triangles};
 use super::specialise::SceneAttributes;
 use super::uniforms::{
     DYNAMIC_STRIDE, MATERIAL_DOUBLE_SIDED, MATERIAL_NO_SHADOWS_RECEIVED, MATERIAL_OWN_K, MATERIAL_OWN_M,
@@ -157,8 +157,14 @@ pub struct GpuScene {
     pub textures: wgpu::Texture,
     pub texture_view: wgpu::TextureView,
     pub triangle_count: usize,
-    /// The shadow casters' BVH, for the ray-traced visibility.
-    bvh: GpuBvh,
+    /// The shadow casters' BVH, for the ray-traced visibility: built by the
+    /// first frame that traces rays ([`Self::bvh`]), from `bvh_triangles`.
+    /// A build is some 20 % of a 110 k-triangle model's `lumlab render`
+    /// under a shadow map, which never reads it.
+    bvh: std::sync::OnceLock<GpuBvh>,
+    bvh_triangles: std::sync::Mutex<Vec<[glam::Vec3; 3]>>,
+    /// Bound in its place until then.
+    no_bvh: GpuBvh,
     /// Set by [`Self::set_simplified`] (large scenes only).
     simplified: Option<Simplified>,
 }
@@ -279,7 +285,12 @@ impl GpuScene {
             }),
             textures,
             triangle_count: scene.triangle_count(),
-            bvh: GpuBvh::new(device, &FlatBvh::of_scene(scene)),
+            bvh: std::sync::OnceLock::new(),
+            bvh_triangles: std::sync::Mutex::new(caster_triangles(
+                scene,
+                scene.objects.iter().map(|o| &o.mesh.indices[..]),
+            )),
+            no_bvh: GpuBvh::new(device, &FlatBvh::default()),
             simplified: None,
         }
     }
@@ -345,11 +356,23 @@ impl GpuScene {
         self.drawn(self.drag_copy(simplified).map(|s| &s.casters))
     }
 
-    /// The shadow rays' BVH: that of the camera's simplified copy when
-    /// `simplified` and it is uploaded (the triangles [`Self::meshes`]
-    /// draws then), else the full meshes'.
-    pub fn bvh(&self, simplified: bool) -> &GpuBvh {
-        self.drag_copy(simplified).map_or(&self.bvh, |s| &s.bvh)
+    /// The shadow rays' BVH, and whether it is the scene's: that of the
+    /// camera's simplified copy when `simplified` and it is uploaded (the
+    /// triangles [`Self::meshes`] draws then), else the full meshes', built
+    /// here when a frame first `traces` rays. Until then an empty BVH
+    /// stands in (false).
+    pub fn bvh(&self, device: &wgpu::Device, simplified: bool, traces: bool) -> (&GpuBvh, bool) {
+        if let Some(copy) = self.drag_copy(simplified) {
+            return (&copy.bvh, true);
+        }
+        if traces {
+            let bvh = self.bvh.get_or_init(|| {
+                let mut triangles = self.bvh_triangles.lock().unwrap_or_else(|e| e.into_inner());
+                GpuBvh::new(device, &FlatBvh::new(&std::mem::take(&mut *triangles)))
+            });
+            return (bvh, true);
+        }
+        self.bvh.get().map_or((&self.no_bvh, false), |bvh| (bvh, true))
     }
 
     /// The simplified meshes when `simplified` and they are uploaded.
