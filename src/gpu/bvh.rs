@@ -104,29 +104,6 @@ pub struct BvhTriangleRaw {
     pub _padding2: u32,
 }
 
-/// A BVH flattened for upload.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct FlatBvh {
-    /// Empty when nothing casts shadows.
-    pub nodes: Vec<BvhNodeRaw>,
-    pub triangles: Vec<BvhTriangleRaw>,
-}
-
-impl FlatBvh {
-    /// The triangles of every object that casts shadows; triangles with an
-    /// index out of range, a non-finite corner or zero area are left out
-    /// (they block nothing, as in the reference).
-    pub fn of_scene(scene: &Scene) -> Self {
-        Self::of_casters(scene, scene.objects.iter().map(|o| &o.mesh.indices[..]))
-    }
-
-    /// As [`Self::of_scene`], each object's triangles given by its list in
-    /// `indices` (one per object, into its vertices): a simplified copy.
-    pub fn of_casters<'a>(scene: &Scene, indices: impl IntoIterator<Item = &'a [u32]>) -> Self {
-        Self::new(&caster_triangles(scene, indices))
-    }
-}
-
 /// The corners of each triangle of the objects that cast shadows, each
 /// object's triangles given by its list in `indices` (one per object, into
 /// its vertices); a corner index out of range leaves its triangle out.
@@ -149,7 +126,28 @@ pub fn caster_triangles<'a>(scene: &Scene, indices: impl IntoIterator<Item = &'a
         .collect()
 }
 
+/// A BVH flattened for upload.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FlatBvh {
+    /// Empty when nothing casts shadows.
+    pub nodes: Vec<BvhNodeRaw>,
+    pub triangles: Vec<BvhTriangleRaw>,
+}
+
 impl FlatBvh {
+    /// The triangles of every object that casts shadows; triangles with an
+    /// index out of range, a non-finite corner or zero area are left out
+    /// (they block nothing, as in the reference).
+    pub fn of_scene(scene: &Scene) -> Self {
+        Self::of_casters(scene, scene.objects.iter().map(|o| &o.mesh.indices[..]))
+    }
+
+    /// As [`Self::of_scene`], each object's triangles given by its list in
+    /// `indices` (one per object, into its vertices): a simplified copy.
+    pub fn of_casters<'a>(scene: &Scene, indices: impl IntoIterator<Item = &'a [u32]>) -> Self {
+        Self::new(&caster_triangles(scene, indices))
+    }
+
     pub fn new(triangles: &[[Vec3; 3]]) -> Self {
         let usable: Vec<Triangle> = triangles
             .iter()

@@ -159,8 +159,8 @@ pub struct GpuScene {
     pub triangle_count: usize,
     /// The shadow casters' BVH, for the ray-traced visibility: built by the
     /// first frame that traces rays ([`Self::bvh`]), from `bvh_triangles`.
-    /// A build is some 20 % of a 110 k-triangle model's `lumlab render`
-    /// under a shadow map, which never reads it.
+    /// A build was a fifth of the instructions of a 110 k-triangle model's
+    /// `lumlab render` under a shadow map, which never reads it.
     bvh: std::sync::OnceLock<GpuBvh>,
     bvh_triangles: std::sync::Mutex<Vec<[glam::Vec3; 3]>>,
     /// Bound in its place until then.
