@@ -57,7 +57,8 @@ pub struct Draw {
     pub first_index: u32,
     pub index_count: u32,
     pub base_vertex: i32,
-    /// The object's slot in the materials buffer (see [`material_slots`]).
+    /// The object's slot in the materials buffer: 2 i for material i, 2 i + 1
+    /// where the object receives no shadows ([`Meshes::material_offset`]).
     pub slot: u32,
 }
 
