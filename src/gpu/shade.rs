@@ -317,8 +317,15 @@ impl ShadePass {
         pass.set_bind_group(1, shadow_group, &[]);
         pass.set_bind_group(2, raytrace_group, &[]);
         meshes.bind(&mut pass);
+        // Bound again only where the slot changes: objects in a row often
+        // share a material.
+        let mut bound = None;
         for &object in visible {
-            pass.set_bind_group(0, scene_group, &[meshes.material_offset(object)]);
+            let slot = meshes.material_offset(object);
+            if bound != Some(slot) {
+                pass.set_bind_group(0, scene_group, &[slot]);
+                bound = Some(slot);
+            }
             meshes.draw(&mut pass, object);
         }
     }
