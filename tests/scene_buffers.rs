@@ -1,11 +1,13 @@
 //! The uploaded scene's vertex and index buffers can be bound as storage and
 //! read by a compute pass (what a GPU ray-traced visibility needs): a kernel
 //! that gathers every triangle corner through the index buffer gives back
-//! the scene's own positions.
+//! the scene's own positions. Its BVH for ray-traced visibility comes
+//! with the first frame that traces rays, or from a build in the background.
 
 mod common;
 
 use common::*;
+use lumlab::gpu::bvh::{FlatBvh, GpuBvh};
 use lumlab::gpu::readback::map_and_read;
 use lumlab::gpu::scene_buffers::{GpuScene, Vertex};
 use lumlab::gpu::{Capabilities, shaders::with_common};
@@ -125,4 +127,62 @@ fn a_compute_pass_reads_the_scene_triangles_from_the_vertex_and_index_buffers() 
         .collect();
     assert_eq!(expected.len(), index_total as usize);
     assert_eq!(got, expected.as_slice());
+}
+
+/// The ray-traced visibility's BVH: an empty stand-in until a frame traces
+/// rays; started in the background (as the app does), it arrives without
+/// such a frame. Either way it is the scene's, every caster in it.
+#[test]
+fn the_scenes_bvh_comes_with_a_frame_that_traces_rays_or_from_the_background() {
+    let gpu = gpu();
+    let device = &gpu.device;
+    let scene = occluder_scene(6.0, aabb([-0.5, 0.0, -0.5], [0.5, 1.0, 0.5]));
+    let upload = || {
+        GpuScene::new(
+            device,
+            &gpu.queue,
+            &scene,
+            &Capabilities::of(&gpu.adapter, device),
+        )
+    };
+    let flat = FlatBvh::of_scene(&scene);
+    let counts = |bvh: &GpuBvh| (bvh.pair_count, bvh.triangle_count);
+    let expected = (flat.pairs().len() as u32, flat.triangles.len() as u32);
+    assert!(expected.1 > 0);
+
+    let lazy = upload();
+    let (bvh, scene_bvh) = lazy.bvh(device, false, false);
+    assert!(!scene_bvh && counts(bvh) == (0, 0), "no frame has traced rays");
+    let (bvh, scene_bvh) = lazy.bvh(device, false, true);
+    assert!(
+        scene_bvh && counts(bvh) == expected,
+        "a frame that traces rays builds it"
+    );
+    assert!(lazy.bvh(device, false, false).1, "and it stays");
+
+    let waited = upload();
+    waited.build_bvh_in_background(device);
+    let (bvh, scene_bvh) = waited.bvh(device, false, true);
+    assert!(
+        scene_bvh && counts(bvh) == expected,
+        "a frame that traces rays waits for it"
+    );
+
+    let background = upload();
+    background.build_bvh_in_background(device);
+    background.build_bvh_in_background(device);
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    loop {
+        let (bvh, scene_bvh) = background.bvh(device, false, false);
+        if scene_bvh {
+            assert_eq!(counts(bvh), expected);
+            break;
+        }
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the background build never came"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    assert!(background.bvh(device, false, true).1, "taken once, kept");
 }

@@ -87,6 +87,7 @@ impl GpuViews {
             &render_state.queue,
             scene,
         );
+        renderer.build_bvh_in_background();
         let a = HalfView::new(renderer, 0);
         let caps = a.renderer.capabilities().clone();
         let image_pipeline = ImagePipeline::new(&render_state.device, render_state.target_format);
@@ -130,6 +131,7 @@ impl GpuViews {
         self.scene_generation += 1;
         if let Some(a) = &mut self.halves[Half::A as usize] {
             a.renderer.set_scene(scene);
+            a.renderer.build_bvh_in_background();
         }
         if let Some(drag) = &self.drag {
             drag.set_scene(Arc::clone(scene));

@@ -1,7 +1,7 @@
 //! The shadow casters as a BVH for the GPU ray tracer (`shaders/bvh.wgsl`):
 //! a binary BVH built on the CPU by `obvhs` (PLOC, then reinsertion), flattened
-//! into two storage buffers. Rebuilt with the scene buffers whenever the
-//! geometry changes (`GpuScene::new`).
+//! into two storage buffers. Built anew for each scene uploaded, when a
+//! frame first traces rays or on a thread of its own (`super::bvh_build`).
 //!
 //! Layout built: node 0 is the root; an inner node (`count` = 0) has its
 //! children at `first` and `first + 1`; a leaf holds triangles

@@ -11,6 +11,7 @@
 
 pub mod binding;
 pub mod bvh;
+pub mod bvh_build;
 pub mod capabilities;
 pub mod colormap;
 pub mod context;

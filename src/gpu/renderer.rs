@@ -126,6 +126,13 @@ impl Renderer {
         lock(&self.shared).set_scene(scene);
     }
 
+    /// Starts building the current scene's BVH for ray-traced visibility
+    /// on a thread of its own, not on the first frame that traces rays (the
+    /// app's scenes; see [`super::bvh_build`]).
+    pub fn build_bvh_in_background(&self) {
+        lock(&self.shared).scene.build_bvh_in_background(&self.device);
+    }
+
     /// Uploads the simplified meshes of the current scene, for every view
     /// that shares it: frames with [`ShadeOptions::simplified`] draw them.
     pub fn set_simplified(&mut self, meshes: &crate::scene::simplify::SimplifiedMeshes) {

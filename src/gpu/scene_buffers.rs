@@ -5,6 +5,7 @@
 //! index buffer over the same vertices.
 
 use super::bvh::{FlatBvh, GpuBvh, caster_triangles};
+use super::bvh_build::BvhBuild;
 use super::specialise::SceneAttributes;
 use super::uniforms::{
     DYNAMIC_STRIDE, MATERIAL_DOUBLE_SIDED, MATERIAL_NO_SHADOWS_RECEIVED, MATERIAL_OWN_K, MATERIAL_OWN_M,
@@ -158,12 +159,10 @@ pub struct GpuScene {
     pub textures: wgpu::Texture,
     pub texture_view: wgpu::TextureView,
     pub triangle_count: usize,
-    /// The shadow casters' BVH, for the ray-traced visibility: built by the
-    /// first frame that traces rays ([`Self::bvh`]), from `bvh_triangles`.
-    /// A build was a fifth of the instructions of a 110 k-triangle model's
-    /// `lumlab render` under a shadow map, which never reads it.
+    /// The shadow casters' BVH, for the ray-traced visibility: uploaded by
+    /// [`Self::bvh`] once `bvh_build` hands it over (see [`BvhBuild`]).
     bvh: std::sync::OnceLock<GpuBvh>,
-    bvh_triangles: std::sync::Mutex<Vec<[glam::Vec3; 3]>>,
+    bvh_build: BvhBuild,
     /// Bound in its place until then.
     no_bvh: GpuBvh,
     /// Set by [`Self::set_simplified`] (large scenes only).
@@ -287,7 +286,7 @@ impl GpuScene {
             textures,
             triangle_count: scene.triangle_count(),
             bvh: std::sync::OnceLock::new(),
-            bvh_triangles: std::sync::Mutex::new(caster_triangles(
+            bvh_build: BvhBuild::new(caster_triangles(
                 scene,
                 scene.objects.iter().map(|o| &o.mesh.indices[..]),
             )),
@@ -359,21 +358,28 @@ impl GpuScene {
 
     /// The shadow rays' BVH, and whether it is the scene's: that of the
     /// camera's simplified copy when `simplified` and it is uploaded (the
-    /// triangles [`Self::meshes`] draws then), else the full meshes', built
-    /// here when a frame first `traces` rays. Until then an empty BVH
-    /// stands in (false).
+    /// triangles [`Self::meshes`] draws then), else the full meshes',
+    /// built (or waited for) here when a frame first `traces` rays, and
+    /// uploaded by any frame once a background build is done. Until then
+    /// an empty BVH stands in (false).
     pub fn bvh(&self, device: &wgpu::Device, simplified: bool, traces: bool) -> (&GpuBvh, bool) {
         if let Some(copy) = self.drag_copy(simplified) {
             return (&copy.bvh, true);
         }
-        if traces {
-            let bvh = self.bvh.get_or_init(|| {
-                let mut triangles = self.bvh_triangles.lock().unwrap_or_else(|e| e.into_inner());
-                GpuBvh::new(device, &FlatBvh::new(&std::mem::take(&mut *triangles)))
-            });
-            return (bvh, true);
+        if self.bvh.get().is_none()
+            && let Some(bvh) = self.bvh_build.take(device, traces)
+        {
+            // Only the frame that takes it gets here: `bvh` is empty.
+            let _ = self.bvh.set(bvh);
         }
         self.bvh.get().map_or((&self.no_bvh, false), |bvh| (bvh, true))
+    }
+
+    /// Starts building and uploading the full meshes' BVH on a thread of
+    /// its own (the app's scenes): a first ray-traced frame then waits for
+    /// what is left of it, not for all of it.
+    pub fn build_bvh_in_background(&self, device: &wgpu::Device) {
+        self.bvh_build.start_in_background(device);
     }
 
     /// The simplified meshes when `simplified` and they are uploaded.
