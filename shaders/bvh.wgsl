@@ -91,15 +91,19 @@ fn bvh_hits_box(child: vec4<u32>, grid: BvhGrid, o: vec3<f32>, inv_d: vec3<f32>,
     return enter <= leave;
 }
 
+// 1 / d, a zero component first made a tiny one: its slabs then span ±∞,
+// never NaN.
+fn bvh_inverse(d: vec3<f32>) -> vec3<f32> {
+    return 1.0 / select(d, vec3<f32>(1e-30), abs(d) < vec3<f32>(1e-30));
+}
+
 // Whether any caster meets o + t d for 0 < t < t_max (d need not be unit).
 // The item visited is a pair (its index), or a leaf: BVH_LEAF, its count
 // (bits 28–30) and its first triangle (bits 0–27), as a child's link (w)
 // holds them, so that a leaf's step reads no node.
 // `stack`: scratch of the caller's (its contents on entry do not matter).
 fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: BvhGrid, stack: ptr<function, BvhStack>) -> bool {
-    // A zero component becomes a tiny one: its slabs then span ±∞, never NaN.
-    let safe_d = select(d, vec3<f32>(1e-30), abs(d) < vec3<f32>(1e-30));
-    let inv_d = 1.0 / safe_d;
+    let inv_d = bvh_inverse(d);
     if pair_count == 0u {
         return false;
     }
@@ -161,4 +165,98 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: B
         item = (*stack)[depth];
     }
     return false;
+}
+
+// Four rays of one walk (a sphere light's strata at one point): each
+// column a ray's direction, or its reciprocal.
+alias BvhRays4 = mat4x3<f32>;
+
+// bvh_hits_box for each of the four rays.
+fn bvh_hits_box4(child: vec4<u32>, grid: BvhGrid, o: vec3<f32>, inv_d: BvhRays4, t_max: f32) -> vec4<bool> {
+    return vec4<bool>(
+        bvh_hits_box(child, grid, o, inv_d[0], t_max),
+        bvh_hits_box(child, grid, o, inv_d[1], t_max),
+        bvh_hits_box(child, grid, o, inv_d[2], t_max),
+        bvh_hits_box(child, grid, o, inv_d[3], t_max),
+    );
+}
+
+// bvh_hits_triangle for each of the four rays.
+fn bvh_hits_triangle4(tri: BvhTriangle, o: vec3<f32>, d: BvhRays4, t_max: f32) -> vec4<bool> {
+    return vec4<bool>(
+        bvh_hits_triangle(tri, o, d[0], t_max),
+        bvh_hits_triangle(tri, o, d[1], t_max),
+        bvh_hits_triangle(tri, o, d[2], t_max),
+        bvh_hits_triangle(tri, o, d[3], t_max),
+    );
+}
+
+// bvh_occluded for four rays from one origin o, along the columns of d,
+// those `rays_in` (the others: false). One walk for the four: it visits a
+// node where any live ray meets it, and loads each node and triangle
+// once for all four, where lavapipe loads a storage buffer lane by lane. A
+// ray found blocked leaves the walk. Each ray's tests are bvh_occluded's,
+// and every triangle its own walk would test is tested, so each answer is
+// the one bvh_occluded gives.
+fn bvh_occluded4(o: vec3<f32>, d: BvhRays4, t_max: f32, rays_in: vec4<bool>, pair_count: u32, grid: BvhGrid, stack: ptr<function, BvhStack>) -> vec4<bool> {
+    let inv_d = BvhRays4(bvh_inverse(d[0]), bvh_inverse(d[1]), bvh_inverse(d[2]), bvh_inverse(d[3]));
+    var blocked = vec4<bool>(false);
+    var live = rays_in;
+    if pair_count == 0u {
+        return blocked;
+    }
+    var depth = 0u;
+    var item = 0u;
+    var overflowed = false;
+    var done = false;
+    // bvh_occluded's walk, a node met where any live ray meets it.
+    loop {
+        loop {
+            if (item & BVH_LEAF) != 0u {
+                break;
+            }
+            let pair = bvh_pairs[item];
+            let hit_a = any(live & bvh_hits_box4(pair.a, grid, o, inv_d, t_max));
+            let hit_b = any(live & bvh_hits_box4(pair.b, grid, o, inv_d, t_max));
+            if hit_a && hit_b {
+                if depth < BVH_STACK_SIZE {
+                    (*stack)[depth] = pair.b.w;
+                    depth += 1u;
+                } else {
+                    overflowed = true;
+                }
+            }
+            if hit_a || hit_b {
+                item = select(pair.b.w, pair.a.w, hit_a);
+                continue;
+            }
+            if depth == 0u {
+                done = true;
+                break;
+            }
+            depth -= 1u;
+            item = (*stack)[depth];
+        }
+        let last = done || depth == 0u;
+        var first = item & BVH_FIRST_MASK;
+        var end = select(first + ((item >> BVH_COUNT_SHIFT) & BVH_COUNT_MASK), first, done);
+        if last && overflowed {
+            first = 0u;
+            end = arrayLength(&bvh_triangles);
+        }
+        for (var i = first; i < end; i++) {
+            let hits = live & bvh_hits_triangle4(bvh_triangles[i], o, d, t_max);
+            blocked |= hits;
+            live &= !hits;
+            if !any(live) {
+                return blocked;
+            }
+        }
+        if last {
+            break;
+        }
+        depth -= 1u;
+        item = (*stack)[depth];
+    }
+    return blocked;
 }

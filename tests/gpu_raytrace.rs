@@ -1,6 +1,6 @@
 //! The GPU ray-traced visibility against what it must equal: its BVH
-//! traversal against testing every triangle (a compute kernel; also on a
-//! degenerate tree deeper than its stack), its hard shadows against the CPU
+//! traversal, one ray or four a walk, against testing every triangle (a
+//! compute kernel; also on a degenerate tree deeper than its stack), its hard shadows against the CPU
 //! reference's V pixel by pixel, and its progressive
 //! accumulation under a sphere light converging to the reference's V as 1/√N.
 
@@ -67,7 +67,40 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     var stack: BvhStack;
     answers[i] = vec2<u32>(select(0u, 1u, bvh_occluded(o, d, t_max, counts.n.y, counts.grid, &stack)), brute);
 }
+
+// The same for the four-ray walk: packet g holds rays 4g … 4g + 3, from the
+// origin and with the t_max of the first, each along its own direction;
+// ray j is left out where (g + j) % 5 == 0 (its brute-force answer 0).
+@compute @workgroup_size(64)
+fn packets(@builtin(global_invocation_id) id: vec3<u32>) {
+    let g = id.x;
+    if 4u * g >= counts.n.x {
+        return;
+    }
+    let o = rays[8u * g].xyz;
+    let t_max = rays[8u * g].w;
+    let d = BvhRays4(rays[8u * g + 1u].xyz, rays[8u * g + 3u].xyz, rays[8u * g + 5u].xyz, rays[8u * g + 7u].xyz);
+    let live = (vec4<u32>(g) + vec4<u32>(0u, 1u, 2u, 3u)) % 5u != vec4<u32>(0u);
+    var stack: BvhStack;
+    let walked = bvh_occluded4(o, d, t_max, live, counts.n.y, counts.grid, &stack);
+    for (var j = 0u; j < 4u; j++) {
+        var brute = 0u;
+        for (var t = 0u; t < counts.n.z; t++) {
+            if live[j] && bvh_hits_triangle(bvh_triangles[t], o, d[j], t_max) {
+                brute = 1u;
+            }
+        }
+        answers[4u * g + j] = vec2<u32>(select(0u, 1u, walked[j]), brute);
+    }
+}
 ";
+
+/// The walks a test runs: one ray an invocation, or four (`packets`).
+#[derive(Clone, Copy, Debug)]
+enum Walk {
+    Single,
+    Packets,
+}
 
 fn storage(gpu: &GpuContext, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
     gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -78,7 +111,7 @@ fn storage(gpu: &GpuContext, label: &str, bytes: &[u8], usage: wgpu::BufferUsage
 }
 
 /// (BVH answer, brute-force answer) per ray.
-fn trace(gpu: &GpuContext, flat: &FlatBvh, rays: &[[f32; 4]]) -> Vec<[u32; 2]> {
+fn trace(gpu: &GpuContext, flat: &FlatBvh, rays: &[[f32; 4]], walk: Walk) -> Vec<[u32; 2]> {
     let device = &gpu.device;
     let source = format!("{}{KERNEL}", include_str!("../shaders/bvh.wgsl"));
     let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -89,7 +122,10 @@ fn trace(gpu: &GpuContext, flat: &FlatBvh, rays: &[[f32; 4]]) -> Vec<[u32; 2]> {
         label: Some("bvh test"),
         layout: None,
         module: &module,
-        entry_point: Some("main"),
+        entry_point: Some(match walk {
+            Walk::Single => "main",
+            Walk::Packets => "packets",
+        }),
         compilation_options: Default::default(),
         cache: None,
     });
@@ -141,7 +177,11 @@ fn trace(gpu: &GpuContext, flat: &FlatBvh, rays: &[[f32; 4]]) -> Vec<[u32; 2]> {
         pass.set_pipeline(&pipeline);
         pass.set_bind_group(0, &rays_group, &[]);
         pass.set_bind_group(2, &bvh_group, &[]);
-        pass.dispatch_workgroups((n as u32).div_ceil(64), 1, 1);
+        let invocations = match walk {
+            Walk::Single => n,
+            Walk::Packets => n.div_ceil(4),
+        };
+        pass.dispatch_workgroups((invocations as u32).div_ceil(64), 1, 1);
     }
     encoder.copy_buffer_to_buffer(&answers, 0, &readback, 0, size);
     gpu.queue.submit([encoder.finish()]);
@@ -187,7 +227,7 @@ fn bvh_traversal_answers_what_testing_every_triangle_answers() {
         rays.push(o.extend(t_max).to_array());
         rays.push(Vec4::from((q - o, 0.0)).to_array());
     }
-    let answers = trace(&gpu, &flat, &rays);
+    let answers = trace(&gpu, &flat, &rays, Walk::Single);
     let blocked = answers.iter().filter(|a| a[1] == 1).count();
     assert!(
         blocked > 400 && blocked < 3700,
@@ -197,6 +237,48 @@ fn bvh_traversal_answers_what_testing_every_triangle_answers() {
         .filter(|&i| answers[i][0] != answers[i][1])
         .collect();
     assert!(differ.is_empty(), "the BVH disagrees on rays {differ:?}");
+}
+
+/// Four rays from one point in one walk, as a sphere light's strata are
+/// traced: each answer is what testing every triangle answers, whether the
+/// four diverge (random directions) or nearly coincide (towards a ball of
+/// 5 cm), some of them left out.
+#[test]
+fn four_ray_walks_answer_what_testing_every_triangle_answers() {
+    let gpu = common::gpu();
+    let scene = lumlab::scene::default_scene();
+    let flat = FlatBvh::of_scene(&scene);
+    let bounds = scene.bounds();
+    let (lo, hi) = (bounds.min - Vec3::splat(1.0), bounds.max + Vec3::splat(1.0));
+    let mut random = Random(0x0fed_cba9_8765_4321);
+    let mut rays = Vec::new();
+    for packet in 0..1024 {
+        let o = random.point(lo, hi);
+        let t_max = if packet % 3 == 0 { 1.0 } else { random.next() };
+        let target = random.point(lo, hi);
+        for _ in 0..4 {
+            let q = if packet % 2 == 0 {
+                random.point(lo, hi)
+            } else {
+                target + random.point(Vec3::splat(-0.05), Vec3::splat(0.05))
+            };
+            rays.push(o.extend(t_max).to_array());
+            rays.push(Vec4::from((q - o, 0.0)).to_array());
+        }
+    }
+    let answers = trace(&gpu, &flat, &rays, Walk::Packets);
+    let blocked = answers.iter().filter(|a| a[1] == 1).count();
+    assert!(
+        blocked > 400 && blocked < 3000,
+        "{blocked} of 4096 blocked: the rays do not test much"
+    );
+    let differ: Vec<usize> = (0..answers.len())
+        .filter(|&i| answers[i][0] != answers[i][1])
+        .collect();
+    assert!(
+        differ.is_empty(),
+        "the four-ray walk disagrees on rays {differ:?}"
+    );
 }
 
 /// The aux target (x: V, z: max(0, n·l)) of the ray tracer after each
@@ -534,11 +616,23 @@ fn a_bvh_deeper_than_the_traversal_stack_loses_no_triangle() {
             rays.push([0.0, 0.0, 2.0, 0.0]);
         }
     }
-    let answers = trace(&common::gpu(), &flat, &rays);
+    let gpu = common::gpu();
+    let answers = trace(&gpu, &flat, &rays, Walk::Single);
     let blocked = answers.iter().filter(|a| a[1] == 1).count();
     assert_eq!(blocked, triangles.len(), "each triangle blocks its own ray");
     let differ: Vec<usize> = (0..answers.len())
         .filter(|&i| answers[i][0] != answers[i][1])
         .collect();
     assert!(differ.is_empty(), "the BVH 300 deep disagrees on rays {differ:?}");
+    // Four rays a walk: packet g's rays start at triangle 2g's, those left
+    // out aside.
+    let answers = trace(&gpu, &flat, &rays, Walk::Packets);
+    let differ: Vec<usize> = (0..answers.len())
+        .filter(|&i| answers[i][0] != answers[i][1])
+        .collect();
+    assert!(answers.iter().any(|a| a[1] == 1));
+    assert!(
+        differ.is_empty(),
+        "the four-ray walk 300 deep disagrees on rays {differ:?}"
+    );
 }

@@ -129,14 +129,16 @@ fn every_ray_traced_specialisation_matches_the_generic_pipeline() {
     let (mut generic, mut specialised) = generic_and_specialised();
     specialised.set_shade_options(ShadeOptions::default());
     let size = (64, 48);
-    for radius_m in [0.0, 0.3] {
+    // A sphere light's rays one at a time (one a pixel) or four to a walk.
+    for (radius_m, samples) in [(0.0, 1), (0.3, 1), (0.3, 4), (0.3, 6)] {
         let mut s = lumlab::settings::Settings::default();
         s.shadow.visibility = Visibility::RayTraced;
         s.light.radius_m = radius_m;
+        s.shadow.rt_light_samples = samples;
         for frame in 1..=3 {
             generic.render(&s, size);
             specialised.render(&s, size);
-            let what = format!("R = {radius_m} m, frame {frame}");
+            let what = format!("R = {radius_m} m, {samples} rays a pixel, frame {frame}");
             let (a0, a1) = (generic.read_aux(), specialised.read_aux());
             assert!(a0.iter().any(|t| t[3] > 0.0 && t[0] < 0.5), "{what}: some shadow");
             let (q0, q1) = (generic.read_quantity(), specialised.read_quantity());

@@ -4,7 +4,8 @@
 //! `SPECIALISED_VISIBILITY`, `SPECIALISED_BIAS`, `SPECIALISED_CUBE`: the
 //! shadow map's layout, `SPECIALISED_SHADOWS`: shadows on or off,
 //! `SPECIALISED_SPHERE_LIGHT`: a sphere or a point light, under ray-traced
-//! V `SPECIALISED_ACCUMULATING`, `SPECIALISED_VERTEX_COLOURS` and
+//! V `SPECIALISED_ACCUMULATING` and `SPECIALISED_RAY_PACKETS`,
+//! `SPECIALISED_VERTEX_COLOURS` and
 //! `SPECIALISED_TEXTURES`: the scene has vertex colours, textures); a
 //! pipeline given one value keeps only that case of each `switch` (the
 //! compiler folds the rest away), the default
@@ -135,6 +136,11 @@ pub struct Specialisation {
     /// the sphere's code and every frame the history's loads.
     pub sphere_light: Option<bool>,
     pub accumulating: Option<bool>,
+    /// Under ray-traced V, a sphere light's rays traced four to a walk
+    /// (several a pixel) or one at a time (one a pixel: the app's drag
+    /// frames, which a walk for four would make a third slower on
+    /// lavapipe) (`SPECIALISED_RAY_PACKETS`).
+    pub ray_packets: Option<bool>,
     /// What the scene's attributes leave out of the camera pass.
     pub attributes: Option<SceneAttributes>,
     /// Writes the aux target beside the quantity.
@@ -175,6 +181,8 @@ impl Specialisation {
             layout: layout.filter(|_| on),
             sphere_light: on.then_some(settings.light.is_sphere()),
             accumulating: traced.then_some(accumulating),
+            ray_packets: traced
+                .then_some(!options.one_light_sample && settings.ray_traced_rays_per_frame() > 1),
             attributes: on.then_some(attributes),
             aux: options.aux,
             // A ray-traced fragment costs its rays. After the pre-pass each
@@ -217,6 +225,9 @@ impl Specialisation {
         }
         if let Some(accumulating) = self.accumulating {
             constants.push(("SPECIALISED_ACCUMULATING", f64::from(u8::from(accumulating))));
+        }
+        if let Some(packets) = self.ray_packets {
+            constants.push(("SPECIALISED_RAY_PACKETS", f64::from(u8::from(packets))));
         }
         if let Some(attributes) = self.attributes {
             let flag = |on: bool| f64::from(u8::from(on));
