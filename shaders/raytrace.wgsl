@@ -5,8 +5,10 @@
 // Conventions of the CPU reference (reference/shading.rs), in f32: the ray
 // starts off the surface along the facet's normal on the viewer's side and
 // stops short of the light; a point light gets one ray (V ∈ {0, 1}); a sphere
-// light gets nx × ny stratified directions uniform in the solid angle of its
-// cone, V = Σ V_i cos⁺θ_i / Σ cos⁺θ_i.
+// light gets S directions in the solid angle of its cone a frame, the next S
+// points of a low-discrepancy sequence of the pixel's (rt_r2), so that the
+// frames' mean is that of one well-spread set of N · S directions,
+// V = Σ V_i cos⁺θ_i / Σ cos⁺θ_i a frame.
 
 struct RayTrace {
     // Frames already in the history; 0: this frame starts anew.
@@ -14,15 +16,15 @@ struct RayTrace {
     // Weight of this frame in the running mean: 1 / (frames_before + 1), or
     // 0 once the accumulation is complete (the history then holds).
     weight: f32,
-    // Strata of the sphere light's cone per pixel and frame.
-    strata_x: u32,
-    strata_y: u32,
+    // Rays towards the sphere light per pixel and frame, S.
+    rays: u32,
+    // This frame's first sample in each pixel's sequence: frames_before · S.
+    first_sample: u32,
     // Entries of the BVH's pairs (0: nothing casts shadows).
     pair_count: u32,
-    // Changes every frame: a new stream of random numbers.
-    frame_seed: u32,
     _padding0: u32,
     _padding1: u32,
+    _padding2: u32,
     // The grid of the BVH's boxes (bvh.wgsl).
     grid: BvhGrid,
 }
@@ -43,7 +45,7 @@ override SPECIALISED_ACCUMULATING: u32 = SPECIALISE_ANY;
 override SPECIALISED_RAY_PACKETS: u32 = SPECIALISE_ANY;
 
 fn ray_packets() -> bool {
-    let several = u32(knobs.rays.x * knobs.rays.y > 1u);
+    let several = u32(knobs.rays.x > 1u);
     return select(SPECIALISED_RAY_PACKETS, several, SPECIALISED_RAY_PACKETS == SPECIALISE_ANY) != 0u;
 }
 
@@ -71,10 +73,19 @@ fn rt_hash(x: u32) -> u32 {
     return (word >> 22u) ^ word;
 }
 
-// Uniform in [0, 1): the top 24 bits.
-fn rt_random(state: ptr<function, u32>) -> f32 {
-    *state = rt_hash(*state);
-    return f32(*state >> 8u) * (1.0 / 16777216.0);
+// 2³² / φ₂ and 2³² / φ₂², φ₂ the plastic number (x³ = x + 1): the steps
+// of the R2 sequence (Roberts 2018), point i = frac(i · (1/φ₂, 1/φ₂²)).
+const RT_R2_STEP: vec2<u32> = vec2<u32>(3242174889u, 2447445414u);
+
+// Point i of the R2 sequence turned by `offset` (a Cranley–Patterson
+// rotation, in 32-bit fixed point: exact however long the sequence), in
+// [0, 1)² (the top 24 bits). Any run of consecutive points is spread
+// evenly over the square, so a pixel's rays of one frame and those of all
+// its frames together are both well spread: the mean converges faster
+// than 1/√N where the integrand has edges (a shadow's across the light).
+fn rt_r2(i: u32, offset: vec2<u32>) -> vec2<f32> {
+    let q = vec2<u32>(i) * RT_R2_STEP + offset;
+    return vec2<f32>(q >> vec2<u32>(8u)) * (1.0 / 16777216.0);
 }
 
 // Whether the segment from `origin_rel` along d (both relative to the eye)
@@ -100,22 +111,19 @@ struct RtCone {
     n: vec3<f32>,
 }
 
-// Stratum `at` (column, row) of the cone's nx × ny (knobs.rays.xy): the
-// segment from the ray's origin to the near side of the sphere along a
-// direction uniform in the stratum's solid angle (xyz), and its cos⁺θ at the
-// point (w); w = 0 past the last row. `at` then steps to the next stratum,
-// row by row. Equal strata of (u, v) are equal solid angles of the cone.
-fn rt_stratum(cone: RtCone, at: ptr<function, vec2<u32>>, state: ptr<function, u32>) -> vec4<f32> {
-    let here = *at;
-    *at = select(here + vec2<u32>(1u, 0u), vec2<u32>(0u, here.y + 1u), here.x + 1u >= knobs.rays.x);
-    let u = (f32(here.x) + rt_random(state)) / f32(knobs.rays.x);
-    let v = (f32(here.y) + rt_random(state)) / f32(knobs.rays.y);
-    let gap = u * cone.gap_max;
+// Ray k of this frame's S (knobs.rays.x) towards the cone: the segment from
+// the ray's origin to the near side of the sphere along the direction of
+// the pixel's sample first_sample + k (knobs.rays.y + k), turned by
+// `offset` (xyz), and its cos⁺θ at the point (w); w = 0 for k ≥ S. (u, v)
+// uniform in the square is a direction uniform in the cone's solid angle.
+fn rt_ray(cone: RtCone, k: u32, offset: vec2<u32>) -> vec4<f32> {
+    let uv = rt_r2(knobs.rays.y + k, offset);
+    let gap = uv.x * cone.gap_max;
     let cos_theta = 1.0 - gap;
     let sin2_theta = max(gap * (2.0 - gap), 0.0);
-    let phi = 2.0 * PI * v;
+    let phi = 2.0 * PI * uv.y;
     let l = cone.w * cos_theta + (cone.t1 * cos(phi) + cone.t2 * sin(phi)) * sqrt(sin2_theta);
-    let c = select(0.0, max(dot(cone.n, l), 0.0), here.y < knobs.rays.y);
+    let c = select(0.0, max(dot(cone.n, l), 0.0), k < knobs.rays.x);
     // The near intersection with the sphere along l.
     let t = cone.dist * cos_theta - sqrt(max(cone.r2 - cone.d2 * sin2_theta, 0.0));
     return vec4<f32>(cone.rel + l * t - cone.origin, c);
@@ -166,15 +174,14 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
         origin,
         n,
     );
-    var state = rt_hash(u32(pixel.x) ^ rt_hash(u32(pixel.y) ^ rt_hash(rt.frame_seed)));
+    // The pixel's own rotation of the sequence, the same in every frame.
+    let seed = rt_hash(u32(pixel.x) ^ rt_hash(u32(pixel.y)));
+    let turn = vec2<u32>(seed, rt_hash(seed));
     var cos_sum = 0.0;
     var visible_cos_sum = 0.0;
-    var at = vec2<u32>(0u);
     if !ray_packets() {
-        // The strata row by row in one loop: each loop level costs lavapipe
-        // its own set-up and exit tests.
-        while at.y < knobs.rays.y {
-            let s = rt_stratum(cone, &at, &state);
+        for (var k = 0u; k < knobs.rays.x; k++) {
+            let s = rt_ray(cone, k, turn);
             cos_sum += s.w;
             if s.w > 0.0 && !rt_blocked(origin, s.xyz, &stack) {
                 visible_cos_sum += s.w;
@@ -182,18 +189,18 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
         }
         return select(0.0, visible_cos_sum / cos_sum, cos_sum > 0.0);
     }
-    // The strata four at a time, traced in one walk (bvh_occluded4).
-    while at.y < knobs.rays.y {
-        let s0 = rt_stratum(cone, &at, &state);
-        let s1 = rt_stratum(cone, &at, &state);
-        let s2 = rt_stratum(cone, &at, &state);
-        let s3 = rt_stratum(cone, &at, &state);
+    // The rays four at a time, traced in one walk (bvh_occluded4).
+    for (var k = 0u; k < knobs.rays.x; k += 4u) {
+        let s0 = rt_ray(cone, k, turn);
+        let s1 = rt_ray(cone, k + 1u, turn);
+        let s2 = rt_ray(cone, k + 2u, turn);
+        let s3 = rt_ray(cone, k + 3u, turn);
         let c = vec4<f32>(s0.w, s1.w, s2.w, s3.w);
         let o = origin + globals.eye;
         let rays = BvhRays4(s0.xyz, s1.xyz, s2.xyz, s3.xyz);
         let blocked = bvh_occluded4(o, rays, 1.0 - RT_STOP_SHORT_REL, c > vec4<f32>(0.0), knobs.rays.z, rt.grid, &stack);
         let seen = select(c, vec4<f32>(0.0), blocked);
-        // In the strata's order, as one ray at a time would sum them.
+        // In the rays' order, as one ray at a time would sum them.
         cos_sum += c.x;
         visible_cos_sum += seen.x;
         cos_sum += c.y;

@@ -135,7 +135,7 @@ fn vs(in: VsIn) -> VsOut {
     let norm_factor = select(globals.norm_factor, mat.base_color.w, own_m);
     out.brdf = vec4<f32>(k, m, norm_factor, select(0.0, 1.0, (mat.words.w & MATERIAL_DOUBLE_SIDED) != 0u));
     out.knob_filter = vec4<u32>(shadow.pcf_size, shadow.range_block, shadow.pcss_blocker_samples, shadow.poisson_samples);
-    out.knob_rays = vec4<u32>(rt.strata_x, rt.strata_y, rt.pair_count, globals.delta_e_defined);
+    out.knob_rays = vec4<u32>(rt.rays, rt.first_sample, rt.pair_count, globals.delta_e_defined);
     out.knob_radius_m = globals.light_radius_m;
     return out;
 }

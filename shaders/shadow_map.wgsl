@@ -22,7 +22,7 @@
 struct Knobs {
     // Shadow's pcf_size, range_block, pcss_blocker_samples, poisson_samples.
     filters: vec4<u32>,
-    // RayTrace's strata_x, strata_y and pair_count, Globals' delta_e_defined.
+    // RayTrace's rays, first_sample and pair_count, Globals' delta_e_defined.
     rays: vec4<u32>,
     // The light's radius (m): Globals' light_radius_m (Shadow holds the same).
     radius_m: f32,

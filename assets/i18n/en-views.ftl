@@ -87,11 +87,11 @@ lecture-question = Question:
 
 ## Visibility (visibility.rs)
 visibility-shadow-map-tip = Shadow map: depth from the light, then a filtered depth test per pixel (fast, approximate)
-visibility-ray-traced-tip = Ray traced on the GPU through a BVH: a shadow ray from p to the light. Point light: exact V ∈ {"{"}0, 1{"}"}. Sphere light: V = Σ V_i cos θ_i / Σ cos θ_i over S stratified directions of its cone per frame, averaged over the frames while nothing changes
+visibility-ray-traced-tip = Ray traced on the GPU through a BVH: a shadow ray from p to the light. Point light: exact V ∈ {"{"}0, 1{"}"}. Sphere light: V = Σ V_i cos θ_i / Σ cos θ_i over S directions of its cone per frame, the next points of a low-discrepancy sequence of the pixel's, averaged over the frames while nothing changes: N frames make one well-spread set of N·S directions
 visibility-label = Visibility
 visibility-label-tip = Where V(p, q) ∈ [0, 1] comes from: L = f_r · E · V
 visibility-rays = rays / frame
-visibility-rays-tip = S: shadow rays per pixel and frame towards a sphere light, on nx × ny strata of its solid angle (squares stratify best); a point light needs one. While you drag, each frame sends one (the still frame after the drag sends S again and starts its average anew)
+visibility-rays-tip = S: shadow rays per pixel and frame towards a sphere light, the next S points of a low-discrepancy sequence (R2) over its solid angle, traced four to a walk of the BVH; a point light needs one. While you drag, each frame sends one (the still frame after the drag sends S again and starts its average anew)
 visibility-frames = frames
 visibility-frames-tip = N: frames averaged while nothing changes under a sphere light; the noise of V falls as 1/√(N·S), then the image holds. A point light is exact after one frame
 visibility-exact = exact

@@ -87,11 +87,11 @@ lecture-question = Question :
 
 ## Visibility (visibility.rs)
 visibility-shadow-map-tip = Carte d'ombres : profondeur vue de la lumière, puis un test de profondeur filtré par pixel (rapide, approché)
-visibility-ray-traced-tip = Lancer de rayons sur le GPU à travers un BVH : un rayon d'ombre de p vers la lumière. Lumière ponctuelle : V ∈ {"{"}0, 1{"}"} exact. Lumière sphérique : V = Σ V_i cos θ_i / Σ cos θ_i sur S directions stratifiées de son cône par image, moyennées sur les images tant que rien ne change
+visibility-ray-traced-tip = Lancer de rayons sur le GPU à travers un BVH : un rayon d'ombre de p vers la lumière. Lumière ponctuelle : V ∈ {"{"}0, 1{"}"} exact. Lumière sphérique : V = Σ V_i cos θ_i / Σ cos θ_i sur S directions de son cône par image, les suivantes d'une suite à faible discrépance propre au pixel, moyennées sur les images tant que rien ne change : N images font un seul ensemble bien réparti de N·S directions
 visibility-label = Visibilité
 visibility-label-tip = D'où vient V(p, q) ∈ [0, 1] : L = f_r · E · V
 visibility-rays = rayons / image
-visibility-rays-tip = S : rayons d'ombre par pixel et par image vers une lumière sphérique, sur nx × ny strates de son angle solide (les carrés stratifient le mieux) ; une lumière ponctuelle n'en demande qu'un. Pendant un glissement, chaque image n'en envoie qu'un (l'image fixe qui suit en envoie de nouveau S et recommence sa moyenne)
+visibility-rays-tip = S : rayons d'ombre par pixel et par image vers une lumière sphérique, les S points suivants d'une suite à faible discrépance (R2) sur son angle solide, tracés quatre par parcours du BVH ; une lumière ponctuelle n'en demande qu'un. Pendant un glissement, chaque image n'en envoie qu'un (l'image fixe qui suit en envoie de nouveau S et recommence sa moyenne)
 visibility-frames = images
 visibility-frames-tip = N : images moyennées tant que rien ne change sous une lumière sphérique ; le bruit de V décroît en 1/√(N·S), puis l'image reste fixe. Une lumière ponctuelle est exacte dès la première image
 visibility-exact = exact

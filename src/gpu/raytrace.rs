@@ -19,11 +19,10 @@ use wgpu::ShaderStages;
 pub struct RayTraceRaw {
     pub frames_before: u32,
     pub weight: f32,
-    pub strata_x: u32,
-    pub strata_y: u32,
+    pub rays: u32,
+    pub first_sample: u32,
     pub pair_count: u32,
-    pub frame_seed: u32,
-    pub _padding: [u32; 2],
+    pub _padding: [u32; 3],
     pub grid: BvhGridRaw,
 }
 
@@ -39,7 +38,8 @@ pub struct Accumulation {
     pub rays_per_frame: u32,
     /// A bound on the standard error of V that remains, σ ≤ 0.5 / √(N·S)
     /// (N frames of S independent samples of a quantity in [0, 1]; the
-    /// strata make the real error smaller); 0 for a point light (exact).
+    /// low-discrepancy samples make the real error smaller); 0 for a point
+    /// light (exact).
     pub noise_bound: f32,
 }
 
@@ -111,7 +111,6 @@ pub struct RayTracePass {
     history: Option<History>,
     key: Option<Key>,
     frames: u32,
-    frame_seed: u32,
     status: Option<Accumulation>,
 }
 
@@ -124,7 +123,6 @@ impl RayTracePass {
             history: None,
             key: None,
             frames: 0,
-            frame_seed: 0,
             status: None,
         }
     }
@@ -185,14 +183,12 @@ impl RayTracePass {
             self.frames += 1;
             1.0 / self.frames as f32
         };
-        self.frame_seed = self.frame_seed.wrapping_add(1);
         let sphere = settings.light.is_sphere();
         let (samples, rays_per_frame) = if variant.one_light_sample {
             (1, 1)
         } else {
-            (s.rt_light_samples, settings.ray_traced_rays_per_frame())
+            (s.rt_light_samples.max(1), settings.ray_traced_rays_per_frame())
         };
-        let (strata_x, strata_y) = strata(samples);
         self.status = traced.then(|| Accumulation {
             frames: self.frames,
             max_frames,
@@ -206,11 +202,10 @@ impl RayTracePass {
         let raw = RayTraceRaw {
             frames_before,
             weight,
-            strata_x,
-            strata_y,
+            rays: samples,
+            first_sample: frames_before.wrapping_mul(samples),
             pair_count: bvh.pair_count,
-            frame_seed: self.frame_seed,
-            _padding: [0; 2],
+            _padding: [0; 3],
             grid: bvh.grid,
         };
         queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&raw));
@@ -243,18 +238,6 @@ struct Target {
     scene_generation: u64,
     simplified_bvh: bool,
     scene_bvh: bool,
-}
-
-/// The strata nx × ny of n light samples: the divisor pair of n nearest a
-/// square, as the reference stratifies its own (n = 1 … 4 … 16 → 1×1, 2×2, 4×4).
-pub fn strata(n: u32) -> (u32, u32) {
-    let n = n.max(1);
-    let nx = (1..=n)
-        .take_while(|d| d * d <= n)
-        .filter(|d| n.is_multiple_of(*d))
-        .last()
-        .unwrap_or(1);
-    (nx, n / nx)
 }
 
 impl History {
@@ -297,18 +280,5 @@ impl History {
             simplified_bvh,
             scene_bvh,
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn strata_are_the_squarest_divisor_pair() {
-        assert_eq!(super::strata(1), (1, 1));
-        assert_eq!(super::strata(4), (2, 2));
-        assert_eq!(super::strata(8), (2, 4));
-        assert_eq!(super::strata(64), (8, 8));
-        assert_eq!(super::strata(7), (1, 7));
-        assert_eq!(super::strata(0), (1, 1));
     }
 }

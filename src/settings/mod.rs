@@ -241,7 +241,7 @@ impl Settings {
     }
 
     /// Shadow rays per pixel and frame of ray-traced visibility:
-    /// `rt_light_samples` strata of a sphere light's solid angle; one ray
+    /// `rt_light_samples` directions in a sphere light's solid angle; one ray
     /// to a point light, which is exact.
     pub fn ray_traced_rays_per_frame(&self) -> u32 {
         if self.light.is_sphere() {

@@ -163,7 +163,8 @@ pub struct ShadowSettings {
     pub msm_bias: f32,
     pub bias: BiasSettings,
     /// Shadow rays per pixel per frame towards a sphere light (`ray-traced`):
-    /// strata of the light's solid angle.
+    /// the next points of the pixel's low-discrepancy sequence over the
+    /// light's solid angle.
     pub rt_light_samples: u32,
     /// Frames accumulated by `ray-traced` while nothing changes; then the
     /// image holds (N frames × `rt_light_samples` rays per pixel).
