@@ -97,72 +97,95 @@ fn bvh_inverse(d: vec3<f32>) -> vec3<f32> {
     return 1.0 / select(d, vec3<f32>(1e-30), abs(d) < vec3<f32>(1e-30));
 }
 
+// Where a walk stands: the item it visits, a pair (its index) or a leaf
+// (BVH_LEAF, its count in bits 28–30 and its first triangle in bits 0–27,
+// as a child's link (w) holds them, so that a leaf's step reads no node);
+// the nodes kept on the stack, whether any was lost to its size, and
+// whether nothing is left to visit.
+struct BvhWalk {
+    item: u32,
+    depth: u32,
+    overflowed: bool,
+    done: bool,
+}
+
+// One step from a pair whose children a and b the walk's rays meet, or
+// not: down to the one met (b kept for later where both are), else to the
+// last node kept. True when nothing is left (the walk is done).
+fn bvh_step(walk: ptr<function, BvhWalk>, stack: ptr<function, BvhStack>, pair: BvhPair, hit_a: bool, hit_b: bool) -> bool {
+    if hit_a && hit_b {
+        if (*walk).depth < BVH_STACK_SIZE {
+            (*stack)[(*walk).depth] = pair.b.w;
+            (*walk).depth += 1u;
+        } else {
+            (*walk).overflowed = true;
+        }
+    }
+    // To a child met: lavapipe runs each branch under a mask, and a select
+    // costs less than a branch.
+    if hit_a || hit_b {
+        (*walk).item = select(pair.b.w, pair.a.w, hit_a);
+        return false;
+    }
+    if (*walk).depth == 0u {
+        (*walk).done = true;
+        return true;
+    }
+    (*walk).depth -= 1u;
+    (*walk).item = (*stack)[(*walk).depth];
+    return false;
+}
+
+// The triangles to test after the inner nodes, first and end: the leaf's;
+// none when nothing was left. Where subtrees were lost, the last step
+// tests every triangle instead (the slow, exact answer): in the leaf's
+// loop, not one of its own after it, which lavapipe would enter once under
+// an empty mask on every ray.
+fn bvh_leaf_triangles(walk: BvhWalk) -> vec2<u32> {
+    let first = walk.item & BVH_FIRST_MASK;
+    let end = select(first + ((walk.item >> BVH_COUNT_SHIFT) & BVH_COUNT_MASK), first, walk.done);
+    let all = (walk.done || walk.depth == 0u) && walk.overflowed;
+    return select(vec2<u32>(first, end), vec2<u32>(0u, arrayLength(&bvh_triangles)), all);
+}
+
+// After a leaf's triangles: on to the last node kept, or false when none
+// is left.
+fn bvh_next(walk: ptr<function, BvhWalk>, stack: ptr<function, BvhStack>) -> bool {
+    if (*walk).done || (*walk).depth == 0u {
+        return false;
+    }
+    (*walk).depth -= 1u;
+    (*walk).item = (*stack)[(*walk).depth];
+    return true;
+}
+
 // Whether any caster meets o + t d for 0 < t < t_max (d need not be unit).
-// The item visited is a pair (its index), or a leaf: BVH_LEAF, its count
-// (bits 28–30) and its first triangle (bits 0–27), as a child's link (w)
-// holds them, so that a leaf's step reads no node.
+// Inner nodes are walked until a leaf or the end, then the leaf's triangles
+// tested: lanes reach their leaves together, and test them together.
 // `stack`: scratch of the caller's (its contents on entry do not matter).
 fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: BvhGrid, stack: ptr<function, BvhStack>) -> bool {
     let inv_d = bvh_inverse(d);
     if pair_count == 0u {
         return false;
     }
-    var depth = 0u;
-    var item = 0u;
-    var overflowed = false;
-    var done = false;
+    var walk = BvhWalk(0u, 0u, false, false);
     loop {
-        // Down the inner nodes until a leaf, or nothing is left: lanes
-        // reach their leaves together, and test them together.
-        loop {
-            if (item & BVH_LEAF) != 0u {
-                break;
-            }
-            let pair = bvh_pairs[item];
+        while (walk.item & BVH_LEAF) == 0u {
+            let pair = bvh_pairs[walk.item];
             let hit_a = bvh_hits_box(pair.a, grid, o, inv_d, t_max);
-            let hit_b = bvh_hits_box(pair.b, grid, o, inv_d, t_max);
-            if hit_a && hit_b {
-                if depth < BVH_STACK_SIZE {
-                    (*stack)[depth] = pair.b.w;
-                    depth += 1u;
-                } else {
-                    overflowed = true;
-                }
-            }
-            // One step down, to a where it was met: lavapipe runs each
-            // branch under a mask, and a select costs less than a branch.
-            if hit_a || hit_b {
-                item = select(pair.b.w, pair.a.w, hit_a);
-                continue;
-            }
-            if depth == 0u {
-                done = true;
+            if bvh_step(&walk, stack, pair, hit_a, bvh_hits_box(pair.b, grid, o, inv_d, t_max)) {
                 break;
             }
-            depth -= 1u;
-            item = (*stack)[depth];
         }
-        // The leaf's triangles; none when nothing was left. Where subtrees
-        // were left out, the last step tests every triangle instead (the
-        // slow, exact answer): in this loop, not one of its own after it,
-        // which lavapipe would enter once under an empty mask on every ray.
-        let last = done || depth == 0u;
-        var first = item & BVH_FIRST_MASK;
-        var end = select(first + ((item >> BVH_COUNT_SHIFT) & BVH_COUNT_MASK), first, done);
-        if last && overflowed {
-            first = 0u;
-            end = arrayLength(&bvh_triangles);
-        }
-        for (var i = first; i < end; i++) {
+        let triangles = bvh_leaf_triangles(walk);
+        for (var i = triangles.x; i < triangles.y; i++) {
             if bvh_hits_triangle(bvh_triangles[i], o, d, t_max) {
                 return true;
             }
         }
-        if last {
+        if !bvh_next(&walk, stack) {
             break;
         }
-        depth -= 1u;
-        item = (*stack)[depth];
     }
     return false;
 }
@@ -205,46 +228,18 @@ fn bvh_occluded4(o: vec3<f32>, d: BvhRays4, t_max: f32, rays_in: vec4<bool>, pai
     if pair_count == 0u {
         return blocked;
     }
-    var depth = 0u;
-    var item = 0u;
-    var overflowed = false;
-    var done = false;
     // bvh_occluded's walk, a node met where any live ray meets it.
+    var walk = BvhWalk(0u, 0u, false, false);
     loop {
-        loop {
-            if (item & BVH_LEAF) != 0u {
-                break;
-            }
-            let pair = bvh_pairs[item];
+        while (walk.item & BVH_LEAF) == 0u {
+            let pair = bvh_pairs[walk.item];
             let hit_a = any(live & bvh_hits_box4(pair.a, grid, o, inv_d, t_max));
-            let hit_b = any(live & bvh_hits_box4(pair.b, grid, o, inv_d, t_max));
-            if hit_a && hit_b {
-                if depth < BVH_STACK_SIZE {
-                    (*stack)[depth] = pair.b.w;
-                    depth += 1u;
-                } else {
-                    overflowed = true;
-                }
-            }
-            if hit_a || hit_b {
-                item = select(pair.b.w, pair.a.w, hit_a);
-                continue;
-            }
-            if depth == 0u {
-                done = true;
+            if bvh_step(&walk, stack, pair, hit_a, any(live & bvh_hits_box4(pair.b, grid, o, inv_d, t_max))) {
                 break;
             }
-            depth -= 1u;
-            item = (*stack)[depth];
         }
-        let last = done || depth == 0u;
-        var first = item & BVH_FIRST_MASK;
-        var end = select(first + ((item >> BVH_COUNT_SHIFT) & BVH_COUNT_MASK), first, done);
-        if last && overflowed {
-            first = 0u;
-            end = arrayLength(&bvh_triangles);
-        }
-        for (var i = first; i < end; i++) {
+        let triangles = bvh_leaf_triangles(walk);
+        for (var i = triangles.x; i < triangles.y; i++) {
             let hits = live & bvh_hits_triangle4(bvh_triangles[i], o, d, t_max);
             blocked |= hits;
             live &= !hits;
@@ -252,11 +247,9 @@ fn bvh_occluded4(o: vec3<f32>, d: BvhRays4, t_max: f32, rays_in: vec4<bool>, pai
                 return blocked;
             }
         }
-        if last {
+        if !bvh_next(&walk, stack) {
             break;
         }
-        depth -= 1u;
-        item = (*stack)[depth];
     }
     return blocked;
 }
