@@ -15,7 +15,7 @@ set -uo pipefail
 # The GPU test binaries checked on real hardware: the one that hung, run
 # REPEATS times, and the others once.
 REPEATED=reference_gpu
-ONCE=(gpu_renderer gpu_raytrace specialised_shading cube_seams)
+ONCE=(gpu_renderer gpu_raytrace gpu_bvh specialised_shading cube_seams)
 TESTS=("$REPEATED" "${ONCE[@]}")
 REPEATS=${REPEATS:-5}
 # Checks that failed or hung (the exit status: 1 when any did).
