@@ -94,6 +94,12 @@ fn rt_blocked(origin_rel: vec3<f32>, d: vec3<f32>, stack: ptr<function, BvhStack
     return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, knobs.rays.z, rt.grid, stack);
 }
 
+// rt_blocked for four segments from one origin, those `live`
+// (bvh_occluded4).
+fn rt_blocked4(origin_rel: vec3<f32>, d: BvhRays4, live: vec4<bool>, stack: ptr<function, BvhStack>) -> vec4<bool> {
+    return bvh_occluded4(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, live, knobs.rays.z, rt.grid, stack);
+}
+
 // A sphere light's cone of directions seen from a point: its axis w and a
 // frame (t1, t2) around it, 1 − cos α of its half-angle, the distance d to
 // the light's centre, R² and d²; the point, the shadow rays' origin (both
@@ -196,9 +202,8 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
         let s2 = rt_ray(cone, k + 2u, turn);
         let s3 = rt_ray(cone, k + 3u, turn);
         let c = vec4<f32>(s0.w, s1.w, s2.w, s3.w);
-        let o = origin + globals.eye;
         let rays = BvhRays4(s0.xyz, s1.xyz, s2.xyz, s3.xyz);
-        let blocked = bvh_occluded4(o, rays, 1.0 - RT_STOP_SHORT_REL, c > vec4<f32>(0.0), knobs.rays.z, rt.grid, &stack);
+        let blocked = rt_blocked4(origin, rays, c > vec4<f32>(0.0), &stack);
         let seen = select(c, vec4<f32>(0.0), blocked);
         // In the rays' order, as one ray at a time would sum them.
         cos_sum += c.x;

@@ -26,8 +26,7 @@ fn vs(@location(0) position: vec3<f32>) -> VsOut {
 // VSM; for EVSM the moments of exp(c w) and −exp(−c w), w = 2u − 1.
 @fragment
 fn fs_moments(in: VsOut) -> @location(0) vec4<f32> {
-    let f = layer;
-    let u = clamp((in.depth - f.near_m) / (f.far_m - f.near_m), 0.0, 1.0);
+    let u = clamp((in.depth - layer.near_m) / (layer.far_m - layer.near_m), 0.0, 1.0);
     let u2 = u * u;
     let c = shadow.evsm_exponent;
     let w = 2.0 * u - 1.0;

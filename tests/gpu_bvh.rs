@@ -189,6 +189,13 @@ fn trace(gpu: &GpuContext, flat: &FlatBvh, rays: &[[f32; 4]], walk: Walk) -> Vec
     bytemuck::pod_collect_to_vec(&bytes)
 }
 
+/// The rays whose walk and brute force answer differently.
+fn disagreeing(answers: &[[u32; 2]]) -> Vec<usize> {
+    (0..answers.len())
+        .filter(|&i| answers[i][0] != answers[i][1])
+        .collect()
+}
+
 /// xorshift64*: reproducible test rays.
 struct Random(u64);
 
@@ -229,9 +236,7 @@ fn bvh_traversal_answers_what_testing_every_triangle_answers() {
         blocked > 400 && blocked < 3700,
         "{blocked} of 4096 blocked: the rays do not test much"
     );
-    let differ: Vec<usize> = (0..answers.len())
-        .filter(|&i| answers[i][0] != answers[i][1])
-        .collect();
+    let differ = disagreeing(&answers);
     assert!(differ.is_empty(), "the BVH disagrees on rays {differ:?}");
 }
 
@@ -268,9 +273,7 @@ fn four_ray_walks_answer_what_testing_every_triangle_answers() {
         blocked > 400 && blocked < 3000,
         "{blocked} of 4096 blocked: the rays do not test much"
     );
-    let differ: Vec<usize> = (0..answers.len())
-        .filter(|&i| answers[i][0] != answers[i][1])
-        .collect();
+    let differ = disagreeing(&answers);
     assert!(
         differ.is_empty(),
         "the four-ray walk disagrees on rays {differ:?}"
@@ -345,16 +348,12 @@ fn a_bvh_deeper_than_the_traversal_stack_loses_no_triangle() {
     let answers = trace(&gpu, &flat, &rays, Walk::Single);
     let blocked = answers.iter().filter(|a| a[1] == 1).count();
     assert_eq!(blocked, triangles.len(), "each triangle blocks its own ray");
-    let differ: Vec<usize> = (0..answers.len())
-        .filter(|&i| answers[i][0] != answers[i][1])
-        .collect();
+    let differ = disagreeing(&answers);
     assert!(differ.is_empty(), "the BVH 300 deep disagrees on rays {differ:?}");
     // Four rays a walk: packet g's rays start at triangle 2g's, those left
     // out aside.
     let answers = trace(&gpu, &flat, &rays, Walk::Packets);
-    let differ: Vec<usize> = (0..answers.len())
-        .filter(|&i| answers[i][0] != answers[i][1])
-        .collect();
+    let differ = disagreeing(&answers);
     assert!(answers.iter().any(|a| a[1] == 1));
     assert!(
         differ.is_empty(),

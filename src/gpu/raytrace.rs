@@ -184,11 +184,7 @@ impl RayTracePass {
             1.0 / self.frames as f32
         };
         let sphere = settings.light.is_sphere();
-        let (samples, rays_per_frame) = if variant.one_light_sample {
-            (1, 1)
-        } else {
-            (s.rt_light_samples.max(1), settings.ray_traced_rays_per_frame())
-        };
+        let rays_per_frame = rays_per_pixel(settings, variant.one_light_sample);
         self.status = traced.then(|| Accumulation {
             frames: self.frames,
             max_frames,
@@ -202,8 +198,8 @@ impl RayTracePass {
         let raw = RayTraceRaw {
             frames_before,
             weight,
-            rays: samples,
-            first_sample: frames_before.wrapping_mul(samples),
+            rays: rays_per_frame,
+            first_sample: frames_before.wrapping_mul(rays_per_frame),
             pair_count: bvh.pair_count,
             _padding: [0; 3],
             grid: bvh.grid,
@@ -228,6 +224,16 @@ impl RayTracePass {
         for (from, to) in &written[..1 + usize::from(key.variant.aux)] {
             encoder.copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), from.size());
         }
+    }
+}
+
+/// Shadow rays a pixel traces in a frame: the settings' (one to a point
+/// light), or one where the frame traces `one_light_sample` (a drag's).
+pub fn rays_per_pixel(settings: &Settings, one_light_sample: bool) -> u32 {
+    if one_light_sample {
+        1
+    } else {
+        settings.ray_traced_rays_per_frame()
     }
 }
 

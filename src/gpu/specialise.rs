@@ -14,6 +14,7 @@
 //! bias mode) is one more constant here and one more `*_mode()` in WGSL.
 
 use super::light_frustum::LayoutKind;
+use super::raytrace::rays_per_pixel;
 use super::renderer::code;
 use super::scene_buffers::Vertex;
 use super::shadow::DEPTH_FORMAT;
@@ -181,8 +182,7 @@ impl Specialisation {
             layout: layout.filter(|_| on),
             sphere_light: on.then_some(settings.light.is_sphere()),
             accumulating: traced.then_some(accumulating),
-            ray_packets: traced
-                .then_some(!options.one_light_sample && settings.ray_traced_rays_per_frame() > 1),
+            ray_packets: traced.then_some(rays_per_pixel(settings, options.one_light_sample) > 1),
             attributes: on.then_some(attributes),
             aux: options.aux,
             // A ray-traced fragment costs its rays. After the pre-pass each
