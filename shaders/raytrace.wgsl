@@ -11,7 +11,9 @@
 // V = Σ V_i cos⁺θ_i / Σ cos⁺θ_i a frame.
 
 struct RayTrace {
-    // Frames already in the history; 0: this frame starts anew.
+    // Frames already in the history this pass folds the frame into; 0: this
+    // frame starts anew, or is folded after the pass (f16 targets,
+    // gpu::accumulate).
     frames_before: u32,
     // Weight of this frame in the running mean: 1 / (frames_before + 1), or
     // 0 once the accumulation is complete (the history then holds).

@@ -6,10 +6,27 @@
 mod common;
 
 use glam::Vec3;
-use lumlab::gpu::{GpuContext, Renderer, ShadeOptions};
+use lumlab::gpu::{Capabilities, GpuContext, Renderer, ShadeOptions};
 use lumlab::reference::{Reference, ReferenceOptions, RenderControl};
 use lumlab::scene::Scene;
 use lumlab::settings::{Settings, Visibility};
+
+/// The camera pass's targets: as the adapter offers, or f16 as GL's
+/// fallback has them on llvmpipe (the mean is then kept in f32 by
+/// gpu::accumulate).
+#[derive(Clone, Copy, Debug)]
+enum Targets {
+    Adapters,
+    F16,
+}
+
+fn renderer(gpu: &GpuContext, scene: &Scene, targets: Targets) -> Renderer {
+    let mut caps = Capabilities::of(&gpu.adapter, &gpu.device);
+    if let Targets::F16 = targets {
+        caps.hdr_format = wgpu::TextureFormat::Rgba16Float;
+    }
+    Renderer::with_capabilities(&gpu.device, &gpu.queue, caps, scene)
+}
 
 /// The aux target (x: V, z: max(0, n·l)) of the ray tracer after each
 /// number of `frames`.
@@ -18,8 +35,9 @@ fn ray_traced_aux(
     scene: &Scene,
     settings: &Settings,
     frames: &[u32],
+    targets: Targets,
 ) -> Vec<Vec<[f32; 4]>> {
-    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, scene);
+    let mut renderer = renderer(gpu, scene, targets);
     let size = (settings.image.width, settings.image.height);
     let mut out = Vec::new();
     let mut done = 0;
@@ -60,7 +78,7 @@ fn on_silhouette(v: &[f32], coverage: &[f32], width: usize, i: usize) -> bool {
 fn point_light_matches_the_reference(scene: &Scene, settings: &Settings) {
     let gpu = common::gpu();
     assert!(settings.shadow.rt_max_frames >= 3);
-    let gpu_v: Vec<f32> = ray_traced_aux(&gpu, scene, settings, &[3])[0]
+    let gpu_v: Vec<f32> = ray_traced_aux(&gpu, scene, settings, &[3], Targets::Adapters)[0]
         .iter()
         .map(|t| t[0])
         .collect();
@@ -131,11 +149,20 @@ fn under_a_sphere_light() -> Settings {
 
 #[test]
 fn sphere_light_accumulation_converges_to_the_reference_as_one_over_root_n() {
+    converges_to_the_reference(Targets::Adapters);
+}
+
+#[test]
+fn sphere_light_accumulation_converges_as_well_with_f16_targets_as_gl_has() {
+    converges_to_the_reference(Targets::F16);
+}
+
+fn converges_to_the_reference(targets: Targets) {
     let gpu = common::gpu();
     let scene = lumlab::scene::default_scene();
     let settings = under_a_sphere_light();
     let frames = [1, 4, 16, 64, 256];
-    let runs = ray_traced_aux(&gpu, &scene, &settings, &frames);
+    let runs = ray_traced_aux(&gpu, &scene, &settings, &frames, targets);
     let options = ReferenceOptions {
         light_samples: 4096,
         ..ReferenceOptions::DEFAULT
@@ -190,7 +217,7 @@ fn sphere_light_accumulation_converges_to_the_reference_as_one_over_root_n() {
             (sum / covered.len() as f64).sqrt()
         })
         .collect();
-    eprintln!("mean V {mean:.4}; RMSE at N = {frames:?}: {rmse:.5?}");
+    eprintln!("{targets:?}: mean V {mean:.4}; RMSE at N = {frames:?}: {rmse:.5?}");
     for (k, &n) in frames.iter().enumerate() {
         // 1/√N with 25 % slack for the randomness of the estimate itself.
         let bound = 1.25 * rmse[0] / (n as f64).sqrt();
@@ -244,13 +271,18 @@ fn accumulate_needs_ray_traced_visibility_and_renders_n_frames() {
 
 #[test]
 fn a_mean_begun_without_the_aux_target_restarts_when_it_is_asked_for() {
+    restarts_when_the_aux_target_is_asked_for(Targets::Adapters);
+    restarts_when_the_aux_target_is_asked_for(Targets::F16);
+}
+
+fn restarts_when_the_aux_target_is_asked_for(targets: Targets) {
     // The app's frames skip the aux target until the probe reads it; the
     // frames of the mean before then left none in the history.
     let gpu = common::gpu();
     let scene = lumlab::scene::default_scene();
     let settings = under_a_sphere_light();
     let size = (settings.image.width, settings.image.height);
-    let mut renderer = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    let mut renderer = renderer(&gpu, &scene, targets);
     let quantity_only = ShadeOptions {
         aux: false,
         ..ShadeOptions::default()

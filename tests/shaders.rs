@@ -3,6 +3,7 @@
 //! settings' enums, and the numeric constants WGSL shares with Rust are the
 //! Rust ones.
 
+use lumlab::gpu::accumulate::FoldRaw;
 use lumlab::gpu::shaders::{Shader, luminance_weights, shared_f32_constants, shared_u32_constants};
 use lumlab::gpu::uniforms::{
     BlurParamsRaw, DisplayParamsRaw, GlobalsRaw, MaterialRaw, ShadowLayerRaw, ShadowRaw,
@@ -58,6 +59,11 @@ fn uniform_structs_match_their_wgsl_size() {
     assert_eq!(
         struct_size(&blur, "BlurParams") as usize,
         std::mem::size_of::<BlurParamsRaw>()
+    );
+    let accumulate = parse(Shader::Accumulate);
+    assert_eq!(
+        struct_size(&accumulate, "Fold") as usize,
+        std::mem::size_of::<FoldRaw>()
     );
 }
 

@@ -156,7 +156,7 @@ fn no_pipeline_branches_on_uniforms_alone() {
     for (i, _) in DebugView::ALL.iter().enumerate() {
         found.extend(display.findings("fs", &[("SPECIALISED_VIEW", i as f64)]));
     }
-    let others: [(Shader, &[&str]); 7] = [
+    let others: [(Shader, &[&str]); 8] = [
         (Shader::Shadow, &["vs", "fs_moments"]),
         (Shader::DepthRanges, &["vs", "fs_blocks", "fs_windows"]),
         (Shader::Blur, &["vs", "fs"]),
@@ -164,6 +164,7 @@ fn no_pipeline_branches_on_uniforms_alone() {
         (Shader::Lines, &["vs", "fs_visible", "fs_hidden"]),
         (Shader::ViewportImage, &["vs", "fs", "fs_srgb_target"]),
         (Shader::Reduce, &["main"]),
+        (Shader::Accumulate, &["fold_frame"]),
     ];
     for (shader, entries) in others {
         let parsed = Parsed::of(shader);

@@ -9,6 +9,7 @@
 //! shadow map (shaders/shadow_map.wgsl) or the ray tracer (`raytrace`, over
 //! the casters' BVH in `bvh`).
 
+pub mod accumulate;
 pub mod binding;
 pub mod bvh;
 pub mod bvh_build;

@@ -4,8 +4,10 @@
 //! the image size and the scene stay the same, each frame is folded into the
 //! running mean of the frames before (the previous targets, copied into a
 //! history after the pass), up to `ShadowSettings::rt_max_frames`. Any change
-//! starts the mean anew.
+//! starts the mean anew. Where the targets are f16 (GL), the camera pass
+//! writes each frame as it is and `accumulate` folds it in f32 after.
 
+use super::accumulate::{self, SeparateFold};
 use super::binding;
 use super::bvh::{BvhGridRaw, GpuBvh};
 use super::shared::SharedScene;
@@ -109,6 +111,11 @@ pub struct RayTracePass {
     format: wgpu::TextureFormat,
     uniform: wgpu::Buffer,
     history: Option<History>,
+    /// Beside f16 targets: the mean folded in f32 after the camera pass,
+    /// which then reads no history.
+    separate: Option<SeparateFold>,
+    /// This frame is folded by `separate` (a sphere light's, ray traced).
+    separate_this_frame: bool,
     key: Option<Key>,
     frames: u32,
     status: Option<Accumulation>,
@@ -121,6 +128,8 @@ impl RayTracePass {
             format,
             uniform: super::uniforms::uniform_buffer::<RayTraceRaw>(device, "ray-traced visibility"),
             history: None,
+            separate: (format == accumulate::TARGET_FORMAT).then(|| SeparateFold::new(device)),
+            separate_this_frame: false,
             key: None,
             frames: 0,
             status: None,
@@ -133,9 +142,9 @@ impl RayTracePass {
     }
 
     /// Sets this frame's uniforms and returns the bind group the camera pass
-    /// uses, and whether the frame folds in the history of the frames before
-    /// (a sphere light's mean under way; a point light's one frame is exact,
-    /// and the same again).
+    /// uses, and whether the camera pass folds in the history of the frames
+    /// before (a sphere light's mean under way beside f32 targets; a point
+    /// light's one frame is exact, and the same again).
     pub fn prepare(
         &mut self,
         device: &wgpu::Device,
@@ -157,6 +166,8 @@ impl RayTracePass {
         }) {
             let target = Target {
                 size,
+                // The camera pass reads no history beside f16 targets.
+                texture_size: if self.separate.is_some() { (1, 1) } else { size },
                 format: self.format,
                 scene_generation,
                 simplified_bvh: variant.simplified,
@@ -195,8 +206,18 @@ impl RayTracePass {
                 0.0
             },
         });
+        let sphere_traced = traced && sphere;
+        self.separate_this_frame = sphere_traced && self.separate.is_some();
+        if let (Some(separate), true) = (&mut self.separate, self.separate_this_frame) {
+            separate.prepare(device, queue, size, weight);
+        }
+        let in_pass_before = if self.separate_this_frame {
+            0
+        } else {
+            frames_before
+        };
         let raw = RayTraceRaw {
-            frames_before,
+            frames_before: in_pass_before,
             weight,
             rays: rays_per_frame,
             first_sample: frames_before.wrapping_mul(rays_per_frame),
@@ -205,14 +226,16 @@ impl RayTracePass {
             grid: bvh.grid,
         };
         queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&raw));
-        let accumulating = traced && sphere && frames_before > 0;
+        let accumulating = sphere_traced && in_pass_before > 0;
         (&self.history.as_ref().expect("made above").group, accumulating)
     }
 
-    /// Keeps this frame's targets as the history of the next (ray traced
-    /// only; the aux target where the frame wrote it).
+    /// Keeps this frame's targets as the history of the next, or beside f16
+    /// targets folds them into the f32 mean (ray traced only; the aux target
+    /// where the frame wrote it).
     pub fn encode_history(
         &self,
+        device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         quantity: &wgpu::Texture,
         aux: &wgpu::Texture,
@@ -220,6 +243,12 @@ impl RayTracePass {
         let (Some(history), Some(key)) = (&self.history, &self.key) else {
             return;
         };
+        if let Some(separate) = &self.separate {
+            if self.separate_this_frame {
+                separate.encode(device, encoder, quantity, aux, key.variant.aux);
+            }
+            return;
+        }
         let written = [(quantity, &history.quantity), (aux, &history.aux)];
         for (from, to) in &written[..1 + usize::from(key.variant.aux)] {
             encoder.copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), from.size());
@@ -240,6 +269,8 @@ pub fn rays_per_pixel(settings: &Settings, one_light_sample: bool) -> u32 {
 /// What a history is made for.
 struct Target {
     size: (u32, u32),
+    /// The textures' size: the image's, or 1 × 1 where nothing reads them.
+    texture_size: (u32, u32),
     format: wgpu::TextureFormat,
     scene_generation: u64,
     simplified_bvh: bool,
@@ -256,13 +287,14 @@ impl History {
     ) -> Self {
         let Target {
             size,
+            texture_size,
             format,
             scene_generation,
             simplified_bvh,
             scene_bvh,
         } = target;
         let usage = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
-        let texture = |label: &str| super::targets::image_texture(device, label, size, format, usage);
+        let texture = |label: &str| super::targets::image_texture(device, label, texture_size, format, usage);
         let quantity = texture("history quantity");
         let aux = texture("history aux");
         let group = binding::group(

@@ -68,7 +68,17 @@ pub struct Renderer {
 
 impl Renderer {
     pub fn new(adapter: &wgpu::Adapter, device: &wgpu::Device, queue: &wgpu::Queue, scene: &Scene) -> Self {
-        let caps = Capabilities::of(adapter, device);
+        Self::with_capabilities(device, queue, Capabilities::of(adapter, device), scene)
+    }
+
+    /// A renderer that takes `caps` for what the device can do: the tests
+    /// draw with the f16 targets of GL's fallback on any adapter.
+    pub fn with_capabilities(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        caps: Capabilities,
+        scene: &Scene,
+    ) -> Self {
         let shared = SharedScene::new(device, queue, caps.clone(), scene);
         Self::on(device, queue, caps, Arc::new(Mutex::new(shared)))
     }
@@ -422,7 +432,7 @@ impl Renderer {
             writes,
         );
         self.raytrace
-            .encode_history(encoder, &targets.quantity, &targets.aux);
+            .encode_history(&self.device, encoder, &targets.quantity, &targets.aux);
         let inputs = DisplayInputs {
             quantity: &targets.quantity_view,
             comparison: &targets.comparison_view,

@@ -70,10 +70,12 @@ pub enum Shader {
     Stability,
     /// The lab's viewport image in the window's render pass (app::viewport_image).
     ViewportImage,
+    /// A ray-traced mean folded in f32 beside f16 targets (gpu::accumulate).
+    Accumulate,
 }
 
 impl Shader {
-    pub const ALL: [Shader; 9] = [
+    pub const ALL: [Shader; 10] = [
         Self::Shadow,
         Self::Blur,
         Self::DepthRanges,
@@ -83,6 +85,7 @@ impl Shader {
         Self::Lines,
         Self::Stability,
         Self::ViewportImage,
+        Self::Accumulate,
     ];
 
     pub fn name(self) -> &'static str {
@@ -96,6 +99,7 @@ impl Shader {
             Self::Lines => "lines.wgsl",
             Self::Stability => "stability.wgsl",
             Self::ViewportImage => "viewport_image.wgsl",
+            Self::Accumulate => "accumulate.wgsl",
         }
     }
 
@@ -121,6 +125,7 @@ impl Shader {
             Self::Lines => include_str!("../../shaders/lines.wgsl"),
             Self::Stability => include_str!("../../shaders/stability.wgsl"),
             Self::ViewportImage => include_str!("../../shaders/viewport_image.wgsl"),
+            Self::Accumulate => include_str!("../../shaders/accumulate.wgsl"),
         }
     }
 

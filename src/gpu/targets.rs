@@ -24,8 +24,11 @@ impl FrameTargets {
         let texture = |label: &str, format, usage| image_texture(device, label, size, format, usage);
         use wgpu::TextureUsages as U;
         let target = U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC;
-        let quantity = texture("quantity", hdr, target);
-        let aux = texture("aux", hdr, target);
+        // A ray-traced mean kept in f32 beside f16 targets is copied back
+        // into them (gpu::accumulate).
+        let float_target = target | U::COPY_DST;
+        let quantity = texture("quantity", hdr, float_target);
+        let aux = texture("aux", hdr, float_target);
         let depth = texture("camera depth", DEPTH_FORMAT, U::RENDER_ATTACHMENT);
         let display = texture("display", DISPLAY_FORMAT, target);
         let comparison = texture(
