@@ -229,6 +229,7 @@ impl GpuViews {
         let Some(h) = &mut self.halves[half as usize] else {
             return false;
         };
+        h.poll_noise(wake);
         let still = ShadeOptions::still(settings, probed);
         let key = RenderKey {
             settings: settings.clone(),

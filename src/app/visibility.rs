@@ -50,14 +50,18 @@ pub fn visibility_ui(
     }
 }
 
-/// "37 / 256 frames × 4 rays, σ(V) ≤ 0.041": the ray-traced accumulation
-/// so far, at the bottom left of a half; σ(V) ≤ 0.5 / √(N·S) bounds the
-/// noise left in V.
+/// "37 / 256 frames × 4 rays, noise ≈ 0.21 % of the mean": the ray-traced
+/// accumulation so far, at the bottom left of a half, with the noise
+/// measured on the image (gpu::noise); before the first measure (four
+/// frames), σ(V) ≤ 0.5 / √(N·S) bounds the noise left in V.
 pub fn accumulation_text(a: &Accumulation) -> String {
-    let noise = if a.noise_bound > 0.0 {
-        format!("σ(V) ≤ {:.3}", a.noise_bound)
-    } else {
-        tr!("visibility-exact")
+    let noise = match a.estimate {
+        _ if a.noise_bound == 0.0 => tr!("visibility-exact"),
+        Some(e) => tr!(
+            "visibility-noise-estimate",
+            percent = two_significant(100.0 * e.relative)
+        ),
+        None => format!("σ(V) ≤ {:.3}", a.noise_bound),
     };
     tr!(
         "visibility-accumulation",
@@ -66,6 +70,16 @@ pub fn accumulation_text(a: &Accumulation) -> String {
         rays = a.rays_per_frame,
         noise = noise
     )
+}
+
+/// `x` to two significant digits, at least one decimal: 2.1, 0.21, 0.043.
+fn two_significant(x: f64) -> String {
+    let decimals = if x > 0.0 && x.is_finite() {
+        (1 - x.log10().floor() as i32).max(1) as usize
+    } else {
+        1
+    };
+    format!("{x:.decimals$}")
 }
 
 pub fn paint_accumulation(painter: &egui::Painter, area: egui::Rect, a: &Accumulation) {

@@ -136,10 +136,18 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         }
     }
     let times = renderer.wait_timings();
+    renderer.settle_noise();
     let visibility = match renderer.accumulation() {
         Some(a) => format!(
-            "ray traced, {} frame(s) × {} ray(s) per pixel",
-            a.frames, a.rays_per_frame
+            "ray traced, {} frame(s) × {} ray(s) per pixel{}",
+            a.frames,
+            a.rays_per_frame,
+            a.estimate.map_or(String::new(), |e| format!(
+                ", noise: RMS standard error {:.3} % of the mean (frames {} → {})",
+                100.0 * e.relative,
+                e.earlier_frames,
+                e.frames
+            )),
         ),
         None => format!("shadow map {}² ({})", report.resolution, report.layout_summary()),
     };

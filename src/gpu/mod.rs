@@ -23,6 +23,7 @@ pub mod flat;
 pub mod frame_report;
 pub mod light_frustum;
 pub mod lines;
+pub mod noise;
 pub mod raytrace;
 pub mod readback;
 pub mod renderer;

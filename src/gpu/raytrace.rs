@@ -10,6 +10,7 @@
 use super::accumulate::{self, SeparateFold};
 use super::binding;
 use super::bvh::{BvhGridRaw, GpuBvh};
+use super::noise::{self, NoiseEstimate};
 use super::shared::SharedScene;
 use crate::settings::{Settings, Visibility};
 use bytemuck::{Pod, Zeroable};
@@ -43,6 +44,11 @@ pub struct Accumulation {
     /// low-discrepancy samples make the real error smaller); 0 for a point
     /// light (exact).
     pub noise_bound: f32,
+    /// This run of the mean: a number no other run of any renderer has.
+    pub run: u64,
+    /// The noise measured on the image, once a read of it is back
+    /// (`Renderer::accumulation` fills it in).
+    pub estimate: Option<NoiseEstimate>,
 }
 
 impl Accumulation {
@@ -118,6 +124,7 @@ pub struct RayTracePass {
     separate_this_frame: bool,
     key: Option<Key>,
     frames: u32,
+    run: u64,
     status: Option<Accumulation>,
 }
 
@@ -132,6 +139,7 @@ impl RayTracePass {
             separate_this_frame: false,
             key: None,
             frames: 0,
+            run: noise::new_run(),
             status: None,
         }
     }
@@ -184,6 +192,7 @@ impl RayTracePass {
         };
         if !traced || self.key.as_ref() != Some(&key) {
             self.frames = 0;
+            self.run = noise::new_run();
         }
         self.key = traced.then_some(key);
         let max_frames = settings.ray_traced_frames();
@@ -205,6 +214,8 @@ impl RayTracePass {
             } else {
                 0.0
             },
+            run: self.run,
+            estimate: None,
         });
         let sphere_traced = traced && sphere;
         self.separate_this_frame = sphere_traced && self.separate.is_some();

@@ -11,6 +11,7 @@ use super::flat::{FlatTargets, time_flat_pass};
 use super::frame_report::FrameReport;
 use super::light_frustum::{Frustum, LayoutKind, shadow_apex};
 use super::lines::FrustumOverlay;
+use super::noise::NoiseProbe;
 use super::raytrace::{Accumulation, FrameVariant, RayTracePass};
 use super::shade::ShadePass;
 use super::shared::SharedScene;
@@ -62,6 +63,8 @@ pub struct Renderer {
     has_comparison: bool,
     comparison: Option<ComparisonImage>,
     timer: Option<GpuTimer>,
+    /// The noise left in a ray-traced mean, measured on the image.
+    noise: NoiseProbe,
     /// Light and material colours under the colour settings.
     colours: super::spectral::ColourCache,
 }
@@ -116,6 +119,7 @@ impl Renderer {
             targets: None,
             has_comparison: false,
             comparison: None,
+            noise: NoiseProbe::default(),
             colours: Default::default(),
         }
     }
@@ -354,6 +358,7 @@ impl Renderer {
         if timed && let Some(timer) = &self.timer {
             timer.request_readback();
         }
+        self.read_for_noise();
         report
     }
 
@@ -475,9 +480,14 @@ impl Renderer {
     }
 
     /// The ray-traced visibility's accumulation after the last frame (None
-    /// when V comes from the shadow map).
+    /// when V comes from the shadow map), with the last estimate of its
+    /// noise (see [`Self::poll_noise`]).
     pub fn accumulation(&self) -> Option<Accumulation> {
-        self.raytrace.accumulation()
+        let a = self.raytrace.accumulation()?;
+        Some(Accumulation {
+            estimate: self.noise.estimate(a.run),
+            ..a
+        })
     }
 
     /// The display texture (8-bit sRGB) of the last frame.

@@ -98,6 +98,19 @@ impl HalfView {
         self.bind_shown(&render_state.device, pipeline, recreated);
     }
 
+    /// Picks up the noise measured on the ray-traced mean shown once its
+    /// read is back, asking for a repaint while it is on its way.
+    pub(super) fn poll_noise(&mut self, wake: &egui::Context) {
+        if self.renderer.poll_noise() {
+            wake.request_repaint();
+        }
+        if let (Some(shown), Some(now)) = (&mut self.shown_accumulation, self.renderer.accumulation())
+            && shown.run == now.run
+        {
+            shown.estimate = now.estimate;
+        }
+    }
+
     /// Whether its renderer's ray-traced mean is still under way.
     pub(super) fn accumulating(&self) -> bool {
         self.renderer.accumulation().is_some_and(|a| !a.is_complete())

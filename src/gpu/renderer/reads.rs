@@ -1,6 +1,7 @@
 //! What a renderer's last frame holds, read back: its float targets (the
 //! quantity and, where the frame wrote it, the aux target), its displayed
-//! image and its false-colour scale, at once or without blocking.
+//! image and its false-colour scale, at once or without blocking; and the
+//! reads a ray-traced mean's noise is measured on (`gpu::noise`).
 
 use super::Renderer;
 use crate::gpu::readback::{PendingRead, read_texture};
@@ -86,5 +87,35 @@ impl Renderer {
     /// The largest value of the last false-colour view (its scale).
     pub fn read_scale(&self) -> f32 {
         self.display.read_scale(&self.device, &self.queue)
+    }
+
+    /// After a frame: starts reading the quantity back where the noise
+    /// probe measures the ray-traced mean (a sphere light's, at powers of
+    /// two and at its last frame).
+    pub(super) fn read_for_noise(&mut self) {
+        let _ = self.noise.poll();
+        let Some(a) = self.raytrace.accumulation().filter(|a| a.noise_bound > 0.0) else {
+            return;
+        };
+        let Some(size) = self.targets.as_ref().map(|t| t.size) else {
+            return;
+        };
+        if self.noise.wants(a.run, a.frames, a.is_complete())
+            && let Some(texels) = self.request_texels(FloatTarget::Quantity, (0, 0), size)
+        {
+            self.noise.read(a.frames, texels);
+        }
+    }
+
+    /// Picks up the noise probe's read once it is back, without blocking;
+    /// true while one is on its way.
+    pub fn poll_noise(&mut self) -> bool {
+        self.noise.poll()
+    }
+
+    /// Waits for the noise probe's read (the command line, the tests).
+    pub fn settle_noise(&mut self) {
+        let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+        self.noise.poll();
     }
 }
