@@ -41,14 +41,17 @@ struct RayTrace {
 // starts it (0):
 override SPECIALISED_ACCUMULATING: u32 = SPECIALISE_ANY;
 
-// A sphere light's rays traced four to a walk (1, bvh_occluded4) or one at
-// a time (0): a walk for four costs some 45 % more than a walk for one, and
-// about half as much as four walks (lavapipe, callgrind).
-override SPECIALISED_RAY_PACKETS: u32 = SPECIALISE_ANY;
+// A sphere light's rays traced one at a time (1), four to a walk (4,
+// bvh_occluded4) or eight (8, bvh_occluded8), as gpu::raytrace's
+// rays_per_walk picks from S: a walk for four costs some 45 % more than a
+// walk for one and about half as much as four walks; one for eight some
+// 60 % more than one for four (lavapipe, callgrind).
+override SPECIALISED_RAYS_PER_WALK: u32 = SPECIALISE_ANY;
 
-fn ray_packets() -> bool {
-    let several = u32(knobs.rays.x > 1u);
-    return select(SPECIALISED_RAY_PACKETS, several, SPECIALISED_RAY_PACKETS == SPECIALISE_ANY) != 0u;
+fn rays_per_walk() -> u32 {
+    let rays = knobs.rays.x;
+    let width = select(select(4u, 8u, rays >= 8u), 1u, rays <= 1u);
+    return select(SPECIALISED_RAYS_PER_WALK, width, SPECIALISED_RAYS_PER_WALK == SPECIALISE_ANY);
 }
 
 fn accumulating() -> bool {
@@ -96,10 +99,10 @@ fn rt_blocked(origin_rel: vec3<f32>, d: vec3<f32>, stack: ptr<function, BvhStack
     return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, knobs.rays.z, rt.grid, stack);
 }
 
-// rt_blocked for four segments from one origin, those `live`
-// (bvh_occluded4).
-fn rt_blocked4(origin_rel: vec3<f32>, d: BvhRays4, live: vec4<bool>, stack: ptr<function, BvhStack>) -> vec4<bool> {
-    return bvh_occluded4(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, live, knobs.rays.z, rt.grid, stack);
+// rt_blocked for four segments from one origin, those `live_lo`, and where
+// `eight` four more, those `live_hi` (bvh_occluded8).
+fn rt_blocked8(origin_rel: vec3<f32>, d_lo: BvhRays4, d_hi: BvhRays4, live_lo: vec4<bool>, live_hi: vec4<bool>, eight: bool, stack: ptr<function, BvhStack>) -> BvhBlocked8 {
+    return bvh_occluded8(origin_rel + globals.eye, d_lo, d_hi, 1.0 - RT_STOP_SHORT_REL, live_lo, live_hi, eight, knobs.rays.z, rt.grid, stack);
 }
 
 // A sphere light's cone of directions seen from a point: its axis w and a
@@ -135,6 +138,30 @@ fn rt_ray(cone: RtCone, k: u32, offset: vec2<u32>) -> vec4<f32> {
     // The near intersection with the sphere along l.
     let t = cone.dist * cos_theta - sqrt(max(cone.r2 - cone.d2 * sin2_theta, 0.0));
     return vec4<f32>(cone.rel + l * t - cone.origin, c);
+}
+
+// Rays k … k + 3 of rt_ray: their segments (the columns of d) and cos⁺θ.
+struct RtRays4 {
+    d: BvhRays4,
+    c: vec4<f32>,
+}
+
+fn rt_rays4(cone: RtCone, k: u32, offset: vec2<u32>) -> RtRays4 {
+    let s0 = rt_ray(cone, k, offset);
+    let s1 = rt_ray(cone, k + 1u, offset);
+    let s2 = rt_ray(cone, k + 2u, offset);
+    let s3 = rt_ray(cone, k + 3u, offset);
+    return RtRays4(BvhRays4(s0.xyz, s1.xyz, s2.xyz, s3.xyz), vec4<f32>(s0.w, s1.w, s2.w, s3.w));
+}
+
+// Adds four rays' cos⁺θ to `cos_sum` and those not `blocked` to
+// `visible_cos_sum`, one ray after the other.
+fn rt_sum4(cos_sum: ptr<function, f32>, visible_cos_sum: ptr<function, f32>, c: vec4<f32>, blocked: vec4<bool>) {
+    let seen = select(c, vec4<f32>(0.0), blocked);
+    for (var j = 0u; j < 4u; j++) {
+        *cos_sum += c[j];
+        *visible_cos_sum += seen[j];
+    }
 }
 
 // V at the point p = eye + rel with shading normal n and facet normal n_geo
@@ -187,7 +214,8 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
     let turn = vec2<u32>(seed, rt_hash(seed));
     var cos_sum = 0.0;
     var visible_cos_sum = 0.0;
-    if !ray_packets() {
+    let width = rays_per_walk();
+    if width == 1u {
         for (var k = 0u; k < knobs.rays.x; k++) {
             let s = rt_ray(cone, k, turn);
             cos_sum += s.w;
@@ -197,25 +225,20 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
         }
         return select(0.0, visible_cos_sum / cos_sum, cos_sum > 0.0);
     }
-    // The rays four at a time, traced in one walk (bvh_occluded4).
-    for (var k = 0u; k < knobs.rays.x; k += 4u) {
-        let s0 = rt_ray(cone, k, turn);
-        let s1 = rt_ray(cone, k + 1u, turn);
-        let s2 = rt_ray(cone, k + 2u, turn);
-        let s3 = rt_ray(cone, k + 3u, turn);
-        let c = vec4<f32>(s0.w, s1.w, s2.w, s3.w);
-        let rays = BvhRays4(s0.xyz, s1.xyz, s2.xyz, s3.xyz);
-        let blocked = rt_blocked4(origin, rays, c > vec4<f32>(0.0), &stack);
-        let seen = select(c, vec4<f32>(0.0), blocked);
+    // The rays four or eight at a time, traced in one walk (bvh_occluded8).
+    let eight = width == 8u;
+    for (var k = 0u; k < knobs.rays.x; k += width) {
+        let lo = rt_rays4(cone, k, turn);
+        var hi = lo;
+        if eight {
+            hi = rt_rays4(cone, k + 4u, turn);
+        }
+        let blocked = rt_blocked8(origin, lo.d, hi.d, lo.c > vec4<f32>(0.0), hi.c > vec4<f32>(0.0), eight, &stack);
         // In the rays' order, as one ray at a time would sum them.
-        cos_sum += c.x;
-        visible_cos_sum += seen.x;
-        cos_sum += c.y;
-        visible_cos_sum += seen.y;
-        cos_sum += c.z;
-        visible_cos_sum += seen.z;
-        cos_sum += c.w;
-        visible_cos_sum += seen.w;
+        rt_sum4(&cos_sum, &visible_cos_sum, lo.c, blocked.lo);
+        if eight {
+            rt_sum4(&cos_sum, &visible_cos_sum, hi.c, blocked.hi);
+        }
     }
     return select(0.0, visible_cos_sum / cos_sum, cos_sum > 0.0);
 }

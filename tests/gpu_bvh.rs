@@ -64,38 +64,57 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     answers[i] = vec2<u32>(select(0u, 1u, bvh_occluded(o, d, t_max, counts.n.y, counts.grid, &stack)), brute);
 }
 
-// The same for the four-ray walk: packet g holds rays 4g … 4g + 3, from the
-// origin and with the t_max of the first, each along its own direction;
-// ray j is left out where (g + j) % 5 == 0 (its brute-force answer 0).
+// The same for the packet walks: packet g holds rays WIDTH·g … WIDTH·g +
+// WIDTH − 1 (4: bvh_occluded4, 8: bvh_occluded8), from the origin and
+// with the t_max of the first, each along its own direction; ray j is left
+// out where (g + j) % 5 == 0 (its brute-force answer 0).
+override WIDTH: u32 = 4u;
+
+fn packet_rays(first: u32) -> BvhRays4 {
+    return BvhRays4(rays[first + 1u].xyz, rays[first + 3u].xyz, rays[first + 5u].xyz, rays[first + 7u].xyz);
+}
+
+fn packet_live(g: u32, j: u32) -> vec4<bool> {
+    return (vec4<u32>(g + j) + vec4<u32>(0u, 1u, 2u, 3u)) % 5u != vec4<u32>(0u);
+}
+
 @compute @workgroup_size(64)
 fn packets(@builtin(global_invocation_id) id: vec3<u32>) {
     let g = id.x;
-    if 4u * g >= counts.n.x {
+    if WIDTH * g >= counts.n.x {
         return;
     }
-    let o = rays[8u * g].xyz;
-    let t_max = rays[8u * g].w;
-    let d = BvhRays4(rays[8u * g + 1u].xyz, rays[8u * g + 3u].xyz, rays[8u * g + 5u].xyz, rays[8u * g + 7u].xyz);
-    let live = (vec4<u32>(g) + vec4<u32>(0u, 1u, 2u, 3u)) % 5u != vec4<u32>(0u);
+    let first = 2u * WIDTH * g;
+    let o = rays[first].xyz;
+    let t_max = rays[first].w;
     var stack: BvhStack;
-    let walked = bvh_occluded4(o, d, t_max, live, counts.n.y, counts.grid, &stack);
-    for (var j = 0u; j < 4u; j++) {
+    var walked = BvhBlocked8(vec4<bool>(false), vec4<bool>(false));
+    var d = array<BvhRays4, 2>(packet_rays(first), packet_rays(first));
+    if WIDTH == 8u {
+        d[1] = packet_rays(first + 8u);
+        walked = bvh_occluded8(o, d[0], d[1], t_max, packet_live(g, 0u), packet_live(g, 4u), true, counts.n.y, counts.grid, &stack);
+    } else {
+        walked.lo = bvh_occluded4(o, d[0], t_max, packet_live(g, 0u), counts.n.y, counts.grid, &stack);
+    }
+    let answers_walked = array<vec4<bool>, 2>(walked.lo, walked.hi);
+    for (var j = 0u; j < WIDTH; j++) {
+        let live = packet_live(g, j).x;
         var brute = 0u;
         for (var t = 0u; t < counts.n.z; t++) {
-            if live[j] && bvh_hits_triangle(bvh_triangles[t], o, d[j], t_max) {
+            if live && bvh_hits_triangle(bvh_triangles[t], o, d[j / 4u][j % 4u], t_max) {
                 brute = 1u;
             }
         }
-        answers[4u * g + j] = vec2<u32>(select(0u, 1u, walked[j]), brute);
+        answers[WIDTH * g + j] = vec2<u32>(select(0u, 1u, answers_walked[j / 4u][j % 4u]), brute);
     }
-}
-";
+}";
 
-/// The walks a test runs: one ray an invocation, or four (`packets`).
+/// The walks a test runs: one ray an invocation, or four or eight
+/// (`packets`).
 #[derive(Clone, Copy, Debug)]
 enum Walk {
     Single,
-    Packets,
+    Packets(u32),
 }
 
 fn storage(gpu: &GpuContext, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
@@ -120,9 +139,15 @@ fn trace(gpu: &GpuContext, flat: &FlatBvh, rays: &[[f32; 4]], walk: Walk) -> Vec
         module: &module,
         entry_point: Some(match walk {
             Walk::Single => "main",
-            Walk::Packets => "packets",
+            Walk::Packets(_) => "packets",
         }),
-        compilation_options: Default::default(),
+        compilation_options: wgpu::PipelineCompilationOptions {
+            constants: &match walk {
+                Walk::Single => vec![],
+                Walk::Packets(width) => vec![("WIDTH", f64::from(width))],
+            },
+            ..Default::default()
+        },
         cache: None,
     });
     let bvh = GpuBvh::new(device, flat);
@@ -175,7 +200,10 @@ fn trace(gpu: &GpuContext, flat: &FlatBvh, rays: &[[f32; 4]], walk: Walk) -> Vec
         pass.set_bind_group(2, &bvh_group, &[]);
         let invocations = match walk {
             Walk::Single => n,
-            Walk::Packets => n.div_ceil(4),
+            Walk::Packets(width) => {
+                assert_eq!(n % width as usize, 0, "whole packets");
+                n / width as usize
+            }
         };
         pass.dispatch_workgroups((invocations as u32).div_ceil(64), 1, 1);
     }
@@ -240,12 +268,12 @@ fn bvh_traversal_answers_what_testing_every_triangle_answers() {
     assert!(differ.is_empty(), "the BVH disagrees on rays {differ:?}");
 }
 
-/// Four rays from one point in one walk, as a sphere light's strata are
-/// traced: each answer is what testing every triangle answers, whether the
-/// four diverge (random directions) or nearly coincide (towards a ball of
-/// 5 cm), some of them left out.
+/// Four or eight rays from one point in one walk, as a sphere light's rays
+/// are traced: each answer is what testing every triangle answers, whether
+/// the rays diverge (random directions) or nearly coincide (towards a ball
+/// of 5 cm; an eight-ray packet holds four of each), some of them left out.
 #[test]
-fn four_ray_walks_answer_what_testing_every_triangle_answers() {
+fn packet_walks_answer_what_testing_every_triangle_answers() {
     let gpu = common::gpu();
     let scene = lumlab::scene::default_scene();
     let flat = FlatBvh::of_scene(&scene);
@@ -267,17 +295,19 @@ fn four_ray_walks_answer_what_testing_every_triangle_answers() {
             rays.push(Vec4::from((q - o, 0.0)).to_array());
         }
     }
-    let answers = trace(&gpu, &flat, &rays, Walk::Packets);
-    let blocked = answers.iter().filter(|a| a[1] == 1).count();
-    assert!(
-        blocked > 400 && blocked < 3000,
-        "{blocked} of 4096 blocked: the rays do not test much"
-    );
-    let differ = disagreeing(&answers);
-    assert!(
-        differ.is_empty(),
-        "the four-ray walk disagrees on rays {differ:?}"
-    );
+    for width in [4, 8] {
+        let answers = trace(&gpu, &flat, &rays, Walk::Packets(width));
+        let blocked = answers.iter().filter(|a| a[1] == 1).count();
+        assert!(
+            blocked > 400 && blocked < 3000,
+            "{blocked} of 4096 blocked: the rays do not test much"
+        );
+        let differ = disagreeing(&answers);
+        assert!(
+            differ.is_empty(),
+            "the {width}-ray walk disagrees on rays {differ:?}"
+        );
+    }
 }
 
 /// A caterpillar BVH as deep as it has triangles (node 0 the root, an
@@ -350,13 +380,15 @@ fn a_bvh_deeper_than_the_traversal_stack_loses_no_triangle() {
     assert_eq!(blocked, triangles.len(), "each triangle blocks its own ray");
     let differ = disagreeing(&answers);
     assert!(differ.is_empty(), "the BVH 300 deep disagrees on rays {differ:?}");
-    // Four rays a walk: packet g's rays start at triangle 2g's, those left
-    // out aside.
-    let answers = trace(&gpu, &flat, &rays, Walk::Packets);
-    let differ = disagreeing(&answers);
-    assert!(answers.iter().any(|a| a[1] == 1));
-    assert!(
-        differ.is_empty(),
-        "the four-ray walk 300 deep disagrees on rays {differ:?}"
-    );
+    // Four or eight rays a walk: packet g's rays start at its first ray's
+    // triangle, those left out aside.
+    for width in [4, 8] {
+        let answers = trace(&gpu, &flat, &rays, Walk::Packets(width));
+        let differ = disagreeing(&answers);
+        assert!(answers.iter().any(|a| a[1] == 1));
+        assert!(
+            differ.is_empty(),
+            "the {width}-ray walk 300 deep disagrees on rays {differ:?}"
+        );
+    }
 }

@@ -129,8 +129,9 @@ fn every_ray_traced_specialisation_matches_the_generic_pipeline() {
     let (mut generic, mut specialised) = generic_and_specialised();
     specialised.set_shade_options(ShadeOptions::default());
     let size = (64, 48);
-    // A sphere light's rays one at a time (one a pixel) or four to a walk.
-    for (radius_m, samples) in [(0.0, 1), (0.3, 1), (0.3, 4), (0.3, 6)] {
+    // A sphere light's rays one at a time (one a pixel), four to a walk or
+    // eight (12 rays: a last walk half empty).
+    for (radius_m, samples) in [(0.0, 1), (0.3, 1), (0.3, 4), (0.3, 6), (0.3, 12)] {
         let mut s = lumlab::settings::Settings::default();
         s.shadow.visibility = Visibility::RayTraced;
         s.light.radius_m = radius_m;

@@ -91,7 +91,7 @@ visibility-ray-traced-tip = Ray traced on the GPU through a BVH: a shadow ray fr
 visibility-label = Visibility
 visibility-label-tip = Where V(p, q) ∈ [0, 1] comes from: L = f_r · E · V
 visibility-rays = rays / frame
-visibility-rays-tip = S: shadow rays per pixel and frame towards a sphere light, the next S points of a low-discrepancy sequence (R2) over its solid angle, traced four to a walk of the BVH; a point light needs one. While you drag, each frame sends one (the still frame after the drag sends S again and starts its average anew)
+visibility-rays-tip = S: shadow rays per pixel and frame towards a sphere light, the next S points of a low-discrepancy sequence (R2) over its solid angle, traced four to a walk of the BVH (eight from S = 8 on); a point light needs one. While you drag, each frame sends one (the still frame after the drag sends S again and starts its average anew)
 visibility-frames = frames
 visibility-frames-tip = N: frames averaged while nothing changes under a sphere light; the noise of V falls at least as 1/√(N·S), faster thanks to the low-discrepancy sequence (the view's label gives the noise measured on the image, comparing the mean of N frames with that of its first N/2), then the image holds. A point light is exact after one frame
 visibility-exact = exact

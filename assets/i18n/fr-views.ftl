@@ -91,7 +91,7 @@ visibility-ray-traced-tip = Lancer de rayons sur le GPU à travers un BVH : un r
 visibility-label = Visibilité
 visibility-label-tip = D'où vient V(p, q) ∈ [0, 1] : L = f_r · E · V
 visibility-rays = rayons / image
-visibility-rays-tip = S : rayons d'ombre par pixel et par image vers une lumière sphérique, les S points suivants d'une suite à faible discrépance (R2) sur son angle solide, tracés quatre par parcours du BVH ; une lumière ponctuelle n'en demande qu'un. Pendant un glissement, chaque image n'en envoie qu'un (l'image fixe qui suit en envoie de nouveau S et recommence sa moyenne)
+visibility-rays-tip = S : rayons d'ombre par pixel et par image vers une lumière sphérique, les S points suivants d'une suite à faible discrépance (R2) sur son angle solide, tracés quatre par parcours du BVH (huit à partir de S = 8) ; une lumière ponctuelle n'en demande qu'un. Pendant un glissement, chaque image n'en envoie qu'un (l'image fixe qui suit en envoie de nouveau S et recommence sa moyenne)
 visibility-frames = images
 visibility-frames-tip = N : images moyennées tant que rien ne change sous une lumière sphérique ; le bruit de V décroît au moins en 1/√(N·S), plus vite grâce à la suite à faible discrépance (l'étiquette de la vue donne le bruit mesuré sur l'image, en comparant la moyenne de N images à celle de ses N/2 premières), puis l'image reste fixe. Une lumière ponctuelle est exacte dès la première image
 visibility-exact = exact

@@ -4,7 +4,7 @@
 //! `SPECIALISED_VISIBILITY`, `SPECIALISED_BIAS`, `SPECIALISED_CUBE`: the
 //! shadow map's layout, `SPECIALISED_SHADOWS`: shadows on or off,
 //! `SPECIALISED_SPHERE_LIGHT`: a sphere or a point light, under ray-traced
-//! V `SPECIALISED_ACCUMULATING` and `SPECIALISED_RAY_PACKETS`,
+//! V `SPECIALISED_ACCUMULATING` and `SPECIALISED_RAYS_PER_WALK`,
 //! `SPECIALISED_VERTEX_COLOURS` and
 //! `SPECIALISED_TEXTURES`: the scene has vertex colours, textures); a
 //! pipeline given one value keeps only that case of each `switch` (the
@@ -14,7 +14,7 @@
 //! bias mode) is one more constant here and one more `*_mode()` in WGSL.
 
 use super::light_frustum::LayoutKind;
-use super::raytrace::rays_per_pixel;
+use super::raytrace::{rays_per_pixel, rays_per_walk};
 use super::renderer::code;
 use super::scene_buffers::Vertex;
 use super::shadow::DEPTH_FORMAT;
@@ -137,11 +137,11 @@ pub struct Specialisation {
     /// the sphere's code and every frame the history's loads.
     pub sphere_light: Option<bool>,
     pub accumulating: Option<bool>,
-    /// Under ray-traced V, a sphere light's rays traced four to a walk
-    /// (several a pixel) or one at a time (one a pixel: the app's drag
-    /// frames, whose shading a walk for four made 45 % dearer on
-    /// lavapipe) (`SPECIALISED_RAY_PACKETS`).
-    pub ray_packets: Option<bool>,
+    /// Under ray-traced V, a sphere light's rays a walk: one (one a pixel:
+    /// the app's drag frames, whose shading a walk for four made 45 %
+    /// dearer on lavapipe), four or eight (`SPECIALISED_RAYS_PER_WALK`,
+    /// [`super::raytrace::rays_per_walk`]).
+    pub rays_per_walk: Option<u32>,
     /// What the scene's attributes leave out of the camera pass.
     pub attributes: Option<SceneAttributes>,
     /// Writes the aux target beside the quantity.
@@ -182,7 +182,7 @@ impl Specialisation {
             layout: layout.filter(|_| on),
             sphere_light: on.then_some(settings.light.is_sphere()),
             accumulating: traced.then_some(accumulating),
-            ray_packets: traced.then_some(rays_per_pixel(settings, options.one_light_sample) > 1),
+            rays_per_walk: traced.then(|| rays_per_walk(rays_per_pixel(settings, options.one_light_sample))),
             attributes: on.then_some(attributes),
             aux: options.aux,
             // A ray-traced fragment costs its rays. After the pre-pass each
@@ -226,8 +226,8 @@ impl Specialisation {
         if let Some(accumulating) = self.accumulating {
             constants.push(("SPECIALISED_ACCUMULATING", f64::from(u8::from(accumulating))));
         }
-        if let Some(packets) = self.ray_packets {
-            constants.push(("SPECIALISED_RAY_PACKETS", f64::from(u8::from(packets))));
+        if let Some(width) = self.rays_per_walk {
+            constants.push(("SPECIALISED_RAYS_PER_WALK", f64::from(width)));
         }
         if let Some(attributes) = self.attributes {
             let flag = |on: bool| f64::from(u8::from(on));
