@@ -82,11 +82,14 @@ fn two_significant(x: f64) -> String {
     format!("{x:.decimals$}")
 }
 
+/// The accumulation's text at the bottom left of `area`, wrapped to its
+/// width (a half of a side-by-side split is narrow).
 pub fn paint_accumulation(painter: &egui::Painter, area: egui::Rect, a: &Accumulation) {
     let at = area.left_bottom() + egui::vec2(10.0, -10.0);
     let text = accumulation_text(a);
     let font = egui::FontId::proportional(14.0);
-    let galley = painter.layout_no_wrap(text, font, egui::Color32::WHITE);
+    let wrap = (area.width() - 28.0).max(80.0);
+    let galley = painter.layout(text, font, egui::Color32::WHITE, wrap);
     let rect = egui::Align2::LEFT_BOTTOM
         .anchor_size(at, galley.size())
         .expand(4.0);
