@@ -138,10 +138,8 @@ impl SeparateFold {
             pass.set_bind_group(0, &group, &[]);
             pass.dispatch_workgroups(history.size.0.div_ceil(8), history.size.1.div_ceil(8), 1);
         }
-        let means = [(&history.mean_quantity, quantity), (&history.mean_aux, aux)];
-        for (from, to) in &means[..1 + usize::from(aux_written)] {
-            encoder.copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), from.size());
-        }
+        let means = [&history.mean_quantity, quantity];
+        super::targets::copy_pairs(encoder, means, [&history.mean_aux, aux], aux_written);
     }
 }
 

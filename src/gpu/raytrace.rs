@@ -260,10 +260,8 @@ impl RayTracePass {
             }
             return;
         }
-        let written = [(quantity, &history.quantity), (aux, &history.aux)];
-        for (from, to) in &written[..1 + usize::from(key.variant.aux)] {
-            encoder.copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), from.size());
-        }
+        let written = [quantity, &history.quantity];
+        super::targets::copy_pairs(encoder, written, [aux, &history.aux], key.variant.aux);
     }
 }
 

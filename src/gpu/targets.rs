@@ -52,6 +52,20 @@ impl FrameTargets {
     }
 }
 
+/// Copies the whole of `quantity[0]` into `quantity[1]`, and of `aux[0]`
+/// into `aux[1]` where `with_aux` (a frame's two float targets and their
+/// copies).
+pub(super) fn copy_pairs(
+    encoder: &mut wgpu::CommandEncoder,
+    quantity: [&wgpu::Texture; 2],
+    aux: [&wgpu::Texture; 2],
+    with_aux: bool,
+) {
+    for [from, to] in [quantity, aux].iter().take(1 + usize::from(with_aux)) {
+        encoder.copy_texture_to_texture(from.as_image_copy(), to.as_image_copy(), from.size());
+    }
+}
+
 /// A 2D texture of one layer sized like the image.
 pub(super) fn image_texture(
     device: &wgpu::Device,
