@@ -10,7 +10,7 @@ mod common;
 
 use common::*;
 use lumlab::gpu::light_frustum::LayoutKind;
-use lumlab::gpu::{Renderer, ShadeOptions};
+use lumlab::gpu::{Capabilities, Renderer, ShadeOptions};
 use lumlab::settings::{BiasMode, DebugView, Filter, Visibility};
 
 /// Largest |a − b| / max(1, |b|) over every channel: the targets are
@@ -27,9 +27,17 @@ fn worst_difference(a: &[[f32; 4]], b: &[[f32; 4]]) -> f64 {
 /// A renderer running the generic pipeline on the default scene, and one
 /// sharing its shadow maps (the same V inputs) for the specialised ones.
 fn generic_and_specialised() -> (Renderer, Renderer) {
+    generic_and_specialised_into(None)
+}
+
+/// The same, drawing into targets of `format` where given (Rgba16Float:
+/// as GL's fallback does on llvmpipe), else the adapter's.
+fn generic_and_specialised_into(format: Option<wgpu::TextureFormat>) -> (Renderer, Renderer) {
     let gpu = gpu();
     let scene = lumlab::scene::default_scene();
-    let mut generic = Renderer::new(&gpu.adapter, &gpu.device, &gpu.queue, &scene);
+    let mut caps = Capabilities::of(&gpu.adapter, &gpu.device);
+    caps.hdr_format = format.unwrap_or(caps.hdr_format);
+    let mut generic = Renderer::with_capabilities(&gpu.device, &gpu.queue, caps, &scene);
     generic.set_shade_options(ShadeOptions {
         specialised: false,
         ..ShadeOptions::default()
@@ -123,10 +131,18 @@ fn every_bias_mode_and_map_layout_specialisation_matches_the_generic_pipeline() 
 /// Under ray-traced V the pipeline is also specialised to the light (a
 /// point or a sphere) and to the frame (starting the mean or folding in the
 /// frames before): each gives the generic pipeline's pixels, frame after
-/// frame (the same random numbers: both renderers count their frames alike).
+/// frame (the same random numbers: both renderers count their frames alike),
+/// into the adapter's targets and into f16 ones (whose mean is kept in f32
+/// after the camera pass, gpu::accumulate).
 #[test]
 fn every_ray_traced_specialisation_matches_the_generic_pipeline() {
-    let (mut generic, mut specialised) = generic_and_specialised();
+    for format in [None, Some(wgpu::TextureFormat::Rgba16Float)] {
+        ray_traced_specialisations_match_the_generic_pipeline(format);
+    }
+}
+
+fn ray_traced_specialisations_match_the_generic_pipeline(format: Option<wgpu::TextureFormat>) {
+    let (mut generic, mut specialised) = generic_and_specialised_into(format);
     specialised.set_shade_options(ShadeOptions::default());
     let size = (64, 48);
     // A sphere light's rays one at a time (one a pixel), four to a walk or
@@ -139,7 +155,7 @@ fn every_ray_traced_specialisation_matches_the_generic_pipeline() {
         for frame in 1..=3 {
             generic.render(&s, size);
             specialised.render(&s, size);
-            let what = format!("R = {radius_m} m, {samples} rays a pixel, frame {frame}");
+            let what = format!("{format:?}: R = {radius_m} m, {samples} rays a pixel, frame {frame}");
             let (a0, a1) = (generic.read_aux(), specialised.read_aux());
             assert!(a0.iter().any(|t| t[3] > 0.0 && t[0] < 0.5), "{what}: some shadow");
             let (q0, q1) = (generic.read_quantity(), specialised.read_quantity());

@@ -222,13 +222,13 @@ impl RayTracePass {
         if let (Some(separate), true) = (&mut self.separate, self.separate_this_frame) {
             separate.prepare(device, queue, size, weight);
         }
-        let in_pass_before = if self.separate_this_frame {
-            0
-        } else {
-            frames_before
-        };
+        // The camera pass folds in its history only for a sphere light's
+        // mean under way beside f32 targets; the uniform says 0 otherwise,
+        // for the generic pipeline (whose history may not exist: 1 × 1
+        // beside f16 targets).
+        let accumulating = sphere_traced && !self.separate_this_frame && frames_before > 0;
         let raw = RayTraceRaw {
-            frames_before: in_pass_before,
+            frames_before: if accumulating { frames_before } else { 0 },
             weight,
             rays: rays_per_frame,
             first_sample: frames_before.wrapping_mul(rays_per_frame),
@@ -237,7 +237,6 @@ impl RayTracePass {
             grid: bvh.grid,
         };
         queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&raw));
-        let accumulating = sphere_traced && in_pass_before > 0;
         (&self.history.as_ref().expect("made above").group, accumulating)
     }
 
