@@ -82,3 +82,53 @@ fn visibility_holds_from_a_millimetre_to_ten_kilometres() {
         assert!(fraction < 0.002, "scale {scale}: {wrong} of {counted} wrong");
     }
 }
+
+/// The window depth wgpu's GL back end gives a point `rel` (from the eye):
+/// naga writes z · 2 − w (clip depth in [−1, 1], no clip control) and GL
+/// maps it back to [0, 1], all in f32.
+fn gl_window_depth(view_proj: glam::Mat4, rel: Vec3) -> f32 {
+    let clip = view_proj * rel.extend(1.0);
+    let z = clip.z * 2.0 - clip.w;
+    (z / clip.w) * 0.5 + 0.5
+}
+
+#[test]
+fn the_near_plane_keeps_surfaces_apart_on_gl_where_reversed_z_cannot() {
+    use lumlab::gpu::capabilities::{NEAR_RATIO, NEAR_RATIO_GL};
+    use lumlab::gpu::renderer::camera_depth_range;
+    // A close, oblique camera inside the default scene, whose ground is a
+    // slab: its top at y = 0 and its underside 10 cm below, along one ray.
+    let scene = lumlab::scene::default_scene();
+    let mut camera = lumlab::settings::Settings::default().camera;
+    camera.eye = Vec3::new(-3.7, 2.4, 2.4);
+    camera.target = Vec3::new(-3.7, 0.0, -0.1);
+    camera.fovy_deg = 60.0;
+    let ray = (camera.target - camera.eye).normalize();
+    let on_plane = |y: f32| ray * ((y - camera.eye.y) / ray.y);
+    let (top, underside) = (on_plane(0.0), on_plane(-0.1));
+    let depths = |ratio: f64| {
+        let (near, far) = camera_depth_range(&camera, &scene.bounds(), ratio);
+        let view_proj = (camera.projection(16.0 / 9.0, near, far) * camera.view_rotation()).as_mat4();
+        (
+            gl_window_depth(view_proj, top),
+            gl_window_depth(view_proj, underside),
+        )
+    };
+    // Reversed Z: the nearer surface has the greater depth. GL's window
+    // depth moves in steps of 2⁻²⁵ (an f32 near 1, halved), and the
+    // rasterizer's interpolation rounds by a step or so: the surfaces need
+    // many steps between them.
+    let step = 2f32.powi(-25);
+    let (top_depth, underside_depth) = depths(NEAR_RATIO_GL);
+    assert!(
+        top_depth - underside_depth > 100.0 * step,
+        "{top_depth} against {underside_depth}"
+    );
+    // With Vulkan's ratio they are a step apart on GL: the underside showed
+    // through the ground.
+    let (top_depth, underside_depth) = depths(NEAR_RATIO);
+    assert!(
+        top_depth - underside_depth <= 2.0 * step,
+        "{top_depth} against {underside_depth}"
+    );
+}

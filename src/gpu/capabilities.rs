@@ -2,6 +2,17 @@
 
 use super::depth_ranges;
 
+/// The near / far ratio of a camera inside the scene: reversed-Z float
+/// depth keeps its precision for ratios far beyond 10⁻⁶.
+pub const NEAR_RATIO: f64 = 1e-7;
+
+/// The same on GL: wgpu's GL back end maps clip depth to [−1, 1] (z · 2 − w,
+/// no clip control), so window depth n/d is computed as (2n/d − 1 + 1) / 2
+/// in f32 and keeps only some 6·10⁻⁸ of absolute precision: with 10⁻⁷ the
+/// ground's underside, 10 cm below its top, showed through at a close
+/// camera. 10⁻⁴ separates surfaces 1 cm apart 20 m away.
+pub const NEAR_RATIO_GL: f64 = 1e-4;
+
 /// What this device can do, as the lab uses it.
 #[derive(Clone, Debug)]
 pub struct Capabilities {
@@ -58,6 +69,12 @@ impl Capabilities {
         }
     }
 
+    /// The smallest near / far ratio of the camera's depth range
+    /// ([`super::renderer::camera_depth_range`]).
+    pub fn near_ratio(&self) -> f64 {
+        if self.gl { NEAR_RATIO_GL } else { NEAR_RATIO }
+    }
+
     /// The EVSM warp exponent the moment format can hold without overflow.
     pub fn evsm_exponent(&self) -> f32 {
         if self.moments_format == wgpu::TextureFormat::Rgba32Float {
@@ -65,5 +82,26 @@ impl Capabilities {
         } else {
             5.0
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gl_keeps_a_near_plane_its_depth_arithmetic_can_hold() {
+        let mut caps = Capabilities {
+            adapter: String::new(),
+            max_texture_side: 8192,
+            hdr_format: wgpu::TextureFormat::Rgba16Float,
+            moments_format: wgpu::TextureFormat::Rgba16Float,
+            timestamps: false,
+            depth_ranges: false,
+            gl: true,
+        };
+        assert_eq!(caps.near_ratio(), NEAR_RATIO_GL);
+        caps.gl = false;
+        assert_eq!(caps.near_ratio(), NEAR_RATIO);
     }
 }

@@ -243,7 +243,7 @@ impl Renderer {
         }
         let camera = settings.camera;
         let bounds = shared.scene.scene_bounds();
-        let (near, far) = camera_depth_range(&camera, &bounds);
+        let (near, far) = camera_depth_range(&camera, &bounds, self.caps.near_ratio());
         let aspect = size.0 as f64 / size.1 as f64;
         let view_proj = camera.projection(aspect, near, far) * camera.view_rotation();
         let camera_frustum = {
@@ -534,8 +534,10 @@ fn lock(shared: &Mutex<SharedScene>) -> MutexGuard<'_, SharedScene> {
     shared.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
-/// Near and far planes (m) around the scene's bounds as the camera sees them.
-pub fn camera_depth_range(camera: &Camera, bounds: &Aabb) -> (f64, f64) {
+/// Near and far planes (m) around the scene's bounds as the camera sees
+/// them, the near plane at least `near_ratio` of the far one (a camera
+/// inside the bounds; see [`super::capabilities::NEAR_RATIO`]).
+pub fn camera_depth_range(camera: &Camera, bounds: &Aabb, near_ratio: f64) -> (f64, f64) {
     if bounds.is_empty() {
         return (0.01, 100.0);
     }
@@ -544,8 +546,6 @@ pub fn camera_depth_range(camera: &Camera, bounds: &Aabb) -> (f64, f64) {
     let depths = bounds.corners().map(|c| (c.as_dvec3() - eye).dot(forward));
     let far = depths.iter().copied().fold(f64::MIN, f64::max).max(1e-6) * 1.01;
     let nearest = depths.iter().copied().fold(f64::MAX, f64::min);
-    // Reversed-Z float depth keeps its precision for near/far ratios far
-    // beyond 1e6, so a camera inside the bounds can use a tiny near plane.
-    let near = if nearest > 0.0 { nearest * 0.99 } else { 0.0 }.max(far * 1e-7);
+    let near = if nearest > 0.0 { nearest * 0.99 } else { 0.0 }.max(far * near_ratio);
     (near, far)
 }
