@@ -11,9 +11,9 @@
 // V = Σ V_i cos⁺θ_i / Σ cos⁺θ_i a frame.
 
 struct RayTrace {
-    // Frames already in the history this pass folds the frame into; 0: this
-    // frame starts anew, or is folded after the pass (f16 targets,
-    // gpu::accumulate).
+    // Frames already in the history this pass folds the frame into; 0: it
+    // folds nothing in (a mean starting, a point light's frame, or f16
+    // targets, whose mean gpu::accumulate keeps after the pass).
     frames_before: u32,
     // Weight of this frame in the running mean: 1 / (frames_before + 1), or
     // 0 once the accumulation is complete (the history then holds).
