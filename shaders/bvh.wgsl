@@ -273,8 +273,3 @@ fn bvh_occluded8(o: vec3<f32>, d_lo: BvhRays4, d_hi: BvhRays4, t_max: f32, in_lo
     }
     return blocked;
 }
-
-// bvh_occluded8's walk for four rays, the columns of d.
-fn bvh_occluded4(o: vec3<f32>, d: BvhRays4, t_max: f32, rays_in: vec4<bool>, pair_count: u32, grid: BvhGrid, stack: ptr<function, BvhStack>) -> vec4<bool> {
-    return bvh_occluded8(o, d, d, t_max, rays_in, vec4<bool>(false), false, pair_count, grid, stack).lo;
-}

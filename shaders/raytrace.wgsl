@@ -42,7 +42,7 @@ struct RayTrace {
 override SPECIALISED_ACCUMULATING: u32 = SPECIALISE_ANY;
 
 // A sphere light's rays traced one at a time (1), four to a walk (4,
-// bvh_occluded4) or eight (8, bvh_occluded8), as gpu::raytrace's
+// bvh_occluded8 with `eight` false) or eight (8), as gpu::raytrace's
 // rays_per_walk picks from S: a walk for four costs some 45 % more than a
 // walk for one and about half as much as four walks; one for eight some
 // 60 % more than one for four (lavapipe, callgrind).

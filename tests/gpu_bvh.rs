@@ -65,7 +65,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 
 // The same for the packet walks: packet g holds rays WIDTH·g … WIDTH·g +
-// WIDTH − 1 (4: bvh_occluded4, 8: bvh_occluded8), from the origin and
+// WIDTH − 1 (bvh_occluded8, `eight` where WIDTH is 8), from the origin and
 // with the t_max of the first, each along its own direction; ray j is left
 // out where (g + j) % 5 == 0 (its brute-force answer 0).
 override WIDTH: u32 = 4u;
@@ -88,14 +88,12 @@ fn packets(@builtin(global_invocation_id) id: vec3<u32>) {
     let o = rays[first].xyz;
     let t_max = rays[first].w;
     var stack: BvhStack;
-    var walked = BvhBlocked8(vec4<bool>(false), vec4<bool>(false));
+    let eight = WIDTH == 8u;
     var d = array<BvhRays4, 2>(packet_rays(first), packet_rays(first));
-    if WIDTH == 8u {
+    if eight {
         d[1] = packet_rays(first + 8u);
-        walked = bvh_occluded8(o, d[0], d[1], t_max, packet_live(g, 0u), packet_live(g, 4u), true, counts.n.y, counts.grid, &stack);
-    } else {
-        walked.lo = bvh_occluded4(o, d[0], t_max, packet_live(g, 0u), counts.n.y, counts.grid, &stack);
     }
+    let walked = bvh_occluded8(o, d[0], d[1], t_max, packet_live(g, 0u), packet_live(g, 4u), eight, counts.n.y, counts.grid, &stack);
     let answers_walked = array<vec4<bool>, 2>(walked.lo, walked.hi);
     for (var j = 0u; j < WIDTH; j++) {
         let live = packet_live(g, j).x;

@@ -69,18 +69,8 @@ impl SeparateFold {
             ],
         );
         let module = super::shaders::Shader::Accumulate.module(device);
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("ray-traced mean in f32"),
-            layout: Some(&binding::pipeline_layout(
-                device,
-                "ray-traced mean in f32",
-                &[&layout],
-            )),
-            module: &module,
-            entry_point: Some("fold_frame"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let pipeline =
+            binding::compute_pipeline(device, "ray-traced mean in f32", &layout, &module, "fold_frame");
         Self {
             layout,
             pipeline,
@@ -129,15 +119,14 @@ impl SeparateFold {
                 wgpu::BindingResource::TextureView(&mean_aux),
             ],
         );
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("ray-traced mean in f32"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &group, &[]);
-            pass.dispatch_workgroups(history.size.0.div_ceil(8), history.size.1.div_ceil(8), 1);
-        }
+        let workgroups = [history.size.0.div_ceil(8), history.size.1.div_ceil(8), 1];
+        binding::compute_pass(
+            encoder,
+            "ray-traced mean in f32",
+            &self.pipeline,
+            &group,
+            workgroups,
+        );
         let means = [&history.mean_quantity, quantity];
         super::targets::copy_pairs(encoder, means, [&history.mean_aux, aux], aux_written);
     }

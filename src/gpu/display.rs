@@ -81,18 +81,8 @@ impl DisplayPass {
         );
         let pipeline_layout = binding::pipeline_layout(device, "display", &[&layout]);
         let reduce_module = Shader::Reduce.module(device);
-        let reduce = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some("display scale"),
-            layout: Some(&binding::pipeline_layout(
-                device,
-                "display scale",
-                &[&reduce_layout],
-            )),
-            module: &reduce_module,
-            entry_point: Some("main"),
-            compilation_options: Default::default(),
-            cache: None,
-        });
+        let reduce =
+            binding::compute_pipeline(device, "display scale", &reduce_layout, &reduce_module, "main");
         let buffer = |label: &str, usage| binding::buffer(device, label, 16, usage);
         Self {
             params: uniform_buffer::<DisplayParamsRaw>(device, "display params"),
@@ -184,13 +174,8 @@ impl DisplayPass {
                 self.params.as_entire_binding(),
             ],
         );
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("display scale"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&self.reduce);
-        pass.set_bind_group(0, &reduce_group, &[]);
-        pass.dispatch_workgroups(inputs.size.0.div_ceil(8), inputs.size.1.div_ceil(8), 1);
+        let workgroups = [inputs.size.0.div_ceil(8), inputs.size.1.div_ceil(8), 1];
+        binding::compute_pass(encoder, "display scale", &self.reduce, &reduce_group, workgroups);
     }
 
     /// The buffer holding the last view's scale (an f32 in its first 4 bytes).

@@ -127,14 +127,7 @@ pub fn evaluate_on_gpu(gpu: &GpuContext, cases: &[Case]) -> Vec<f32> {
         ],
     );
     let module = Shader::Stability.module(device);
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-        label: Some("stability"),
-        layout: Some(&binding::pipeline_layout(device, "stability", &[&layout])),
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
-        cache: None,
-    });
+    let pipeline = binding::compute_pipeline(device, "stability", &layout, &module, "main");
     let group = binding::group(
         device,
         "stability",
@@ -144,15 +137,8 @@ pub fn evaluate_on_gpu(gpu: &GpuContext, cases: &[Case]) -> Vec<f32> {
     let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
         label: Some("stability"),
     });
-    {
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("stability"),
-            timestamp_writes: None,
-        });
-        pass.set_pipeline(&pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.dispatch_workgroups((cases.len() as u32).div_ceil(WORKGROUP_SIZE), 1, 1);
-    }
+    let workgroups = [(cases.len() as u32).div_ceil(WORKGROUP_SIZE), 1, 1];
+    binding::compute_pass(&mut encoder, "stability", &pipeline, &group, workgroups);
     encoder.copy_buffer_to_buffer(&values, 0, &readback, 0, size);
     gpu.queue.submit([encoder.finish()]);
     let bytes = map_and_read(device, &readback, size as usize, size as usize);
