@@ -73,6 +73,36 @@ fn accumulation_restarts_on_every_setting_change() {
 }
 
 #[test]
+fn the_mean_holds_once_its_measured_noise_meets_the_target() {
+    use lumlab::presets::Half;
+    // 2 % of the mean: met within a few frames of 4 rays, long before 256.
+    let mut harness = harness();
+    let mut s = harness.state().settings().clone();
+    s.shadow.visibility = Visibility::RayTraced;
+    s.light.radius_m = 0.3;
+    s.shadow.rt_noise_target_percent = 2.0;
+    harness
+        .state_mut()
+        .emit(Command::SetSettings(Box::new(s.clone())));
+    step_until(&mut harness, "the noise to meet the target", |app| {
+        app.shown_accumulation(Half::A).is_some_and(|a| a.meets(2.0))
+    });
+    // The frame or two already on their way when the estimate came back.
+    harness.run_steps(3);
+    let held = frames(harness.state());
+    harness.run_steps(5);
+    assert_eq!(frames(harness.state()), held, "the mean went on");
+    let shown = harness.state().shown_accumulation(Half::A).expect("ray traced");
+    assert!(held < s.shadow.rt_max_frames && !shown.is_complete());
+    // Another target goes on with the same mean, not a new one.
+    s.shadow.rt_noise_target_percent = 0.0;
+    harness
+        .state_mut()
+        .emit(Command::SetSettings(Box::new(s.clone())));
+    step_until(&mut harness, "the mean to go on", |app| frames(app) > held + 1);
+}
+
+#[test]
 fn a_click_on_the_probe_does_not_restart_the_accumulation() {
     // The probe reads the aux target, which the app's still frames write
     // only where it is read; a ray-traced half writes it throughout, since
@@ -107,6 +137,7 @@ fn split_shows_shadow_map_against_ray_traced_under_a_sphere_light() {
     s.shadow.filter = Filter::Pcss;
     s.shadow.rt_light_samples = 16;
     s.shadow.rt_max_frames = 16;
+    let target = s.shadow.rt_noise_target_percent;
     // Accumulating frames ask for the next: step, never run to rest.
     harness.run_steps(2);
     harness.get_by_label("A: shadow map");
@@ -114,7 +145,7 @@ fn split_shows_shadow_map_against_ray_traced_under_a_sphere_light() {
     step_until(&mut harness, "the accumulation", |app| {
         app.renderer_of(lumlab::presets::Half::B)
             .and_then(|r| r.accumulation())
-            .is_some_and(|a| a.is_complete())
+            .is_some_and(|a| a.holds(target))
     });
     // Half A keeps its shadow map: no accumulation there.
     assert!(

@@ -59,12 +59,19 @@ impl View for ShadowPanel<'_> {
             bias,
             rt_light_samples,
             rt_max_frames,
+            rt_noise_target_percent,
         } = self.shadow;
 
         ui.checkbox(enabled, tr!("shadow-enabled"))
             .on_hover_text(tr!("shadow-enabled-tip"));
         ui.add_enabled_ui(*enabled, |ui| {
-            super::visibility::visibility_ui(ui, visibility, rt_light_samples, rt_max_frames);
+            super::visibility::visibility_ui(
+                ui,
+                visibility,
+                rt_light_samples,
+                rt_max_frames,
+                rt_noise_target_percent,
+            );
         });
         ui.add_enabled_ui(*enabled && *visibility == Visibility::ShadowMap, |ui| {
             resolution_ui(

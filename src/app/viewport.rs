@@ -349,7 +349,10 @@ impl Viewport<'_> {
         for &half in halves {
             if let Some(a) = gpu.accumulation(half) {
                 let (area, _) = part(half);
-                super::visibility::paint_accumulation(&painter, area, &a);
+                let target = Self::settings_for(settings, split, half)
+                    .shadow
+                    .rt_noise_target_percent;
+                super::visibility::paint_accumulation(&painter, area, &a, target);
             }
             if gpu.accumulating(half) {
                 ui.ctx().request_repaint();

@@ -55,6 +55,21 @@ impl Accumulation {
     pub fn is_complete(&self) -> bool {
         self.frames >= self.max_frames
     }
+
+    /// Whether the image holds under a noise target (percent of the mean,
+    /// 0: none): complete, or its measured noise at most the target.
+    pub fn holds(&self, noise_target_percent: f32) -> bool {
+        self.is_complete() || self.meets(noise_target_percent)
+    }
+
+    /// Whether the noise measured on the mean is at most
+    /// `noise_target_percent` % of it (never for a target of 0).
+    pub fn meets(&self, noise_target_percent: f32) -> bool {
+        noise_target_percent > 0.0
+            && self
+                .estimate
+                .is_some_and(|e| 100.0 * e.relative <= f64::from(noise_target_percent))
+    }
 }
 
 /// The layout of group 2 of the camera pass.
@@ -184,8 +199,12 @@ impl RayTracePass {
             self.history = Some(History::new(device, &self.layout, &self.uniform, bvh, target));
             self.key = None;
         }
+        let mut key_settings = settings.clone();
+        // The noise target says when the lab stops asking for frames, not
+        // what a frame holds: a new target goes on with the mean.
+        key_settings.shadow.rt_noise_target_percent = 0.0;
         let key = Key {
-            settings: settings.clone(),
+            settings: key_settings,
             size,
             scene_generation,
             variant,

@@ -55,6 +55,12 @@ impl Settings {
             1,
             ShadowSettings::MAX_RT_FRAMES,
         )?;
+        check(
+            "shadow.rt_noise_target_percent",
+            s.rt_noise_target_percent,
+            0.0,
+            ShadowSettings::MAX_RT_NOISE_TARGET_PERCENT,
+        )?;
         check("view.exposure_ev", self.view.exposure_ev, -30.0, 30.0)?;
         check("ground.k", self.ground.k, 0.0, 1.0)?;
         check("ground.m", self.ground.m, 0.0, 1e6)?;

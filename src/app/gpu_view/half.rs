@@ -111,9 +111,14 @@ impl HalfView {
         }
     }
 
-    /// Whether its renderer's ray-traced mean is still under way.
+    /// Whether its renderer's ray-traced mean is still under way: frames
+    /// left, and its measured noise above the settings' target.
     pub(super) fn accumulating(&self) -> bool {
-        self.renderer.accumulation().is_some_and(|a| !a.is_complete())
+        let target = self
+            .drawn
+            .as_ref()
+            .map_or(0.0, |s| s.shadow.rt_noise_target_percent);
+        self.renderer.accumulation().is_some_and(|a| !a.holds(target))
     }
 
     /// Counts a new image, rendered from `key` with `drawn` at render scales
