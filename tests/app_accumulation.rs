@@ -75,7 +75,7 @@ fn accumulation_restarts_on_every_setting_change() {
 #[test]
 fn the_mean_holds_once_its_measured_noise_meets_the_target() {
     use lumlab::presets::Half;
-    // 2 % of the mean: met within a few frames of 4 rays, long before 256.
+    // 2 % of the mean: met within a few frames of 8 rays, long before 256.
     let mut harness = harness();
     let mut s = harness.state().settings().clone();
     s.shadow.visibility = Visibility::RayTraced;

@@ -141,10 +141,12 @@ fn point_light_shadows_are_the_references_on_a_100k_triangle_scene() {
     point_light_matches_the_reference(&scene, &settings);
 }
 
-/// Ray-traced V at 96 × 54 under a sphere light of R = 0.3 m.
+/// Ray-traced V at 96 × 54 under a sphere light of R = 0.3 m, 4 rays a
+/// frame.
 fn under_a_sphere_light() -> Settings {
     let mut settings = ray_traced(96, 54);
     settings.light.radius_m = 0.3;
+    settings.shadow.rt_light_samples = 4;
     settings
 }
 
@@ -345,7 +347,7 @@ fn accumulate_needs_ray_traced_visibility_and_renders_n_frames() {
     let message = String::from_utf8_lossy(&traced.stderr);
     assert!(traced.status.success(), "{message}");
     assert!(
-        message.contains("ray traced, 3 frame(s) × 4 ray(s) per pixel"),
+        message.contains("ray traced, 3 frame(s) × 8 ray(s) per pixel"),
         "{message}"
     );
     assert!(out.exists());
