@@ -26,4 +26,9 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ] || [ ! -d "$XDG_RUNTIME_DIR" ]; then
   export XDG_RUNTIME_DIR
 fi
 
+# Under WGPU_BACKEND=gl (Mesa's llvmpipe) the tests render to f32 targets as
+# the lumlab binary does (src/gpu/context.rs: mesa_extension_override);
+# Vulkan ignores it.
+export MESA_EXTENSION_OVERRIDE="${MESA_EXTENSION_OVERRIDE:-+GL_ARB_color_buffer_float}"
+
 cargo test --locked "$@"

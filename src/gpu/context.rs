@@ -103,3 +103,49 @@ impl GpuContext {
         describe_adapter(&self.adapter)
     }
 }
+
+/// The Mesa variable that names `GL_ARB_color_buffer_float` to wgpu.
+pub const MESA_EXTENSION_OVERRIDE: &str = "MESA_EXTENSION_OVERRIDE";
+const COLOR_BUFFER_FLOAT: &str = "GL_ARB_color_buffer_float";
+
+/// The value of [`MESA_EXTENSION_OVERRIDE`] that lets wgpu's GL back end
+/// render to Rgba32Float on Mesa, given its value now; None when it already
+/// names the extension.
+///
+/// Rendering to float targets is core since OpenGL 3.0, but wgpu-hal 30
+/// takes it from the extension strings alone, and Mesa's core profile
+/// (llvmpipe's GL 4.5) lists `GL_ARB_color_buffer_float` only in the
+/// compatibility profile: without it the camera pass falls back to f16
+/// targets (radiance above 65 504 overflows, a ΔE step is 0.002, moment
+/// maps lose their precision). Other drivers ignore the variable.
+pub fn mesa_extension_override(current: Option<&str>) -> Option<String> {
+    let current = current.unwrap_or("").trim();
+    let named = current
+        .split_whitespace()
+        .any(|e| e.trim_start_matches(['+', '-']) == COLOR_BUFFER_FLOAT);
+    match (named, current.is_empty()) {
+        (true, _) => None,
+        (false, true) => Some(format!("+{COLOR_BUFFER_FLOAT}")),
+        (false, false) => Some(format!("{current} +{COLOR_BUFFER_FLOAT}")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::mesa_extension_override;
+
+    #[test]
+    fn the_override_adds_the_extension_once_and_keeps_the_user_s() {
+        assert_eq!(
+            mesa_extension_override(None).as_deref(),
+            Some("+GL_ARB_color_buffer_float")
+        );
+        assert_eq!(
+            mesa_extension_override(Some("-GL_EXT_foo")).as_deref(),
+            Some("-GL_EXT_foo +GL_ARB_color_buffer_float")
+        );
+        // The user's own choice, on or off, stands.
+        assert_eq!(mesa_extension_override(Some("-GL_ARB_color_buffer_float")), None);
+        assert_eq!(mesa_extension_override(Some("+GL_ARB_color_buffer_float")), None);
+    }
+}
