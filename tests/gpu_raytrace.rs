@@ -354,6 +354,62 @@ fn accumulate_needs_ray_traced_visibility_and_renders_n_frames() {
 }
 
 #[test]
+fn noise_target_stops_the_command_line_s_mean_once_met() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("v.exr");
+    let run = |extra: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_lumlab"))
+            .args(["render", "--size", "96x54", "--light-radius", "0.3"])
+            .args(extra)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap()
+    };
+    for (extra, says) in [
+        (
+            &["--noise-target", "2"][..],
+            "--noise-target needs --visibility ray-traced",
+        ),
+        (
+            &["--visibility", "ray-traced", "--noise-target", "0"],
+            "not a percentage",
+        ),
+    ] {
+        let refused = run(extra);
+        let message = String::from_utf8_lossy(&refused.stderr);
+        assert_eq!(refused.status.code(), Some(2), "{message}");
+        assert!(message.contains(says), "{message}");
+    }
+    assert!(!out.exists());
+    let held = run(&[
+        "--visibility",
+        "ray-traced",
+        "--accumulate",
+        "256",
+        "--noise-target",
+        "2",
+    ]);
+    let message = String::from_utf8_lossy(&held.stderr);
+    assert!(held.status.success(), "{message}");
+    let number_after = |prefix: &str| -> f64 {
+        let rest = &message[message.find(prefix).unwrap_or_else(|| panic!("{message}")) + prefix.len()..];
+        rest.split(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .next()
+            .and_then(|n| n.parse().ok())
+            .unwrap_or_else(|| panic!("{message}"))
+    };
+    let frames = number_after("ray traced, ") as u32;
+    let noise = number_after("RMS standard error ");
+    assert!(
+        frames.is_power_of_two() && (2..256).contains(&frames) && noise <= 2.0,
+        "{message}"
+    );
+    assert!(message.contains("at most the 2 % asked for"), "{message}");
+    assert!(out.exists());
+}
+
+#[test]
 fn a_mean_begun_without_the_aux_target_restarts_when_it_is_asked_for() {
     restarts_when_the_aux_target_is_asked_for(Targets::Adapters);
     restarts_when_the_aux_target_is_asked_for(Targets::F16);

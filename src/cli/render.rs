@@ -22,6 +22,12 @@ pub struct RenderArgs {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=65536),
           allow_negative_numbers = true)]
     pub accumulate: Option<u32>,
+    /// Ray-traced visibility under a sphere light: stop accumulating at the
+    /// first power of two of frames whose measured noise (RMS standard
+    /// error) is at most P % of the mean, or at `--accumulate N` (else the
+    /// settings' frames); needs `--visibility ray-traced`.
+    #[arg(long, value_name = "P", value_parser = noise_target)]
+    pub noise_target: Option<f32>,
     /// Print the GPU adapter used.
     #[arg(long)]
     pub adapter_info: bool,
@@ -77,11 +83,21 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let format = ImageFormat::of_path(&args.out)?;
     check_out("--out", &args.out)?;
     let (mut settings, scene) = load(&args.scene)?;
-    let frames = args.accumulate.unwrap_or(1);
-    if args.accumulate.is_some() {
-        if settings.shadow.visibility != Visibility::RayTraced {
-            return Err(super::usage("--accumulate needs --visibility ray-traced"));
+    let traced = settings.shadow.visibility == Visibility::RayTraced;
+    for (flag, given) in [
+        ("--accumulate", args.accumulate.is_some()),
+        ("--noise-target", args.noise_target.is_some()),
+    ] {
+        if given && !traced {
+            return Err(super::usage(format!("{flag} needs --visibility ray-traced")));
         }
+    }
+    let frames = match (args.accumulate, args.noise_target) {
+        (Some(n), _) => n,
+        (None, Some(_)) => settings.ray_traced_frames(),
+        (None, None) => 1,
+    };
+    if args.accumulate.is_some() || args.noise_target.is_some() {
         settings.shadow.rt_max_frames = frames;
     }
     // Without a spectrum both colour models are the RGB one: no ΔE to show.
@@ -111,10 +127,21 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         let image = super::reference::render_with_progress(&reference, &settings, &reference_options)?;
         renderer.set_comparison(Some(image.to_comparison()));
     }
+    let start = std::time::Instant::now();
     let mut report = renderer.render(&settings, size);
-    for _ in 1..frames {
+    for n in 2..=frames {
         report = renderer.render(&settings, size);
+        if let Some(target) = args.noise_target
+            && n.is_power_of_two()
+        {
+            // The probe reads the mean back at powers of two (gpu::noise).
+            renderer.settle_noise();
+            if renderer.accumulation().is_some_and(|a| a.meets(target)) {
+                break;
+            }
+        }
     }
+    let accumulated_s = start.elapsed().as_secs_f64();
     if let Some(note) = &report.resolution_note {
         eprintln!(
             "lumlab: shadow-map resolution clamped to {}: {note}",
@@ -139,7 +166,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     renderer.settle_noise();
     let visibility = match renderer.accumulation() {
         Some(a) => format!(
-            "ray traced, {} frame(s) × {} ray(s) per pixel{}",
+            "ray traced, {} frame(s) × {} ray(s) per pixel{}{}, {accumulated_s:.2} s",
             a.frames,
             a.rays_per_frame,
             a.estimate.map_or(String::new(), |e| format!(
@@ -148,6 +175,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
                 e.earlier_frames,
                 e.frames
             )),
+            args.noise_target
+                .filter(|&t| a.meets(t))
+                .map_or(String::new(), |t| format!(", at most the {t} % asked for")),
         ),
         None => format!("shadow map {}² ({})", report.resolution, report.layout_summary()),
     };
@@ -160,4 +190,12 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         times.map_or("time n/a".into(), |t| t.to_string()),
     );
     Ok(())
+}
+
+/// `--noise-target P`: a percentage of the mean, 0 < P ≤ 100.
+fn noise_target(text: &str) -> Result<f32, String> {
+    match text.parse::<f32>() {
+        Ok(p) if p > 0.0 && p <= 100.0 => Ok(p),
+        _ => Err(format!("'{text}' is not a percentage in (0, 100]")),
+    }
 }
