@@ -96,9 +96,10 @@ visibility-frames = frames
 visibility-frames-tip = N: frames averaged while nothing changes under a sphere light; the noise of V falls at least as 1/√(N·S), faster thanks to the low-discrepancy sequence (the view's label gives the noise measured on the image, comparing the mean of N frames with that of its first N/2), then the image holds. A point light is exact after one frame
 visibility-noise-target = stop below noise
 visibility-noise-target-tip = The lab stops adding frames before N once the noise measured on the image (the label's "noise ≈ … % of the mean") is at most this share of the mean; 0: never, the mean goes on to N frames. The default 0.1 % is under a tenth of an 8-bit display step at mid-grey: the image no longer changes on screen, and a software adapter's cores rest (on the default scene under R = 0.3 m, 32 frames of 8 rays, some 6 s on a software adapter, instead of 256 frames). It changes when the image holds, not what it holds: a new target goes on with the same mean. The command line's --accumulate N and the report always render their N frames
-visibility-held = held: below { $target } %
+visibility-elapsed = after { $seconds } s
+visibility-held = held: below { $target } %
 visibility-exact = exact
-visibility-noise-estimate = noise ≈ { $percent } % of the mean
+visibility-noise-estimate = noise ≈ { $percent } % of the mean
 visibility-accumulation = { $frames } / { $max } frames × { $rays } { $rays ->
         [one] ray
        *[other] rays

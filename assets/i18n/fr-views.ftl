@@ -96,9 +96,10 @@ visibility-frames = images
 visibility-frames-tip = N : images moyennées tant que rien ne change sous une lumière sphérique ; le bruit de V décroît au moins en 1/√(N·S), plus vite grâce à la suite à faible discrépance (l'étiquette de la vue donne le bruit mesuré sur l'image, en comparant la moyenne de N images à celle de ses N/2 premières), puis l'image reste fixe. Une lumière ponctuelle est exacte dès la première image
 visibility-noise-target = arrêt sous un bruit de
 visibility-noise-target-tip = Le labo cesse d'ajouter des images avant N dès que le bruit mesuré sur l'image (le « bruit ≈ … % de la moyenne » de l'étiquette) ne dépasse plus cette part de la moyenne ; 0 : jamais, la moyenne va jusqu'à N images. Les 0,1 % par défaut sont moins d'un dixième d'un pas d'affichage 8 bits à mi-gris : l'image ne change plus à l'écran et les cœurs d'un adaptateur logiciel se reposent (sur la scène par défaut sous R = 0,3 m, 32 images de 8 rayons, quelque 6 s sur un adaptateur logiciel, au lieu de 256 images). Ce seuil change le moment où l'image se fige, pas son contenu : un nouveau seuil poursuit la même moyenne. Le --accumulate N de la ligne de commande et le rapport rendent toujours leurs N images
-visibility-held = figée : sous { $target } %
+visibility-elapsed = après { $seconds } s
+visibility-held = figée : sous { $target } %
 visibility-exact = exact
-visibility-noise-estimate = bruit ≈ { $percent } % de la moyenne
+visibility-noise-estimate = bruit ≈ { $percent } % de la moyenne
 visibility-accumulation = { $frames } / { $max } images × { $rays } { $rays ->
         [one] rayon
        *[other] rayons

@@ -304,7 +304,7 @@ impl GpuViews {
             }
         }
         let accumulation = h.renderer.accumulation();
-        h.shows(key, drawn, self.frame_scale, accumulation);
+        h.shows(key, drawn, self.frame_scale, accumulation, start);
         if half == Half::A {
             self.render_scale.rendered(self.frame_scale);
         }
@@ -330,6 +330,11 @@ impl GpuViews {
     /// the shadow map).
     pub fn accumulation(&self, half: Half) -> Option<Accumulation> {
         self.half(half)?.shown_accumulation
+    }
+
+    /// How long the ray-traced mean a half shows has taken so far.
+    pub fn accumulation_elapsed(&self, half: Half) -> Option<Duration> {
+        self.half(half)?.accumulation_elapsed
     }
 
     /// Whether a half's renderer has ray-traced frames still to fold in:

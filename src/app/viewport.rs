@@ -352,7 +352,8 @@ impl Viewport<'_> {
                 let target = Self::settings_for(settings, split, half)
                     .shadow
                     .rt_noise_target_percent;
-                super::visibility::paint_accumulation(&painter, area, &a, target);
+                let elapsed = gpu.accumulation_elapsed(half);
+                super::visibility::paint_accumulation(&painter, area, &a, target, elapsed);
             }
             if gpu.accumulating(half) {
                 ui.ctx().request_repaint();

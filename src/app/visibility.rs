@@ -67,8 +67,13 @@ pub fn visibility_ui(
 /// measured on the image (gpu::noise); before the first measure (four
 /// frames), σ(V) ≤ 0.5 / √(N·S) bounds the noise left in V. A mean that
 /// holds before its last frame, its noise at most `noise_target_percent`,
-/// says so.
-pub fn accumulation_text(a: &Accumulation, noise_target_percent: f32) -> String {
+/// says so; `elapsed`, the time its frames took so far, is given from the
+/// second frame on.
+pub fn accumulation_text(
+    a: &Accumulation,
+    noise_target_percent: f32,
+    elapsed: Option<std::time::Duration>,
+) -> String {
     let noise = match a.estimate {
         _ if a.noise_bound == 0.0 => tr!("visibility-exact"),
         Some(e) => tr!(
@@ -76,6 +81,13 @@ pub fn accumulation_text(a: &Accumulation, noise_target_percent: f32) -> String 
             percent = two_significant(100.0 * e.relative)
         ),
         None => format!("σ(V) ≤ {:.3}", a.noise_bound),
+    };
+    let noise = match elapsed.filter(|_| a.frames > 1) {
+        Some(t) => format!(
+            "{noise} {}",
+            tr!("visibility-elapsed", seconds = format!("{:.1}", t.as_secs_f64()))
+        ),
+        None => noise,
     };
     let noise = if !a.is_complete() && a.meets(noise_target_percent) {
         // 0.1, not 0.10: the target as the slider set it, to two digits.
@@ -111,9 +123,10 @@ pub fn paint_accumulation(
     area: egui::Rect,
     a: &Accumulation,
     noise_target_percent: f32,
+    elapsed: Option<std::time::Duration>,
 ) {
     let at = area.left_bottom() + egui::vec2(10.0, -10.0);
-    let text = accumulation_text(a, noise_target_percent);
+    let text = accumulation_text(a, noise_target_percent, elapsed);
     let font = egui::FontId::proportional(14.0);
     let wrap = (area.width() - 28.0).max(80.0);
     let galley = painter.layout(text, font, egui::Color32::WHITE, wrap);
@@ -143,10 +156,15 @@ mod tests {
                 relative: 0.00095,
             }),
         };
-        let held = accumulation_text(&a, 0.1);
-        assert!(held.contains("0.095 %") && held.contains("0.1 %"), "{held}");
+        // The label keeps a number with its unit (no-break spaces).
+        let held =
+            accumulation_text(&a, 0.1, Some(std::time::Duration::from_millis(5_840))).replace('\u{a0}', " ");
+        assert!(
+            held.contains("0.095 %") && held.contains("0.1 %") && held.contains("5.8 s"),
+            "{held}"
+        );
         for (a, target) in [(a, 0.05), (a, 0.0), (Accumulation { frames: 256, ..a }, 0.1)] {
-            let text = accumulation_text(&a, target);
+            let text = accumulation_text(&a, target, None).replace('\u{a0}', " ");
             assert!(!text.contains("0.1 %") && !text.contains("0.05 %"), "{text}");
         }
     }

@@ -9,7 +9,7 @@ use crate::gpu::raytrace::Accumulation;
 use crate::gpu::timing::PassTimes;
 use crate::gpu::{FrameReport, PendingScale, Renderer};
 use crate::settings::Settings;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// One half of the viewport: a renderer and the texture the window shows.
 pub struct HalfView {
@@ -42,6 +42,12 @@ pub struct HalfView {
     /// The ray-traced accumulation of the image shown: the drag device's
     /// while a drag frame is shown, not the still frame's before it.
     pub(super) shown_accumulation: Option<Accumulation>,
+    /// The run of the ray-traced mean shown and when its first frame was
+    /// asked for.
+    accumulation_started: Option<(u64, Instant)>,
+    /// From the first frame of the mean shown to the end of the render
+    /// call of its last.
+    pub(super) accumulation_elapsed: Option<Duration>,
     /// Until when to keep polling for the last frame's GPU times.
     pub(super) times_due: Option<Instant>,
     /// The false-colour scale of the displayed frame, once read back.
@@ -71,6 +77,8 @@ impl HalfView {
             renders: 0,
             rendered_scale: FrameScale::FULL,
             shown_accumulation: None,
+            accumulation_started: None,
+            accumulation_elapsed: None,
             times_due: None,
             scale: None,
             pending_scale: None,
@@ -122,15 +130,25 @@ impl HalfView {
     }
 
     /// Counts a new image, rendered from `key` with `drawn` at render scales
-    /// `scale`, its accumulation `accumulation`.
+    /// `scale`, its accumulation `accumulation`, its render asked for at
+    /// `asked`.
     pub(super) fn shows(
         &mut self,
         key: RenderKey,
         drawn: Settings,
         scale: FrameScale,
         accumulation: Option<Accumulation>,
+        asked: Instant,
     ) {
         self.renders += 1;
+        self.accumulation_elapsed = accumulation.map(|a| {
+            let started = match self.accumulation_started {
+                Some((run, started)) if run == a.run => started,
+                _ => asked,
+            };
+            self.accumulation_started = Some((a.run, started));
+            started.elapsed()
+        });
         self.shown_accumulation = accumulation;
         self.rendered = Some(key);
         self.drawn = Some(drawn);
@@ -158,7 +176,13 @@ impl HalfView {
         }
         self.scale = frame.scale;
         self.pending_scale = None;
-        self.shows(frame.tag.key, frame.settings, frame.tag.scale, frame.accumulation);
+        self.shows(
+            frame.tag.key,
+            frame.settings,
+            frame.tag.scale,
+            frame.accumulation,
+            Instant::now(),
+        );
         let recreated = self.resize_shown(&render_state.device, size);
         let Some(shown) = &self.shown else { return };
         render_state.queue.write_texture(
