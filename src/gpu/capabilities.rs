@@ -26,6 +26,10 @@ pub struct Capabilities {
     pub timestamps: bool,
     /// Rgba32Float is renderable: the depth ranges PCF and Poisson read
     /// (gpu::depth_ranges) can be built; without, every tap is tested.
+    /// Not on GL: where Mesa names float colour buffers to wgpu (see
+    /// `context::mesa_extension_override`), llvmpipe's range windows come
+    /// out undecided (half-width 1, tests/depth_ranges.rs), so GL keeps the
+    /// kernels it had before.
     pub depth_ranges: bool,
     /// The GL backend decides a texture's kind from its layer count.
     pub gl: bool,
@@ -40,6 +44,7 @@ impl Capabilities {
                 .contains(wgpu::TextureUsages::RENDER_ATTACHMENT)
         };
         let f32_ok = renderable(wgpu::TextureFormat::Rgba32Float);
+        let gl = adapter.get_info().backend == wgpu::Backend::Gl;
         let pick = |ok: bool| {
             if ok {
                 wgpu::TextureFormat::Rgba32Float
@@ -53,8 +58,8 @@ impl Capabilities {
             hdr_format: pick(f32_ok),
             moments_format: pick(f32_ok && device.features().contains(wgpu::Features::FLOAT32_FILTERABLE)),
             timestamps: device.features().contains(wgpu::Features::TIMESTAMP_QUERY),
-            depth_ranges: renderable(depth_ranges::FORMAT),
-            gl: adapter.get_info().backend == wgpu::Backend::Gl,
+            depth_ranges: renderable(depth_ranges::FORMAT) && !gl,
+            gl,
         }
     }
 
