@@ -314,27 +314,24 @@ fn the_noise_measured_on_the_image_compares_the_mean_with_its_first_half() {
     assert_eq!(renderer.accumulation().unwrap().estimate, None);
 }
 
+/// `lumlab render` of the default scene under a sphere light of R = 0.3 m
+/// with `args`, into `out`.
+fn render_command(args: &[&str], out: &std::path::Path) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_lumlab"))
+        .args(["render", "--light-radius", "0.3"])
+        .args(args)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
 #[test]
 fn accumulate_needs_ray_traced_visibility_and_renders_n_frames() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("v.png");
-    let run = |extra: &[&str]| {
-        std::process::Command::new(env!("CARGO_BIN_EXE_lumlab"))
-            .args([
-                "render",
-                "--size",
-                "64x36",
-                "--light-radius",
-                "0.3",
-                "--accumulate",
-                "3",
-            ])
-            .args(extra)
-            .arg("--out")
-            .arg(&out)
-            .output()
-            .unwrap()
-    };
+    let run =
+        |extra: &[&str]| render_command(&[&["--size", "64x36", "--accumulate", "3"], extra].concat(), &out);
     let refused = run(&[]);
     assert_eq!(refused.status.code(), Some(2));
     let message = String::from_utf8_lossy(&refused.stderr);
@@ -357,15 +354,7 @@ fn accumulate_needs_ray_traced_visibility_and_renders_n_frames() {
 fn noise_target_stops_the_command_line_s_mean_once_met() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("v.exr");
-    let run = |extra: &[&str]| {
-        std::process::Command::new(env!("CARGO_BIN_EXE_lumlab"))
-            .args(["render", "--size", "96x54", "--light-radius", "0.3"])
-            .args(extra)
-            .arg("--out")
-            .arg(&out)
-            .output()
-            .unwrap()
-    };
+    let run = |extra: &[&str]| render_command(&[&["--size", "96x54"], extra].concat(), &out);
     for (extra, says) in [
         (
             &["--noise-target", "2"][..],
