@@ -26,10 +26,11 @@ pub struct Capabilities {
     pub timestamps: bool,
     /// Rgba32Float is renderable: the depth ranges PCF and Poisson read
     /// (gpu::depth_ranges) can be built; without, every tap is tested.
-    /// Not on GL: where Mesa names float colour buffers to wgpu (see
-    /// `context::mesa_extension_override`), llvmpipe's range windows come
-    /// out undecided (half-width 1, tests/depth_ranges.rs), so GL keeps the
-    /// kernels it had before.
+    /// Not on GL: once Mesa names float colour buffers to wgpu (see
+    /// `context::mesa_extension_override`) the pass can run there, but
+    /// llvmpipe's GL builds undecided windows (half-width 1 where one plane
+    /// fills them: tests/depth_ranges.rs), so GL tests every tap, as it did
+    /// while Rgba32Float was not renderable there.
     pub depth_ranges: bool,
     /// The GL backend decides a texture's kind from its layer count.
     pub gl: bool,
