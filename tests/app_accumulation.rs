@@ -17,6 +17,13 @@ fn frames(app: &LabApp) -> u32 {
         .map_or(0, |a| a.frames)
 }
 
+/// Has the lab show settings `s`.
+fn show(harness: &mut Harness<'static, LabApp>, s: &Settings) {
+    harness
+        .state_mut()
+        .emit(Command::SetSettings(Box::new(s.clone())));
+}
+
 /// The lab under a ray-traced sphere light of R = 0.3 m, its mean `frames`
 /// deep; the settings it shows.
 fn accumulating(frames_at_least: u32) -> (Harness<'static, LabApp>, Settings) {
@@ -24,9 +31,7 @@ fn accumulating(frames_at_least: u32) -> (Harness<'static, LabApp>, Settings) {
     let mut s = harness.state().settings().clone();
     s.shadow.visibility = Visibility::RayTraced;
     s.light.radius_m = 0.3;
-    harness
-        .state_mut()
-        .emit(Command::SetSettings(Box::new(s.clone())));
+    show(&mut harness, &s);
     step_until(&mut harness, "frames to accumulate", |app| {
         frames(app) >= frames_at_least
     });
@@ -49,9 +54,7 @@ fn accumulation_restarts_on_every_setting_change() {
     ];
     for (what, change) in changes {
         change(&mut s);
-        harness
-            .state_mut()
-            .emit(Command::SetSettings(Box::new(s.clone())));
+        show(&mut harness, &s);
         harness.step();
         assert_eq!(
             frames(harness.state()),
@@ -62,9 +65,7 @@ fn accumulation_restarts_on_every_setting_change() {
     }
     // Done accumulating: the image holds.
     s.shadow.rt_max_frames = 3;
-    harness
-        .state_mut()
-        .emit(Command::SetSettings(Box::new(s.clone())));
+    show(&mut harness, &s);
     step_until(&mut harness, "the last frame", |app| frames(app) == 3);
     for _ in 0..3 {
         harness.step();
@@ -75,15 +76,11 @@ fn accumulation_restarts_on_every_setting_change() {
 #[test]
 fn the_mean_holds_once_its_measured_noise_meets_the_target() {
     use lumlab::presets::Half;
-    // 2 % of the mean: met within a few frames of 8 rays, long before 256.
-    let mut harness = harness();
-    let mut s = harness.state().settings().clone();
-    s.shadow.visibility = Visibility::RayTraced;
-    s.light.radius_m = 0.3;
+    // 2 % of the mean: met within a few frames of 8 rays, long before 256
+    // (set on the mean's first frame, which it goes on with).
+    let (mut harness, mut s) = accumulating(1);
     s.shadow.rt_noise_target_percent = 2.0;
-    harness
-        .state_mut()
-        .emit(Command::SetSettings(Box::new(s.clone())));
+    show(&mut harness, &s);
     step_until(&mut harness, "the noise to meet the target", |app| {
         app.shown_accumulation(Half::A).is_some_and(|a| a.meets(2.0))
     });
@@ -96,9 +93,7 @@ fn the_mean_holds_once_its_measured_noise_meets_the_target() {
     assert!(held < s.shadow.rt_max_frames && !shown.is_complete());
     // Another target goes on with the same mean, not a new one.
     s.shadow.rt_noise_target_percent = 0.0;
-    harness
-        .state_mut()
-        .emit(Command::SetSettings(Box::new(s.clone())));
+    show(&mut harness, &s);
     step_until(&mut harness, "the mean to go on", |app| frames(app) > held + 1);
 }
 

@@ -97,8 +97,8 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         (None, Some(_)) => settings.ray_traced_frames(),
         (None, None) => 1,
     };
-    if args.accumulate.is_some() || args.noise_target.is_some() {
-        settings.shadow.rt_max_frames = frames;
+    if let Some(n) = args.accumulate {
+        settings.shadow.rt_max_frames = n;
     }
     // Without a spectrum both colour models are the RGB one: no ΔE to show.
     let no_delta_e = settings.view.mode == DebugView::DeltaE && settings.colour.illuminant.is_none();
