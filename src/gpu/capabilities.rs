@@ -26,11 +26,8 @@ pub struct Capabilities {
     pub timestamps: bool,
     /// Rgba32Float is renderable: the depth ranges PCF and Poisson read
     /// (gpu::depth_ranges) can be built; without, every tap is tested.
-    /// Not on GL: once Mesa names float colour buffers to wgpu (see
-    /// `context::mesa_extension_override`) the pass can run there, but
-    /// llvmpipe's GL builds undecided windows (half-width 1 where one plane
-    /// fills them: tests/depth_ranges.rs), so GL tests every tap, as it did
-    /// while Rgba32Float was not renderable there.
+    /// On Mesa's GL once it names float colour buffers to wgpu (see
+    /// `context::mesa_extension_override`).
     pub depth_ranges: bool,
     /// The GL backend decides a texture's kind from its layer count.
     pub gl: bool,
@@ -59,7 +56,7 @@ impl Capabilities {
             hdr_format: pick(f32_ok),
             moments_format: pick(f32_ok && device.features().contains(wgpu::Features::FLOAT32_FILTERABLE)),
             timestamps: device.features().contains(wgpu::Features::TIMESTAMP_QUERY),
-            depth_ranges: renderable(depth_ranges::FORMAT) && !gl,
+            depth_ranges: renderable(depth_ranges::FORMAT),
             gl,
         }
     }
