@@ -43,14 +43,14 @@ override SPECIALISED_ACCUMULATING: u32 = SPECIALISE_ANY;
 
 // A sphere light's rays traced one at a time (1), four to a walk (4,
 // bvh_occluded8 with `eight` false) or eight (8), as gpu::raytrace's
-// rays_per_walk picks from S: a walk for four costs some 45 % more than a
-// walk for one and about half as much as four walks; one for eight some
-// 60 % more than one for four (lavapipe, callgrind).
+// rays_per_walk picks from S, with its thresholds: a walk for four costs
+// some 45 % more than a walk for one and about half as much as four walks;
+// one for eight some 60 % more than one for four (lavapipe, callgrind).
 override SPECIALISED_RAYS_PER_WALK: u32 = SPECIALISE_ANY;
 
 fn rays_per_walk() -> u32 {
     let rays = knobs.rays.x;
-    let width = select(select(4u, 8u, rays >= 8u), 1u, rays <= 1u);
+    let width = select(select(4u, 8u, rays >= EIGHT_RAYS_A_WALK_FROM), 1u, rays < FOUR_RAYS_A_WALK_FROM);
     return select(SPECIALISED_RAYS_PER_WALK, width, SPECIALISED_RAYS_PER_WALK == SPECIALISE_ANY);
 }
 

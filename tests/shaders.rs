@@ -226,6 +226,8 @@ fn constants_shared_with_rust_are_defined_once_from_the_rust_values() {
         include_str!("../shaders/blur.wgsl"),
         include_str!("../shaders/lines.wgsl"),
         include_str!("../shaders/stability.wgsl"),
+        include_str!("../shaders/raytrace.wgsl"),
+        include_str!("../shaders/bvh.wgsl"),
     ];
     let flags = shared_u32_constants().map(|(name, _)| name);
     for name in named.keys().copied().chain(flags).chain(["LUMINANCE_WEIGHTS"]) {

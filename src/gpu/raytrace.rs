@@ -293,15 +293,23 @@ pub fn rays_per_pixel(settings: &Settings, one_light_sample: bool) -> u32 {
     }
 }
 
-/// Rays a walk of the BVH traces for `rays` a pixel: one for one (a walk
-/// for four costs 45 % more on lavapipe), four below eight, else eight (a
-/// walk for eight costs some 60 % more than one for four); WGSL's
-/// `rays_per_walk` in shaders/raytrace.wgsl.
+/// The fewest rays a pixel whose walks of the BVH trace four rays each (a
+/// walk for four costs 45 % more than a walk for one on lavapipe).
+pub const FOUR_RAYS_A_WALK_FROM: u32 = 2;
+/// The fewest rays a pixel whose walks trace eight each (a walk for eight
+/// costs some 60 % more than one for four).
+pub const EIGHT_RAYS_A_WALK_FROM: u32 = 8;
+
+/// Rays a walk of the BVH traces for `rays` a pixel: one, four or eight,
+/// from the two thresholds above, which WGSL's `rays_per_walk`
+/// (shaders/raytrace.wgsl) shares (`shaders::shared_u32_constants`).
 pub fn rays_per_walk(rays: u32) -> u32 {
-    match rays {
-        0 | 1 => 1,
-        2..8 => 4,
-        _ => 8,
+    if rays >= EIGHT_RAYS_A_WALK_FROM {
+        8
+    } else if rays >= FOUR_RAYS_A_WALK_FROM {
+        4
+    } else {
+        1
     }
 }
 

@@ -25,7 +25,8 @@ pub fn shared_f32_constants() -> [(&'static str, f32); 6] {
 
 /// The scalar u32 `const` declarations every module starts with, each
 /// taken from the Rust constant of the same name.
-pub fn shared_u32_constants() -> [(&'static str, u32); 4] {
+pub fn shared_u32_constants() -> [(&'static str, u32); 6] {
+    use super::raytrace::{EIGHT_RAYS_A_WALK_FROM, FOUR_RAYS_A_WALK_FROM};
     use super::uniforms::{
         MATERIAL_DOUBLE_SIDED, MATERIAL_NO_SHADOWS_RECEIVED, MATERIAL_OWN_K, MATERIAL_OWN_M,
     };
@@ -34,6 +35,8 @@ pub fn shared_u32_constants() -> [(&'static str, u32); 4] {
         ("MATERIAL_OWN_M", MATERIAL_OWN_M),
         ("MATERIAL_DOUBLE_SIDED", MATERIAL_DOUBLE_SIDED),
         ("MATERIAL_NO_SHADOWS_RECEIVED", MATERIAL_NO_SHADOWS_RECEIVED),
+        ("FOUR_RAYS_A_WALK_FROM", FOUR_RAYS_A_WALK_FROM),
+        ("EIGHT_RAYS_A_WALK_FROM", EIGHT_RAYS_A_WALK_FROM),
     ]
 }
 
