@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
 # Runs every lumlab test, as CI does. On a fresh Debian machine it first
 # installs what the tests need: Mesa's software Vulkan driver (lavapipe, the
-# GPU of machines without one), Xvfb (for the window test) and a C++ compiler.
+# GPU of machines without one), its GL one through EGL (llvmpipe, the lab's
+# fallback), Xvfb (for the window test) and a C++ compiler.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 need=()
 ldconfig -p 2>/dev/null | grep -q 'libvulkan.so.1' || need+=(libvulkan1)
 ls /usr/share/vulkan/icd.d/lvp_icd*.json >/dev/null 2>&1 || need+=(mesa-vulkan-drivers)
+ldconfig -p 2>/dev/null | grep -q 'libEGL.so.1' || need+=(libegl1)
+ls /usr/share/glvnd/egl_vendor.d/*mesa*.json >/dev/null 2>&1 || need+=(libegl-mesa0)
+ls /usr/lib/*/dri/swrast_dri.so >/dev/null 2>&1 || need+=(libgl1-mesa-dri)
 command -v xvfb-run >/dev/null 2>&1 || need+=(xvfb)
 # meshoptimizer (the drag frames' simplified meshes) is C++, built by the meshopt crate.
 command -v c++ >/dev/null 2>&1 || need+=(g++)
@@ -32,3 +36,15 @@ fi
 export MESA_EXTENSION_OVERRIDE="${MESA_EXTENSION_OVERRIDE:-+GL_ARB_color_buffer_float}"
 
 cargo test --locked "$@"
+
+# The whole suite (no arguments, no backend chosen) then runs the tests that
+# draw through the renderer again on GL, where texture kinds, layer counts,
+# formats and depth arithmetic differ from Vulkan (docs/DESIGN.md): the
+# fallback stays tested. `WGPU_BACKEND=gl bash scripts/test.sh` runs all of
+# them there.
+if [ $# -eq 0 ] && [ -z "${WGPU_BACKEND:-}" ]; then
+  gl_tests=(cube_seams delta_e_view depth_precision depth_ranges gpu_bvh gpu_raytrace gpu_renderer
+    gpu_visibility_sources reference_gpu specialised_shading split_view wgsl_parity)
+  echo "again on GL (llvmpipe): ${gl_tests[*]}"
+  WGPU_BACKEND=gl cargo test --locked "${gl_tests[@]/#/--test=}"
+fi
