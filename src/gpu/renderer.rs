@@ -436,6 +436,11 @@ impl Renderer {
             visible,
             writes,
         );
+        if self.caps.gl
+            && (super::display::scales_to_image(settings.view.mode) || self.raytrace.folds_by_compute())
+        {
+            self.finish_drawing(encoder);
+        }
         self.raytrace
             .encode_history(&self.device, encoder, &targets.quantity, &targets.aux);
         let inputs = DisplayInputs {
@@ -511,6 +516,23 @@ impl Renderer {
     /// Waits until every submitted frame is done.
     pub fn wait_idle(&self) {
         let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+    }
+
+    /// Submits what `encoder` holds and waits for it, going on in a new
+    /// encoder: on GL before a compute pass reads the camera pass's targets.
+    /// Mesa 22.3's llvmpipe lets a dispatch read a texture that its
+    /// rasterizer threads are still drawing, GL's ordering notwithstanding:
+    /// a view's false-colour scale came out 0.67 for 15.8 in about two runs
+    /// of three (tests/specialised_shading.rs), and never with
+    /// `LP_NUM_THREADS=0`.
+    fn finish_drawing(&self, encoder: &mut wgpu::CommandEncoder) {
+        let next = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("lumlab frame, after the camera pass"),
+            });
+        self.queue.submit([std::mem::replace(encoder, next).finish()]);
+        self.wait_idle();
     }
 }
 
