@@ -2,9 +2,15 @@
 //! plotters drawing into memory with egui's own font, so that no system font
 //! is needed, then encoded and written atomically.
 
+mod figure;
+
+pub use figure::Figure;
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
+
+/// What a figure's drawing code draws on.
+pub type Area<'a> = DrawingArea<Figure<'a>, plotters::coord::Shift>;
 
 /// The font family every figure uses.
 pub const FONT: &str = "sans-serif";
@@ -44,12 +50,12 @@ fn register_fonts() {
 pub fn write_png(
     path: &Path,
     (width, height): (u32, u32),
-    draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>) -> anyhow::Result<()>,
+    draw: impl FnOnce(&Area<'_>) -> anyhow::Result<()>,
 ) -> anyhow::Result<()> {
     register_fonts();
     let mut rgb = vec![255u8; (width * height * 3) as usize];
     {
-        let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
+        let root = Figure(BitMapBackend::with_buffer(&mut rgb, (width, height))).into_drawing_area();
         root.fill(&WHITE)?;
         draw(&root)?;
         root.present()?;
@@ -69,7 +75,7 @@ pub fn with_legend(
     let strip_height = 64;
     let mut rgb = vec![255u8; (width * strip_height * 3) as usize];
     {
-        let root = BitMapBackend::with_buffer(&mut rgb, (width, strip_height)).into_drawing_area();
+        let root = Figure(BitMapBackend::with_buffer(&mut rgb, (width, strip_height))).into_drawing_area();
         root.fill(&WHITE)?;
         let (x0, x1) = (40_i32, width as i32 - 40);
         let bar_top = 24;

@@ -221,7 +221,7 @@ fn write_plot(path: &Path, charts: &[(Illuminant, &[PatchComparison])]) -> anyho
     })
 }
 
-type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+use crate::plot::Area;
 
 /// The illuminant's relative power (peak = 1) over the CIE 1931 x̄, ȳ, z̄,
 /// with the colour of each wavelength along the axis.

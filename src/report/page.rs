@@ -201,7 +201,10 @@ fn pareto_plot(report: &Report, path: &Path) -> anyhow::Result<()> {
             .margin(20)
             .x_label_area_size(50)
             .y_label_area_size(80)
-            .build_cartesian_2d(x_range.clone().log_scale(), y_range.clone())?;
+            .build_cartesian_2d(
+                x_range.clone().log_scale().with_key_points(log_ticks(&x_range)),
+                y_range.clone(),
+            )?;
         chart
             .configure_mesh()
             .x_desc(format!(
@@ -212,7 +215,7 @@ fn pareto_plot(report: &Report, path: &Path) -> anyhow::Result<()> {
             .axis_desc_style((FONT, 17))
             .light_line_style(TRANSPARENT)
             .x_labels(12)
-            .x_label_formatter(&|ms| format!("{ms:.0}"))
+            .x_label_formatter(&|ms| format!("{ms}"))
             .y_label_formatter(&|e| format!("{e:.3}"))
             .draw()?;
         // The front as a staircase: from each point right, then down to the next.
@@ -326,6 +329,27 @@ fn pareto_plot(report: &Report, path: &Path) -> anyhow::Result<()> {
             .draw()?;
         Ok(())
     })
+}
+
+/// Ticks of a log axis: 1, 2, 3 and 5 times each power of ten in `range`
+/// (plotters' own marked only whole decades' multiples past the first).
+fn log_ticks(range: &std::ops::Range<f64>) -> Vec<f64> {
+    let (first, last) = (
+        range.start.log10().floor() as i32,
+        range.end.log10().ceil() as i32,
+    );
+    (first..=last)
+        .flat_map(|k| {
+            [1.0, 2.0, 3.0, 5.0].map(|m| {
+                if k < 0 {
+                    m / 10f64.powi(-k)
+                } else {
+                    m * 10f64.powi(k)
+                }
+            })
+        })
+        .filter(|t| range.contains(t))
+        .collect()
 }
 
 fn escape(text: &str) -> String {
@@ -502,4 +526,16 @@ fn normalization_table(page: &mut String, report: &Report) {
         let _ = write!(page, "<td>{:.4}</td></tr>", row.mean_radiance);
     }
     page.push_str("</table>");
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_log_axis_is_marked_in_every_decade_it_spans() {
+        assert_eq!(
+            super::log_ticks(&(25.0..1800.0)),
+            [30.0, 50.0, 100.0, 200.0, 300.0, 500.0, 1000.0]
+        );
+        assert_eq!(super::log_ticks(&(0.15..0.4)), [0.2, 0.3]);
+    }
 }
