@@ -103,8 +103,11 @@ impl<'a> DrawingBackend for Figure<'a> {
                 continue;
             };
             let bounds = outline.px_bounds();
-            // plotters' vertical placement: the ink's top half an em below the pen.
-            let top = (style.size() as f32 / 2.0 + bounds.min.y) as i32;
+            // plotters' vertical placement, half an em below the pen, in
+            // whole pixels before the glyph's own offset: plotters truncated
+            // the sum, which raised a glyph whose ink box starts a row lower
+            // (a "u" beside an "n") by one pixel at odd sizes.
+            let top = (style.size() as f32 / 2.0).floor() as i32 + bounds.min.y as i32;
             let mut inked = Vec::new();
             outline.draw(|x, y, coverage| inked.push((x, y, coverage)));
             for (x, y, coverage) in inked {
@@ -146,21 +149,43 @@ fn anchor_offset(anchor: text_anchor::Pos, (width, height): (i32, i32)) -> (i32,
 mod tests {
     use super::*;
 
-    /// The leftmost and rightmost inked columns of `text` drawn at x = 20.
-    fn ink_columns(text: &str) -> (u32, u32) {
+    /// `text` drawn at (20, 10) in a font of `size` px: whether each pixel is inked.
+    fn inked(text: &str, size: u32) -> impl Fn(u32, u32) -> bool {
         super::super::register_fonts();
         let (w, h) = (200u32, 80u32);
         let mut rgb = vec![255u8; (w * h * 3) as usize];
         {
             let root = Figure(BitMapBackend::with_buffer(&mut rgb, (w, h))).into_drawing_area();
-            let style = (super::super::FONT, 40).into_font().color(&BLACK);
+            let style = (super::super::FONT, size).into_font().color(&BLACK);
             root.draw(&Text::new(text.to_string(), (20, 10), style)).unwrap();
             root.present().unwrap();
         }
-        let inked: Vec<u32> = (0..w)
-            .filter(|&x| (0..h).any(|y| rgb[((y * w + x) * 3) as usize] < 128))
-            .collect();
-        (inked[0], *inked.last().unwrap())
+        // Ink where a glyph covers a fifth of the pixel or more (a light
+        // font's stems cover under half of a pixel at 11 px).
+        move |x, y| x < w && y < h && rgb[((y * w + x) * 3) as usize] < 200
+    }
+
+    /// The leftmost and rightmost inked columns of `text` at 40 px.
+    fn ink_columns(text: &str) -> (u32, u32) {
+        let ink = inked(text, 40);
+        let columns: Vec<u32> = (0..200).filter(|&x| (0..80).any(|y| ink(x, y))).collect();
+        (columns[0], *columns.last().unwrap())
+    }
+
+    /// The lowest inked row of `text`.
+    fn ink_bottom(text: &str, size: u32) -> u32 {
+        let ink = inked(text, size);
+        (0..80).rev().find(|&y| (0..200).any(|x| ink(x, y))).unwrap()
+    }
+
+    #[test]
+    fn flat_bottomed_glyphs_sit_on_one_baseline_at_every_size() {
+        for size in 11..=16 {
+            let n = ink_bottom("n", size);
+            for c in ["u", "m", "r", "i"] {
+                assert_eq!(ink_bottom(c, size), n, "{c} against n at {size} px");
+            }
+        }
     }
 
     #[test]
