@@ -23,7 +23,8 @@ fn font() -> &'static FontRef<'static> {
     })
 }
 
-/// A figure being drawn: a `BitMapBackend` whose text is set by [`font`].
+/// A figure being drawn: a `BitMapBackend` whose text is set in the figures' font
+/// (egui's Ubuntu Light), glyph by glyph.
 pub struct Figure<'a>(pub BitMapBackend<'a>);
 
 type Error<'a> = DrawingErrorKind<<BitMapBackend<'a> as DrawingBackend>::ErrorType>;
