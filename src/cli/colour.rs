@@ -6,6 +6,7 @@ use crate::colour::chart::{illuminant_linear_srgb, mean_and_max};
 use crate::colour::data::cmfs;
 use crate::colour::tristimulus::{srgb_encode, xyz_to_linear_srgb};
 use crate::colour::{Illuminant, PatchComparison, compare_chart};
+use crate::plot::Area;
 use glam::DVec3;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -220,8 +221,6 @@ fn write_plot(path: &Path, charts: &[(Illuminant, &[PatchComparison])]) -> anyho
         Ok(())
     })
 }
-
-use crate::plot::Area;
 
 /// The illuminant's relative power (peak = 1) over the CIE 1931 x̄, ȳ, z̄,
 /// with the colour of each wavelength along the axis.
