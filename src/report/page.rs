@@ -236,6 +236,19 @@ fn pareto_plot(report: &Report, path: &Path) -> anyhow::Result<()> {
         if let Some(last) = front.last() {
             stairs.push((x_range.end, last.1));
         }
+        // The staircase's segments in pixels, 2 px thick: the labels keep off them.
+        let segments: Vec<(i32, i32, i32, i32)> = stairs
+            .windows(2)
+            .map(|w| {
+                let (a, b) = (chart.backend_coord(&w[0]), chart.backend_coord(&w[1]));
+                (
+                    a.0.min(b.0) - 1,
+                    a.1.min(b.1) - 1,
+                    a.0.max(b.0) + 1,
+                    a.1.max(b.1) + 1,
+                )
+            })
+            .collect();
         chart
             .draw_series(LineSeries::new(stairs, BLACK.mix(0.6).stroke_width(2)))?
             .label("Pareto front (nothing is both faster and more accurate)")
@@ -289,8 +302,13 @@ fn pareto_plot(report: &Report, path: &Path) -> anyhow::Result<()> {
             )))?
             .label("reference (CPU ray tracing, error 0)")
             .legend(|(x, y)| TriangleMarker::new((x + 9, y), 6, BLACK.filled()));
-        // Labels of the front, each moved up or down until it overlaps no other.
-        let mut placed: Vec<(i32, i32, i32, i32)> = Vec::new();
+        // Labels of the front, each moved up or down until it overlaps no
+        // other label, no marker and no step of the staircase.
+        let mut placed = segments;
+        placed.extend(points.iter().map(|p| {
+            let (x, y) = chart.backend_coord(p);
+            (x - 7, y - 7, x + 7, y + 7)
+        }));
         for ((p, on), label) in points.iter().zip(&report.pareto).zip(&labels) {
             if !*on {
                 continue;
