@@ -42,7 +42,6 @@ impl Capabilities {
                 .contains(wgpu::TextureUsages::RENDER_ATTACHMENT)
         };
         let f32_ok = renderable(wgpu::TextureFormat::Rgba32Float);
-        let gl = adapter.get_info().backend == wgpu::Backend::Gl;
         let pick = |ok: bool| {
             if ok {
                 wgpu::TextureFormat::Rgba32Float
@@ -57,7 +56,7 @@ impl Capabilities {
             moments_format: pick(f32_ok && device.features().contains(wgpu::Features::FLOAT32_FILTERABLE)),
             timestamps: device.features().contains(wgpu::Features::TIMESTAMP_QUERY),
             depth_ranges: renderable(depth_ranges::FORMAT),
-            gl,
+            gl: adapter.get_info().backend == wgpu::Backend::Gl,
         }
     }
 
