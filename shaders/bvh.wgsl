@@ -35,15 +35,17 @@ struct BvhTriangle {
 // Nodes waiting to be visited. A ray keeps one for each node on its path
 // where it met both children: at most 17 for 200 k shadow rays of the
 // engine model and 12 of the 1 M-triangle scene (trees 30 and 34 deep).
-// lavapipe keeps the array in scratch memory and writes naga's zero
-// initializer into it lane by lane at every call, so its cost grows with
-// its size: 64 → 32 entries ran 8 % fewer instructions. The caller holds
-// it, so that a pixel's several rays (a sphere light's strata) pay the
-// initializer once, not once a ray. A deeper
-// (degenerate) tree does not lose nodes: a ray whose stack overflows and
-// finds no hit in the nodes it kept tests every triangle.
+// lavapipe keeps the array in scratch memory and writes its zero
+// initializer into it lane by lane, so its cost grows with its size: 64 →
+// 32 entries ran 8 % fewer instructions. One stack an invocation, at module
+// scope: a pixel's several rays (a sphere light's strata) pay the
+// initializer once, and no function takes it through a pointer, which
+// naga's GLSL makes an `inout` array that Mesa's GL copies in and out at
+// every step (the walk ran ~3.7× slower on llvmpipe's GL than on lavapipe).
+// A deeper (degenerate) tree does not lose nodes: a ray whose stack
+// overflows and finds no hit in the nodes it kept tests every triangle.
 const BVH_STACK_SIZE: u32 = 32u;
-alias BvhStack = array<u32, BVH_STACK_SIZE>;
+var<private> bvh_stack: array<u32, BVH_STACK_SIZE>;
 // A child's `first` that names a leaf, and its fields.
 const BVH_LEAF: u32 = 0x80000000u;
 const BVH_COUNT_SHIFT: u32 = 28u;
@@ -112,10 +114,10 @@ struct BvhWalk {
 // One step from a pair whose children a and b the walk's rays meet, or
 // not: down to the one met (b kept for later where both are), else to the
 // last node kept. True when nothing is left (the walk is done).
-fn bvh_step(walk: ptr<function, BvhWalk>, stack: ptr<function, BvhStack>, pair: BvhPair, hit_a: bool, hit_b: bool) -> bool {
+fn bvh_step(walk: ptr<function, BvhWalk>, pair: BvhPair, hit_a: bool, hit_b: bool) -> bool {
     if hit_a && hit_b {
         if (*walk).depth < BVH_STACK_SIZE {
-            (*stack)[(*walk).depth] = pair.b.w;
+            bvh_stack[(*walk).depth] = pair.b.w;
             (*walk).depth += 1u;
         } else {
             (*walk).overflowed = true;
@@ -132,7 +134,7 @@ fn bvh_step(walk: ptr<function, BvhWalk>, stack: ptr<function, BvhStack>, pair: 
         return true;
     }
     (*walk).depth -= 1u;
-    (*walk).item = (*stack)[(*walk).depth];
+    (*walk).item = bvh_stack[(*walk).depth];
     return false;
 }
 
@@ -150,20 +152,19 @@ fn bvh_leaf_triangles(walk: BvhWalk) -> vec2<u32> {
 
 // After a leaf's triangles: on to the last node kept, or false when none
 // is left.
-fn bvh_next(walk: ptr<function, BvhWalk>, stack: ptr<function, BvhStack>) -> bool {
+fn bvh_next(walk: ptr<function, BvhWalk>) -> bool {
     if (*walk).done || (*walk).depth == 0u {
         return false;
     }
     (*walk).depth -= 1u;
-    (*walk).item = (*stack)[(*walk).depth];
+    (*walk).item = bvh_stack[(*walk).depth];
     return true;
 }
 
 // Whether any caster meets o + t d for 0 < t < t_max (d need not be unit).
 // Inner nodes are walked until a leaf or the end, then the leaf's triangles
 // tested: lanes reach their leaves together, and test them together.
-// `stack`: scratch of the caller's (its contents on entry do not matter).
-fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: BvhGrid, stack: ptr<function, BvhStack>) -> bool {
+fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: BvhGrid) -> bool {
     let inv_d = bvh_inverse(d);
     if pair_count == 0u {
         return false;
@@ -173,7 +174,7 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: B
         while (walk.item & BVH_LEAF) == 0u {
             let pair = bvh_pairs[walk.item];
             let hit_a = bvh_hits_box(pair.a, grid, o, inv_d, t_max);
-            if bvh_step(&walk, stack, pair, hit_a, bvh_hits_box(pair.b, grid, o, inv_d, t_max)) {
+            if bvh_step(&walk, pair, hit_a, bvh_hits_box(pair.b, grid, o, inv_d, t_max)) {
                 break;
             }
         }
@@ -183,7 +184,7 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: B
                 return true;
             }
         }
-        if !bvh_next(&walk, stack) {
+        if !bvh_next(&walk) {
             break;
         }
     }
@@ -231,7 +232,7 @@ struct BvhBlocked8 {
 // false (a constant once inlined) compiles the four-ray walk: a walk for
 // four costs some 45 % more than a walk for one on lavapipe, one for eight
 // some 60 % more than one for four.
-fn bvh_occluded8(o: vec3<f32>, d_lo: BvhRays4, d_hi: BvhRays4, t_max: f32, in_lo: vec4<bool>, in_hi: vec4<bool>, eight: bool, pair_count: u32, grid: BvhGrid, stack: ptr<function, BvhStack>) -> BvhBlocked8 {
+fn bvh_occluded8(o: vec3<f32>, d_lo: BvhRays4, d_hi: BvhRays4, t_max: f32, in_lo: vec4<bool>, in_hi: vec4<bool>, eight: bool, pair_count: u32, grid: BvhGrid) -> BvhBlocked8 {
     let inv_lo = BvhRays4(bvh_inverse(d_lo[0]), bvh_inverse(d_lo[1]), bvh_inverse(d_lo[2]), bvh_inverse(d_lo[3]));
     let inv_hi = BvhRays4(bvh_inverse(d_hi[0]), bvh_inverse(d_hi[1]), bvh_inverse(d_hi[2]), bvh_inverse(d_hi[3]));
     var blocked = BvhBlocked8(vec4<bool>(false), vec4<bool>(false));
@@ -248,7 +249,7 @@ fn bvh_occluded8(o: vec3<f32>, d_lo: BvhRays4, d_hi: BvhRays4, t_max: f32, in_lo
                 || (eight && any(live.hi & bvh_hits_box4(pair.a, grid, o, inv_hi, t_max)));
             let hit_b = any(live.lo & bvh_hits_box4(pair.b, grid, o, inv_lo, t_max))
                 || (eight && any(live.hi & bvh_hits_box4(pair.b, grid, o, inv_hi, t_max)));
-            if bvh_step(&walk, stack, pair, hit_a, hit_b) {
+            if bvh_step(&walk, pair, hit_a, hit_b) {
                 break;
             }
         }
@@ -267,7 +268,7 @@ fn bvh_occluded8(o: vec3<f32>, d_lo: BvhRays4, d_hi: BvhRays4, t_max: f32, in_lo
                 return blocked;
             }
         }
-        if !bvh_next(&walk, stack) {
+        if !bvh_next(&walk) {
             break;
         }
     }

@@ -95,14 +95,14 @@ fn rt_r2(i: u32, offset: vec2<u32>) -> vec2<f32> {
 
 // Whether the segment from `origin_rel` along d (both relative to the eye)
 // is blocked before its end.
-fn rt_blocked(origin_rel: vec3<f32>, d: vec3<f32>, stack: ptr<function, BvhStack>) -> bool {
-    return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, knobs.rays.z, rt.grid, stack);
+fn rt_blocked(origin_rel: vec3<f32>, d: vec3<f32>) -> bool {
+    return bvh_occluded(origin_rel + globals.eye, d, 1.0 - RT_STOP_SHORT_REL, knobs.rays.z, rt.grid);
 }
 
 // rt_blocked for four segments from one origin, those `live_lo`, and where
 // `eight` four more, those `live_hi` (bvh_occluded8).
-fn rt_blocked8(origin_rel: vec3<f32>, d_lo: BvhRays4, d_hi: BvhRays4, live_lo: vec4<bool>, live_hi: vec4<bool>, eight: bool, stack: ptr<function, BvhStack>) -> BvhBlocked8 {
-    return bvh_occluded8(origin_rel + globals.eye, d_lo, d_hi, 1.0 - RT_STOP_SHORT_REL, live_lo, live_hi, eight, knobs.rays.z, rt.grid, stack);
+fn rt_blocked8(origin_rel: vec3<f32>, d_lo: BvhRays4, d_hi: BvhRays4, live_lo: vec4<bool>, live_hi: vec4<bool>, eight: bool) -> BvhBlocked8 {
+    return bvh_occluded8(origin_rel + globals.eye, d_lo, d_hi, 1.0 - RT_STOP_SHORT_REL, live_lo, live_hi, eight, knobs.rays.z, rt.grid);
 }
 
 // A sphere light's cone of directions seen from a point: its axis w and a
@@ -175,14 +175,12 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
     let origin = rel + n_geo * offset;
     let to_centre = globals.light_rel - rel;
     let radius = knobs.radius_m;
-    // One walk's scratch for all of the pixel's rays (bvh.wgsl).
-    var stack: BvhStack;
     if !sphere_light() {
         // Attached shadow: the light below the surface's horizon.
         if dot(n, to_centre) <= 0.0 {
             return 0.0;
         }
-        return select(1.0, 0.0, rt_blocked(origin, globals.light_rel - origin, &stack));
+        return select(1.0, 0.0, rt_blocked(origin, globals.light_rel - origin));
     }
     let d2 = dot(to_centre, to_centre);
     if d2 <= radius * radius {
@@ -219,7 +217,7 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
         for (var k = 0u; k < knobs.rays.x; k++) {
             let s = rt_ray(cone, k, turn);
             cos_sum += s.w;
-            if s.w > 0.0 && !rt_blocked(origin, s.xyz, &stack) {
+            if s.w > 0.0 && !rt_blocked(origin, s.xyz) {
                 visible_cos_sum += s.w;
             }
         }
@@ -233,7 +231,7 @@ fn ray_traced_visibility(rel: vec3<f32>, n: vec3<f32>, n_geo: vec3<f32>, pixel: 
         if eight {
             hi = rt_rays4(cone, k + 4u, turn);
         }
-        let blocked = rt_blocked8(origin, lo.d, hi.d, lo.c > vec4<f32>(0.0), hi.c > vec4<f32>(0.0), eight, &stack);
+        let blocked = rt_blocked8(origin, lo.d, hi.d, lo.c > vec4<f32>(0.0), hi.c > vec4<f32>(0.0), eight);
         // In the rays' order, as one ray at a time would sum them.
         rt_sum4(&cos_sum, &visible_cos_sum, lo.c, blocked.lo);
         if eight {

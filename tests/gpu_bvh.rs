@@ -60,8 +60,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
             brute = 1u;
         }
     }
-    var stack: BvhStack;
-    answers[i] = vec2<u32>(select(0u, 1u, bvh_occluded(o, d, t_max, counts.n.y, counts.grid, &stack)), brute);
+    answers[i] = vec2<u32>(select(0u, 1u, bvh_occluded(o, d, t_max, counts.n.y, counts.grid)), brute);
 }
 
 // The same for the packet walks: packet g holds rays WIDTH·g … WIDTH·g +
@@ -87,13 +86,12 @@ fn packets(@builtin(global_invocation_id) id: vec3<u32>) {
     let first = 2u * WIDTH * g;
     let o = rays[first].xyz;
     let t_max = rays[first].w;
-    var stack: BvhStack;
     let eight = WIDTH == 8u;
     var d = array<BvhRays4, 2>(packet_rays(first), packet_rays(first));
     if eight {
         d[1] = packet_rays(first + 8u);
     }
-    let walked = bvh_occluded8(o, d[0], d[1], t_max, packet_live(g, 0u), packet_live(g, 4u), eight, counts.n.y, counts.grid, &stack);
+    let walked = bvh_occluded8(o, d[0], d[1], t_max, packet_live(g, 0u), packet_live(g, 4u), eight, counts.n.y, counts.grid);
     let answers_walked = array<vec4<bool>, 2>(walked.lo, walked.hi);
     for (var j = 0u; j < WIDTH; j++) {
         let live = packet_live(g, j).x;
