@@ -78,14 +78,23 @@ fn bvh_hits_triangle(tri: BvhTriangle, o: vec3<f32>, d: vec3<f32>, t_max: f32) -
     return t > 0.0 && t < t_max;
 }
 
-// Slab test of the segment's parameters [0, t_max] against a child's box,
-// its corners q at q · step + origin.
-fn bvh_hits_box(child: vec4<u32>, grid: BvhGrid, o: vec3<f32>, inv_d: vec3<f32>, t_max: f32) -> bool {
+// A child's box: its corners q on the BVH's grid, at q · step + origin.
+struct BvhBox {
+    low: vec3<f32>,
+    high: vec3<f32>,
+}
+
+fn bvh_box(child: vec4<u32>) -> BvhBox {
     let c = child.xyz;
-    let low = vec3<f32>(vec3<u32>(c.x & 0xffffu, c.x >> 16u, c.y & 0xffffu));
-    let high = vec3<f32>(vec3<u32>(c.y >> 16u, c.z & 0xffffu, c.z >> 16u));
-    let t0 = (low * grid.step + grid.origin - o) * inv_d;
-    let t1 = (high * grid.step + grid.origin - o) * inv_d;
+    return BvhBox(
+        vec3<f32>(vec3<u32>(c.x & 0xffffu, c.x >> 16u, c.y & 0xffffu)),
+        vec3<f32>(vec3<u32>(c.y >> 16u, c.z & 0xffffu, c.z >> 16u)),
+    );
+}
+
+// Slab test: whether the segment's parameters [0, t_max] meet a box whose
+// corners lie at the ray's parameters t0 and t1 along each axis.
+fn bvh_slabs_meet(t0: vec3<f32>, t1: vec3<f32>, t_max: f32) -> bool {
     let near = min(t0, t1);
     let far = max(t0, t1);
     let enter = max(max(near.x, near.y), max(near.z, 0.0));
@@ -97,6 +106,29 @@ fn bvh_hits_box(child: vec4<u32>, grid: BvhGrid, o: vec3<f32>, inv_d: vec3<f32>,
 // never NaN.
 fn bvh_inverse(d: vec3<f32>) -> vec3<f32> {
     return 1.0 / select(d, vec3<f32>(1e-30), abs(d) < vec3<f32>(1e-30));
+}
+
+// One ray's slabs on the grid: a corner q lies at its parameter q · scale
+// + offset along each axis (scale = step / d, offset = (origin − o) / d),
+// one multiply-add a corner and axis where (q · step + origin − o) / d
+// took three operations. Its rounding, a few ulps of |q · step| +
+// |origin − o|, is well within the boxes' padding (gpu::bvh,
+// `BOX_PAD_REL`). (The packet walks keep the corners relative to their
+// shared origin instead: one subtraction for all their rays.)
+struct BvhSlabs {
+    scale: vec3<f32>,
+    offset: vec3<f32>,
+}
+
+fn bvh_slabs(grid: BvhGrid, o: vec3<f32>, d: vec3<f32>) -> BvhSlabs {
+    let inv_d = bvh_inverse(d);
+    return BvhSlabs(grid.step * inv_d, (grid.origin - o) * inv_d);
+}
+
+// Whether the segment o + t d, 0 ≤ t ≤ t_max, meets a child's box.
+fn bvh_hits_box(child: vec4<u32>, ray: BvhSlabs, t_max: f32) -> bool {
+    let q = bvh_box(child);
+    return bvh_slabs_meet(q.low * ray.scale + ray.offset, q.high * ray.scale + ray.offset, t_max);
 }
 
 // Where a walk stands: the item it visits, a pair (its index) or a leaf
@@ -165,7 +197,7 @@ fn bvh_next(walk: ptr<function, BvhWalk>) -> bool {
 // Inner nodes are walked until a leaf or the end, then the leaf's triangles
 // tested: lanes reach their leaves together, and test them together.
 fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: BvhGrid) -> bool {
-    let inv_d = bvh_inverse(d);
+    let ray = bvh_slabs(grid, o, d);
     if pair_count == 0u {
         return false;
     }
@@ -173,8 +205,8 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: B
     loop {
         while (walk.item & BVH_LEAF) == 0u {
             let pair = bvh_pairs[walk.item];
-            let hit_a = bvh_hits_box(pair.a, grid, o, inv_d, t_max);
-            if bvh_step(&walk, pair, hit_a, bvh_hits_box(pair.b, grid, o, inv_d, t_max)) {
+            let hit_a = bvh_hits_box(pair.a, ray, t_max);
+            if bvh_step(&walk, pair, hit_a, bvh_hits_box(pair.b, ray, t_max)) {
                 break;
             }
         }
@@ -195,13 +227,17 @@ fn bvh_occluded(o: vec3<f32>, d: vec3<f32>, t_max: f32, pair_count: u32, grid: B
 // column a ray's direction, or its reciprocal.
 alias BvhRays4 = mat4x3<f32>;
 
-// bvh_hits_box for each of the four rays.
+// bvh_hits_box for each of the four rays from o: the corners relative to o
+// once for all, then each ray's 1 / d.
 fn bvh_hits_box4(child: vec4<u32>, grid: BvhGrid, o: vec3<f32>, inv_d: BvhRays4, t_max: f32) -> vec4<bool> {
+    let q = bvh_box(child);
+    let low = q.low * grid.step + grid.origin - o;
+    let high = q.high * grid.step + grid.origin - o;
     return vec4<bool>(
-        bvh_hits_box(child, grid, o, inv_d[0], t_max),
-        bvh_hits_box(child, grid, o, inv_d[1], t_max),
-        bvh_hits_box(child, grid, o, inv_d[2], t_max),
-        bvh_hits_box(child, grid, o, inv_d[3], t_max),
+        bvh_slabs_meet(low * inv_d[0], high * inv_d[0], t_max),
+        bvh_slabs_meet(low * inv_d[1], high * inv_d[1], t_max),
+        bvh_slabs_meet(low * inv_d[2], high * inv_d[2], t_max),
+        bvh_slabs_meet(low * inv_d[3], high * inv_d[3], t_max),
     );
 }
 
@@ -227,8 +263,9 @@ struct BvhBlocked8 {
 // false). One walk for all: it visits a node where any live ray meets it,
 // and loads each node and triangle once for all, where lavapipe loads a
 // storage buffer lane by lane. A ray found blocked leaves the walk. Each
-// ray's tests are bvh_occluded's, and every triangle its own walk would
-// test is tested, so each answer is the one bvh_occluded gives. `eight`
+// ray's triangle tests are bvh_occluded's, and its box tests differ from
+// them only by rounding far inside the boxes' padding, so every triangle a
+// ray meets is tested and each answer is the one bvh_occluded gives. `eight`
 // false (a constant once inlined) compiles the four-ray walk: a walk for
 // four costs some 45 % more than a walk for one on lavapipe, one for eight
 // some 60 % more than one for four.
