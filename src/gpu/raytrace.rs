@@ -259,15 +259,15 @@ impl RayTracePass {
         (&self.history.as_ref().expect("made above").group, accumulating)
     }
 
-    /// Keeps this frame's targets as the history of the next, or beside f16
-    /// targets folds them into the f32 mean (ray traced only; the aux target
-    /// where the frame wrote it).
     /// This frame's mean is folded by a compute pass that reads the camera
     /// pass's targets (`gpu::accumulate`, beside f16 targets).
     pub fn folds_by_compute(&self) -> bool {
         self.separate_this_frame
     }
 
+    /// Keeps this frame's targets as the history of the next, or beside f16
+    /// targets folds them into the f32 mean (ray traced only; the aux target
+    /// where the frame wrote it).
     pub fn encode_history(
         &self,
         device: &wgpu::Device,

@@ -88,7 +88,6 @@ impl<'a> DrawingBackend for Figure<'a> {
             .map_err(|e| DrawingErrorKind::FontError(Box::new(e)))?;
         let offset = anchor_offset(style.anchor(), (max_x - min_x, max_y - min_y));
         let transform = style.transform();
-        let (width, height) = self.get_size();
         let font = font().as_scaled(style.size() as f32);
         let mut pen = 0.0f32;
         let mut previous = None;
@@ -118,14 +117,12 @@ impl<'a> DrawingBackend for Figure<'a> {
                     bounds.min.x as i32 + x as i32 + offset.0 - min_x,
                     top + y as i32 + offset.1 - min_y,
                 );
-                let (x, y) = (pos.0 + x, pos.1 + y);
-                if (0..width as i32).contains(&x) && (0..height as i32).contains(&y) {
-                    let ink = BackendColor {
-                        alpha: color.alpha * f64::from(coverage),
-                        rgb: color.rgb,
-                    };
-                    self.draw_pixel((x, y), ink)?;
-                }
+                // The bitmap passes over pixels outside it.
+                let ink = BackendColor {
+                    alpha: color.alpha * f64::from(coverage),
+                    rgb: color.rgb,
+                };
+                self.draw_pixel((pos.0 + x, pos.1 + y), ink)?;
             }
         }
         Ok(())
