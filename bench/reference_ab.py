@@ -26,6 +26,13 @@ some ±5 % from one spell to the next; these do not move at all).
     python3 bench/reference_ab.py /tmp/lumlab.a target/release/lumlab \\
         --scene model --model /work/models/2CylinderEngine.glb --branches
 
+An experiment that one build switches by an environment variable it reads
+once a process (a temporary one) runs against itself, which rules out any
+difference of code layout between the two sides (--env-a sets A's):
+
+    python3 bench/reference_ab.py target/release/lumlab target/release/lumlab \\
+        --scene million --env-b LUMLAB_TRY=1
+
 Only numpy is needed (Mitsuba is not: no image is read back).
 """
 
@@ -45,9 +52,9 @@ from mitsuba_compare import SPHERE_RADIUS_M, lumlab_command, run_timed
 from race_scenes import million_scene, model_scene, small_scene, write_glb
 
 
-def run(argv, threads):
+def run(argv, threads, env):
     """One run: (render s, BVH s, process s), from its summary line and the clock."""
-    process_s, render_s, summary = run_timed(argv, threads)
+    process_s, render_s, summary = run_timed(argv, threads, env)
     if math.isnan(render_s):
         sys.exit(f"no render time in {argv[0]}'s summary line: {summary}")
     bvh = re.search(r"BVH ([0-9.]+) s", summary)
@@ -59,18 +66,26 @@ def spread(values):
     return f"{statistics.median(v):.4f} s [{v[0]:.4f}–{v[-1]:.4f}]"
 
 
-def branches(argv):
+def branches(argv, env):
     """(instructions, mispredicted branches) of one run under cachegrind, one thread."""
     with tempfile.NamedTemporaryFile(suffix=".cg") as out:
         done = subprocess.run(
             ["valgrind", "--tool=cachegrind", "--cache-sim=no", "--branch-sim=yes",
              f"--cachegrind-out-file={out.name}", *argv],
-            env=dict(os.environ, RAYON_NUM_THREADS="1"), capture_output=True, text=True,
+            env=dict(os.environ, RAYON_NUM_THREADS="1", **env), capture_output=True, text=True,
         )  # fmt: skip
     if done.returncode != 0:
         sys.exit(f"valgrind failed ({done.returncode}): {done.stderr.strip()[-400:]}")
     count = lambda label: int(re.search(rf"{label}:\s+([0-9,]+)", done.stderr).group(1).replace(",", ""))
     return count("I\\s+refs"), count("Mispredicts")
+
+
+def variable(text):
+    """NAME=VALUE of --env-a and --env-b, as a pair."""
+    name, sep, value = text.partition("=")
+    if not sep or not name:
+        raise argparse.ArgumentTypeError(f"{text!r} is not NAME=VALUE")
+    return name, value
 
 
 def main():
@@ -89,6 +104,9 @@ def main():
     parser.add_argument("--runs", type=int, default=10, help="runs of each build, alternated")
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--branches", action="store_true", help="also count with cachegrind (valgrind)")
+    for k in ("a", "b"):
+        parser.add_argument(f"--env-{k}", metavar="NAME=VALUE", action="append", default=[], type=variable,
+                            help=f"an environment variable for {k.upper()}'s runs only (repeatable)")  # fmt: skip
     args = parser.parse_args()
     for binary in (args.a, args.b):
         if not binary.is_file():
@@ -114,21 +132,23 @@ def main():
             k: lumlab_command(b, glb, folder / f"{k}.exr", scene, spp, *light) for k, b in (("A", args.a), ("B", args.b))
         }
         times = {"A": [], "B": []}
+        env = {"A": dict(args.env_a), "B": dict(args.env_b)}
         for i in range(args.runs):
             for k in ("AB" if i % 2 == 0 else "BA"):
-                times[k].append(run(argv[k], args.threads))
+                times[k].append(run(argv[k], args.threads, env[k]))
         same = filecmp.cmp(folder / "A.exr", folder / "B.exr", shallow=False)
         lit = f", sphere light R = {light[0]} m, {light[1]} light samples" if sphere else ""
         print(f"{args.scene}: {scene.triangles()} triangles, {scene.size[0]}×{scene.size[1]}, {spp} spp{lit}, "
               f"{args.threads} threads, {args.runs} alternated runs each")  # fmt: skip
         for k, binary in (("A", args.a), ("B", args.b)):
             render, bvh, process = zip(*times[k])
-            print(f"  {k} {binary}: render {spread(render)}, BVH {spread(bvh)}, process {spread(process)}")
+            switches = "".join(f" {name}={value}" for name, value in env[k].items())
+            print(f"  {k} {binary}{switches}: render {spread(render)}, BVH {spread(bvh)}, process {spread(process)}")
         ratio = statistics.median(t[0] for t in times["B"]) / statistics.median(t[0] for t in times["A"])
         print(f"  render B / A: {ratio:.3f} (medians); EXRs {'the same bytes' if same else 'DIFFERENT'}")
         if args.branches:
             for k in ("A", "B"):
-                instructions, mispredicted = branches(argv[k])
+                instructions, mispredicted = branches(argv[k], env[k])
                 print(f"  {k} cachegrind, 1 thread: {instructions / 1e6:,.0f} M instructions, "
                       f"{mispredicted / 1e6:.2f} M mispredicted branches")  # fmt: skip
     if not same:
