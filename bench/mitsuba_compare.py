@@ -181,7 +181,7 @@ def run_timed(command, threads, extra_env=None):
     """One lumlab run: (whole process s, render s, its summary line); the
     render is the summary's `N spp: S s` (no loading, BVH or file output).
     `extra_env`: variables set for this run only."""
-    env = dict(os.environ, RAYON_NUM_THREADS=str(threads), **(extra_env or {}))
+    env = {**os.environ, "RAYON_NUM_THREADS": str(threads), **(extra_env or {})}
     settle()
     start = time.perf_counter()
     run = subprocess.run(command, env=env, capture_output=True, text=True)

@@ -72,7 +72,7 @@ def branches(argv, env):
         done = subprocess.run(
             ["valgrind", "--tool=cachegrind", "--cache-sim=no", "--branch-sim=yes",
              f"--cachegrind-out-file={out.name}", *argv],
-            env=dict(os.environ, RAYON_NUM_THREADS="1", **env), capture_output=True, text=True,
+            env={**os.environ, "RAYON_NUM_THREADS": "1", **env}, capture_output=True, text=True,
         )  # fmt: skip
     if done.returncode != 0:
         sys.exit(f"valgrind failed ({done.returncode}): {done.stderr.strip()[-400:]}")
